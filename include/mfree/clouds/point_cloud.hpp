@@ -1,0 +1,47 @@
+#pragma once
+// Point clouds on a domain: DOF nodes and quadrature points.
+//
+// Every generator is seeded and reproducible: the same settings give the same points,
+// bit for bit, on every run and thread count.
+//
+//   lattice    regular lattice of spacing h, fitted to the bounding box of the domain
+//              (the spacing per axis is adjusted so an integer number of steps spans it);
+//              vertex lattice (points on the box edges) or cell-centred lattice.
+//   perturbed  the lattice, each point moved by a uniform random offset in
+//              [-f h/2, f h/2]^2 (f: perturbation, a fraction of the spacing); a move that
+//              leaves the domain is redrawn (up to 16 times, then the point stays put), so
+//              points on the boundary stay in the closed domain.
+//   random     round(|Omega| / h^2) points uniformly distributed in the domain.
+//
+// Only points inside the closed domain are kept.
+
+#include <cstdint>
+#include <vector>
+
+#include "mfree/core/types.hpp"
+#include "mfree/geometry/domain.hpp"
+
+namespace mfree {
+
+enum class CloudKind { lattice, perturbed, random };
+
+struct CloudSettings {
+  CloudKind kind = CloudKind::lattice;
+  double spacing = 0.0;        ///< nominal spacing h > 0 (length units)
+  double perturbation = 0.0;   ///< f in [0, 1], perturbed clouds only
+  std::uint64_t seed = 1;      ///< random clouds and perturbations
+  bool cell_centred = false;   ///< lattice points at cell centres instead of vertices
+};
+
+/// The points of a cloud inside the domain. Throws InputError for a bad spacing or
+/// perturbation, or when no point falls inside the domain.
+std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& settings);
+
+/// A quadrature cloud for a DOF cloud: about `ratio` points per node (ratio >= 1), of the
+/// same kind, spacing h / sqrt(ratio), cell-centred, seeded differently from the nodes.
+std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes,
+                                        double ratio);
+
+std::string_view to_string(CloudKind kind);
+
+}  // namespace mfree

@@ -1,0 +1,82 @@
+#pragma once
+// Strict reading of TOML scene files into typed settings.
+//
+// A scene is parsed once. Each section is read through a SceneTable, which checks the
+// type and range of every value it hands out, and whose finish() refuses keys nobody
+// read (a misspelt key must not be silently ignored). Every error is an InputError of
+// the form  "FILE:LINE:COLUMN: key 'section.key': what is wrong".
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace toml {
+inline namespace v3 {
+class table;
+class node;
+}  // namespace v3
+}  // namespace toml
+
+namespace mfree {
+
+class SceneTable {
+ public:
+  /// Whole-number value in [lo, hi].
+  long long integer(std::string_view key, long long lo, long long hi) const;
+  long long integer_or(std::string_view key, long long fallback, long long lo, long long hi) const;
+  /// Real value (integers accepted) in [lo, hi].
+  double number(std::string_view key, double lo, double hi) const;
+  double number_or(std::string_view key, double fallback, double lo, double hi) const;
+  /// One of `choices`.
+  std::string choice(std::string_view key, const std::vector<std::string>& choices) const;
+  std::string choice_or(std::string_view key, std::string fallback,
+                        const std::vector<std::string>& choices) const;
+  /// Non-empty list of distinct members of `choices`.
+  std::vector<std::string> choices(std::string_view key, const std::vector<std::string>& choices) const;
+  std::string string(std::string_view key) const;
+  /// Array of numbers, of length `size` (any length >= 1 when size is 0), each in [lo, hi].
+  std::vector<double> numbers(std::string_view key, std::size_t size, double lo, double hi) const;
+  bool has(std::string_view key) const;
+  /// A required sub-table.
+  SceneTable table(std::string_view key) const;
+  /// Throws for any key of this table that was never read.
+  void finish() const;
+
+  /// The folder of the scene file (relative paths in a scene are relative to it).
+  const std::filesystem::path& folder() const { return *folder_; }
+
+ private:
+  friend class Scene;
+  SceneTable(const toml::table* t, std::string prefix, std::shared_ptr<const std::string> file,
+             std::shared_ptr<const std::filesystem::path> folder);
+  const toml::node* get(std::string_view key, bool required) const;
+  [[noreturn]] void fail(const toml::node* at, std::string_view key, const std::string& what) const;
+
+  const toml::table* table_;
+  std::string prefix_;
+  std::shared_ptr<const std::string> file_;
+  std::shared_ptr<const std::filesystem::path> folder_;
+  std::shared_ptr<std::set<std::string>> used_;
+};
+
+/// A parsed scene file; root() reads its top-level table.
+class Scene {
+ public:
+  /// Throws InputError for a missing file or a TOML syntax error (with line and column).
+  static Scene load(const std::filesystem::path& path);
+  static Scene parse(std::string_view text, const std::string& name);
+  Scene(Scene&&) noexcept;
+  ~Scene();
+  SceneTable root() const;
+
+ private:
+  Scene();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mfree

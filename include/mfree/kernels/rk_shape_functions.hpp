@@ -1,0 +1,100 @@
+#pragma once
+// Reproducing-kernel (RK / moving least squares) shape functions on a cloud of nodes.
+//
+//   phi_I(x) = H(0)^T M(x)^-1 H(z_I) w_a(x - x_I),  z_I = (x - x_I) / a,
+//   M(x)     = sum_I w_a(x - x_I) H(z_I) H(z_I)^T                      (SPEC section 1)
+//
+// with H the linear or quadratic basis of polynomial_basis.hpp, the window of
+// window_function.hpp on a circular support |x - x_I| < a or a square (tensor-product)
+// support |x - x_I|_inf < a, where a is the support radius (length units). The basis is
+// scaled by the same a, so M is O(1) and its conditioning measures the geometry of the
+// neighbours alone. Nodes may carry their own radii a_I >= a (nodal_support_radii()):
+// on irregular clouds, nodes next to a gap then reach across it.
+//
+// Gradients are exact derivatives of phi_I: grad(M^-1) = -M^-1 (grad M) M^-1.
+//
+// The same construction serves the Galerkin trial functions, the quadrature-cloud functions
+// that define quadrature weights, and the MLS reconstruction of the MPM.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mfree/core/parallel.hpp"
+#include "mfree/core/types.hpp"
+#include "mfree/kernels/polynomial_basis.hpp"
+#include "mfree/kernels/window_function.hpp"
+#include "mfree/search/cell_list.hpp"
+
+namespace mfree {
+
+enum class SupportShape {
+  circular,  ///< |x - x_I| < a, window w(|x - x_I| / a)
+  tensor,    ///< |x - x_I|_inf < a, window w(|dx| / a) w(|dy| / a)
+};
+
+struct RKSettings {
+  RKOrder order = RKOrder::linear;
+  Window window = Window::cubic_bspline;
+  SupportShape support = SupportShape::circular;
+  double radius = 0.0;       ///< support radius a > 0 (length units); basis scale
+  /// Optional radius per node (empty: every node has `radius`). Each must be >= radius.
+  std::vector<double> node_radii;
+  double rcond_min = 1e-10;  ///< smallest accepted reciprocal condition number of M
+};
+
+/// Shape functions of every node whose support covers one point x.
+/// phi[k], grad[k] belong to node nodes[k]; grad is empty when not asked for.
+struct ShapeValues {
+  std::vector<Index> nodes;
+  std::vector<double> phi;
+  std::vector<Vec2> grad;
+  [[nodiscard]] std::size_t size() const { return nodes.size(); }
+};
+
+class RKShapeFunctions {
+ public:
+  /// Throws InputError for a non-positive radius or an empty cloud.
+  RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings);
+
+  [[nodiscard]] const std::vector<Vec2>& nodes() const { return nodes_; }
+  [[nodiscard]] const RKSettings& settings() const { return settings_; }
+  [[nodiscard]] Index size() const { return static_cast<Index>(nodes_.size()); }
+  /// Number of basis terms (3 or 6): the fewest neighbours a point can have.
+  [[nodiscard]] int basis_size() const { return settings_.order == RKOrder::linear ? 3 : 6; }
+
+  /// phi_I(x) and, if with_gradient, grad phi_I(x) for every node I covering x.
+  /// Throws NumericalError naming the point, its neighbour count and what to change when
+  /// M(x) is singular or its reciprocal condition number is below settings.rcond_min.
+  void evaluate(const Vec2& x, ShapeValues& out, bool with_gradient = true) const;
+
+  /// Evaluates at every point in parallel and calls visit(p, values) from the worker
+  /// threads; visit must be safe to call concurrently for different p.
+  template <class Visit>
+  void for_each(std::span<const Vec2> points, bool with_gradient, Visit&& visit) const {
+    parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index begin, Index end) {
+      ShapeValues values;
+      for (Index p = begin; p < end; ++p) {
+        evaluate(points[p], values, with_gradient);
+        visit(p, static_cast<const ShapeValues&>(values));
+      }
+    });
+  }
+
+ private:
+  std::vector<Vec2> nodes_;
+  RKSettings settings_;
+  double max_radius_ = 0.0;
+  CellList cells_;
+};
+
+/// Radii a_I = factor * max(h, d_k(I)), d_k(I) the distance from node I to its k-th nearest
+/// other node and h the nominal spacing: on a lattice (k = 4) every a_I = factor * h; on an
+/// irregular cloud nodes beside a gap get wider supports that cover it.
+std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,
+                                        int k = 4);
+
+std::string_view to_string(RKOrder order);
+std::string_view to_string(SupportShape shape);
+
+}  // namespace mfree

@@ -1,0 +1,54 @@
+#pragma once
+// Window (weight) functions of the reproducing-kernel construction, in the normalised
+// distance r = |x - x_I| / a, with support r < 1 (a: support radius, length units).
+//
+// Both are non-negative, C1 at least, and have w'(0) = 0, so the gradient of a circular
+// window is well defined at its own node.
+
+#include <cmath>
+#include <string_view>
+
+namespace mfree {
+
+enum class Window {
+  cubic_bspline,     ///< SPEC section 1: C2 cubic B-spline, w(0) = 2/3
+  quadratic_spline,  ///< seed 000 eq. (17), stretched from 3/2 to 1: C1, w(0) = 3/4
+};
+
+/// Value w(r) and derivative dw/dr of a window at r >= 0.
+struct WindowValue {
+  double w;
+  double dw;
+};
+
+/// Cubic B-spline (SPEC section 1):
+///   2/3 - 4r^2 + 4r^3 (r <= 1/2),  4/3 - 4r + 4r^2 - 4/3 r^3 (1/2 < r <= 1),  0 beyond.
+inline WindowValue cubic_bspline(double r) {
+  if (r <= 0.5) return {2.0 / 3.0 - 4.0 * r * r + 4.0 * r * r * r, -8.0 * r + 12.0 * r * r};
+  if (r < 1.0) {
+    const double s = 1.0 - r;  // 4/3 (1 - r)^3 expands to the SPEC polynomial
+    return {4.0 / 3.0 * s * s * s, -4.0 * s * s};
+  }
+  return {0.0, 0.0};
+}
+
+/// Quadratic spline of seed 000 eq. (17), written in rho = 3r/2 so that its support
+/// |rho| < 3/2 becomes r < 1: 3/4 - rho^2 (rho <= 1/2), (3/2 - rho)^2 / 2 (rho <= 3/2).
+/// The seed's kernel with r_x = (x - x_p) / (2 l_x) is this one with a = 3 l_x.
+inline WindowValue quadratic_spline(double r) {
+  const double rho = 1.5 * r;
+  if (rho <= 0.5) return {0.75 - rho * rho, -2.0 * rho * 1.5};
+  if (rho < 1.5) {
+    const double s = 1.5 - rho;
+    return {0.5 * s * s, -s * 1.5};
+  }
+  return {0.0, 0.0};
+}
+
+inline WindowValue evaluate_window(Window kind, double r) {
+  return kind == Window::cubic_bspline ? cubic_bspline(r) : quadratic_spline(r);
+}
+
+std::string_view to_string(Window kind);
+
+}  // namespace mfree

@@ -1,0 +1,232 @@
+#include "mfree/apps/integration_study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <ostream>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/quadrature/background_lattice.hpp"
+#include "mfree/quadrature/gauss_cells.hpp"
+#include "mfree/quadrature/rk_quadrature.hpp"
+#include "mfree/quadrature/voronoi_weights.hpp"
+
+namespace mfree {
+
+IntegrationStudySettings read_integration_study(const SceneTable& root) {
+  IntegrationStudySettings s;
+  {
+    const SceneTable d = root.table("domain");
+    const auto lo = d.numbers("lo", 2, -1e300, 1e300), hi = d.numbers("hi", 2, -1e300, 1e300);
+    s.rectangle = Box{Vec2(lo[0], lo[1]), Vec2(hi[0], hi[1])};
+    if (!(s.rectangle.hi.array() > s.rectangle.lo.array()).all())
+      throw InputError(fmt::format("{}: domain.hi must exceed domain.lo in x and y", root.folder().string()));
+    d.finish();
+  }
+  {
+    const SceneTable t = root.table("study");
+    for (double n : t.numbers("levels", 0, 2, 4000)) {
+      if (n != std::floor(n)) throw InputError("study.levels: whole numbers of points expected");
+      s.levels.push_back(static_cast<int>(n));
+    }
+    for (const auto& c : t.choices("clouds", {"lattice", "perturbed", "random"}))
+      s.clouds.push_back(c == "lattice" ? CloudKind::lattice
+                                        : c == "perturbed" ? CloudKind::perturbed : CloudKind::random);
+    s.perturbation = t.number_or("perturbation", s.perturbation, 0.0, 1.0);
+    for (const auto& o : t.choices("orders", {"linear", "quadratic"}))
+      s.orders.push_back(o == "linear" ? RKOrder::linear : RKOrder::quadratic);
+    s.schemes = t.choices("schemes", {"rk", "voronoi", "gauss_cells", "equal"});
+    s.functions = t.choices("functions", {"f1", "f2"});
+    s.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
+    t.finish();
+  }
+  {
+    const SceneTable k = root.table("kernel");
+    s.window = k.choice_or("window", "cubic_bspline", {"cubic_bspline", "quadratic_spline"}) ==
+                       "cubic_bspline"
+                   ? Window::cubic_bspline
+                   : Window::quadratic_spline;
+    s.support = k.choice_or("support", "circular", {"circular", "tensor"}) == "circular"
+                    ? SupportShape::circular
+                    : SupportShape::tensor;
+    s.factor_linear = k.number_or("factor_linear", s.factor_linear, 0.5, 10.0);
+    s.factor_quadratic = k.number_or("factor_quadratic", s.factor_quadratic, 0.5, 10.0);
+    s.random_factor_scale = k.number_or("random_factor_scale", s.random_factor_scale, 1.0, 5.0);
+    k.finish();
+  }
+  {
+    const SceneTable q = root.table("quadrature");
+    s.lattice_refinement = static_cast<int>(q.integer_or("lattice_refinement", 4, 1, 64));
+    s.gauss_points = static_cast<int>(q.integer_or("gauss_points", 2, 1, 10));
+    q.finish();
+  }
+  root.finish();
+  return s;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct TestFunction {
+  std::string name;
+  double exact;
+  std::function<double(const Vec2&)> f;
+};
+
+std::vector<TestFunction> test_functions(const Box& r, const std::vector<std::string>& names) {
+  const double lx = r.size().x(), ly = r.size().y(), pi = std::numbers::pi;
+  const Vec2 lo = r.lo, centre = 0.5 * (r.lo + r.hi);
+  std::vector<TestFunction> out;
+  for (const auto& n : names) {
+    if (n == "f1")
+      out.push_back({n, 4.0 * lx * ly / (pi * pi), [=](const Vec2& x) {
+                       return std::sin(pi * (x.x() - lo.x()) / lx) * std::sin(pi * (x.y() - lo.y()) / ly);
+                     }});
+    else
+      out.push_back({n, 4.0 * lx * ly / 9.0, [=](const Vec2& x) {
+                       const double u = 2.0 * (x.x() - centre.x()) / lx, v = 2.0 * (x.y() - centre.y()) / ly;
+                       return (1.0 - u * u) * (1.0 - v * v);
+                     }});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings& s, std::ostream& log) {
+  const Domain domain = Domain::rectangle(s.rectangle.lo, s.rectangle.hi);
+  const double area = domain.area();
+  const auto functions = test_functions(s.rectangle, s.functions);
+  const double short_side = s.rectangle.size().minCoeff();
+  std::vector<IntegrationRow> rows;
+
+  const auto record = [&](const std::string& cloud, const std::string& order, const std::string& scheme,
+                          int level, const std::vector<Vec2>& x, const std::vector<double>& w,
+                          double seconds) {
+    double sum = 0.0;
+    for (double wk : w) sum += wk;
+    const NegativeWeights neg = negative_weights(w);
+    for (const auto& tf : functions) {
+      double integral = 0.0;
+      for (std::size_t k = 0; k < x.size(); ++k) integral += w[k] * tf.f(x[k]);
+      IntegrationRow r;
+      r.function = tf.name;
+      r.cloud = cloud;
+      r.order = order;
+      r.scheme = scheme;
+      r.level = level;
+      r.points = static_cast<Index>(x.size());
+      r.spacing = std::sqrt(area / static_cast<double>(x.size()));
+      r.error = std::abs(integral - tf.exact);
+      r.relative_error = r.error / std::abs(tf.exact);
+      r.area_error = std::abs(sum - area) / area;
+      r.seconds = seconds;
+      r.negative = neg.count;
+      r.most_negative = neg.most_negative;
+      rows.push_back(r);
+    }
+  };
+
+  const auto total_start = Clock::now();
+  for (std::size_t li = 0; li < s.levels.size(); ++li) {
+    const int level = s.levels[li];
+    const double h = short_side / level;
+    for (CloudKind kind : s.clouds) {
+      CloudSettings cs;
+      cs.kind = kind;
+      cs.spacing = h;
+      cs.perturbation = kind == CloudKind::perturbed ? s.perturbation : 0.0;
+      cs.seed = s.seed + static_cast<std::uint64_t>(level);
+      cs.cell_centred = true;
+      const std::vector<Vec2> cloud = make_cloud(domain, cs);
+      const std::string cname(to_string(kind));
+
+      for (const auto& scheme : s.schemes) {
+        if (scheme == "rk") {
+          for (RKOrder order : s.orders) {
+            const auto t0 = Clock::now();
+            RKSettings rs;
+            rs.order = order;
+            rs.window = s.window;
+            rs.support = s.support;
+            const double factor = order == RKOrder::linear ? s.factor_linear : s.factor_quadratic;
+            rs.radius = factor * h;
+            // Irregular clouds: nodes beside a gap reach across it (nodal_support_radii).
+            if (kind != CloudKind::lattice)
+              rs.node_radii = nodal_support_radii(cloud, h, factor * s.random_factor_scale);
+            const RKShapeFunctions rk(cloud, rs);
+            const BackgroundLattice lattice(domain, h / s.lattice_refinement,
+                                            order == RKOrder::linear ? 1 : 2);
+            const std::vector<double> w = rk_quadrature_weights(rk, lattice);
+            record(cname, std::string(to_string(order)), "rk", level, cloud, w, seconds_since(t0));
+          }
+        } else if (scheme == "voronoi") {
+          const auto t0 = Clock::now();
+          const std::vector<double> w = voronoi_weights(cloud, domain);
+          record(cname, "-", scheme, level, cloud, w, seconds_since(t0));
+        } else if (scheme == "equal") {
+          const auto t0 = Clock::now();
+          const std::vector<double> w(cloud.size(), area / static_cast<double>(cloud.size()));
+          record(cname, "-", scheme, level, cloud, w, seconds_since(t0));
+        }
+      }
+    }
+    if (std::find(s.schemes.begin(), s.schemes.end(), "gauss_cells") != s.schemes.end()) {
+      // Independent of the clouds: n x n points per cell of side n h, as many points as a
+      // lattice cloud of this level.
+      const auto t0 = Clock::now();
+      const QuadratureRule g = gauss_cell_rule(domain, s.gauss_points * h, s.gauss_points);
+      record("-", "-", "gauss_cells", level, g.points, g.weights, seconds_since(t0));
+    }
+    log << fmt::format("  level {}/{}: {} points across, {:.1f} s elapsed, {} thread(s)\n", li + 1,
+                       s.levels.size(), level, seconds_since(total_start), thread_count())
+        << std::flush;
+  }
+  return rows;
+}
+
+std::string integration_csv(const std::vector<IntegrationRow>& rows) {
+  std::string out =
+      "function,cloud,order,scheme,level,points,spacing,error,relative_error,area_error,seconds,"
+      "negative_weights,most_negative\n";
+  for (const auto& r : rows)
+    out += fmt::format("{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.3e},{:.6e},{},{:.6e}\n", r.function,
+                       r.cloud, r.order, r.scheme, r.level, r.points, r.spacing, r.error,
+                       r.relative_error, r.area_error, r.seconds, r.negative, r.most_negative);
+  return out;
+}
+
+std::string integration_report(const std::vector<IntegrationRow>& rows) {
+  // Group rows into series (function, cloud, scheme, order), levels in order.
+  std::map<std::string, std::vector<const IntegrationRow*>> series;
+  for (const auto& r : rows)
+    series[fmt::format("{:<3} {:<9} {:<11} {:<9}", r.function, r.cloud, r.scheme, r.order)].push_back(&r);
+  std::string out = fmt::format("{:<3} {:<9} {:<11} {:<9} {:>8} {:>11} {:>10} {:>6} {:>9}  {}\n",
+                                "f", "cloud", "scheme", "order", "points", "h", "error", "rate",
+                                "time [s]", "negative weights (count, most negative)");
+  for (const auto& [key, list] : series) {
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const IntegrationRow& r = *list[k];
+      std::string rate = "";
+      if (k > 0 && r.error > 0.0 && list[k - 1]->error > 0.0)
+        rate = fmt::format("{:.2f}", std::log(list[k - 1]->error / r.error) /
+                                         std::log(list[k - 1]->spacing / r.spacing));
+      const std::string neg =
+          r.order == "quadratic" ? fmt::format("{}, {:.3e}", r.negative, r.most_negative) : "";
+      out += fmt::format("{} {:>8} {:>11.4e} {:>10.3e} {:>6} {:>9.4f}  {}\n", key, r.points,
+                         r.spacing, r.error, rate, r.seconds, neg);
+    }
+  }
+  return out;
+}
+
+}  // namespace mfree

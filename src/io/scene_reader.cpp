@@ -1,0 +1,188 @@
+#include "mfree/io/scene_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+namespace {
+std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a real number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date or time";
+  }
+}
+}  // namespace
+
+struct Scene::Impl {
+  toml::table table;
+  std::shared_ptr<const std::string> file;
+  std::shared_ptr<const std::filesystem::path> folder;
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::Scene(Scene&&) noexcept = default;
+Scene::~Scene() = default;
+
+Scene Scene::parse(std::string_view text, const std::string& name) {
+  Scene scene;
+  try {
+    scene.impl_->table = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source().begin;
+    throw InputError(fmt::format("{}:{}:{}: {}", name, at.line, at.column, e.description()));
+  }
+  scene.impl_->file = std::make_shared<const std::string>(name);
+  scene.impl_->folder = std::make_shared<const std::filesystem::path>(
+      std::filesystem::path(name).parent_path());
+  return scene;
+}
+
+Scene Scene::load(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open the scene file", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse(text.str(), path.string());
+}
+
+SceneTable Scene::root() const {
+  return SceneTable(&impl_->table, "", impl_->file, impl_->folder);
+}
+
+SceneTable::SceneTable(const toml::table* t, std::string prefix,
+                       std::shared_ptr<const std::string> file,
+                       std::shared_ptr<const std::filesystem::path> folder)
+    : table_(t), prefix_(std::move(prefix)), file_(std::move(file)), folder_(std::move(folder)),
+      used_(std::make_shared<std::set<std::string>>()) {}
+
+void SceneTable::fail(const toml::node* at, std::string_view key, const std::string& what) const {
+  const auto& src = (at ? at->source() : table_->source()).begin;
+  throw InputError(fmt::format("{}:{}:{}: key '{}{}': {}", *file_, src.line, src.column, prefix_,
+                               key, what));
+}
+
+const toml::node* SceneTable::get(std::string_view key, bool required) const {
+  used_->insert(std::string(key));
+  const toml::node* n = table_->get(key);
+  if (!n && required) fail(nullptr, key, "missing (required)");
+  return n;
+}
+
+bool SceneTable::has(std::string_view key) const { return table_->contains(key); }
+
+long long SceneTable::integer(std::string_view key, long long lo, long long hi) const {
+  const toml::node* n = get(key, true);
+  const auto v = n->value_exact<int64_t>();
+  if (!v) fail(n, key, fmt::format("expected a whole number, got {}", type_name(*n)));
+  if (*v < lo || *v > hi) fail(n, key, fmt::format("{} is out of range [{}, {}]", *v, lo, hi));
+  return *v;
+}
+
+long long SceneTable::integer_or(std::string_view key, long long fallback, long long lo,
+                                 long long hi) const {
+  return has(key) ? integer(key, lo, hi) : (used_->insert(std::string(key)), fallback);
+}
+
+namespace {
+std::optional<double> as_number(const toml::node& n) {
+  if (const auto d = n.value_exact<double>()) return *d;
+  if (const auto i = n.value_exact<int64_t>()) return static_cast<double>(*i);
+  return std::nullopt;
+}
+}  // namespace
+
+double SceneTable::number(std::string_view key, double lo, double hi) const {
+  const toml::node* n = get(key, true);
+  const auto v = as_number(*n);
+  if (!v) fail(n, key, fmt::format("expected a number, got {}", type_name(*n)));
+  if (!(*v >= lo && *v <= hi) || !std::isfinite(*v))
+    fail(n, key, fmt::format("{} is out of range [{}, {}]", *v, lo, hi));
+  return *v;
+}
+
+double SceneTable::number_or(std::string_view key, double fallback, double lo, double hi) const {
+  return has(key) ? number(key, lo, hi) : (used_->insert(std::string(key)), fallback);
+}
+
+std::string SceneTable::string(std::string_view key) const {
+  const toml::node* n = get(key, true);
+  const auto v = n->value_exact<std::string>();
+  if (!v) fail(n, key, fmt::format("expected a string, got {}", type_name(*n)));
+  return *v;
+}
+
+std::string SceneTable::choice(std::string_view key, const std::vector<std::string>& choices) const {
+  const std::string v = string(key);
+  if (std::find(choices.begin(), choices.end(), v) == choices.end())
+    fail(table_->get(key), key, fmt::format("'{}' is not one of: {}", v, fmt::join(choices, ", ")));
+  return v;
+}
+
+std::string SceneTable::choice_or(std::string_view key, std::string fallback,
+                                  const std::vector<std::string>& choices) const {
+  return has(key) ? choice(key, choices) : (used_->insert(std::string(key)), fallback);
+}
+
+std::vector<std::string> SceneTable::choices(std::string_view key,
+                                             const std::vector<std::string>& allowed) const {
+  const toml::node* n = get(key, true);
+  const toml::array* a = n->as_array();
+  if (!a || a->empty()) fail(n, key, "expected a non-empty array of strings");
+  std::vector<std::string> out;
+  for (const toml::node& item : *a) {
+    const auto v = item.value_exact<std::string>();
+    if (!v) fail(&item, key, fmt::format("expected strings, got {}", type_name(item)));
+    if (std::find(allowed.begin(), allowed.end(), *v) == allowed.end())
+      fail(&item, key, fmt::format("'{}' is not one of: {}", *v, fmt::join(allowed, ", ")));
+    if (std::find(out.begin(), out.end(), *v) != out.end())
+      fail(&item, key, fmt::format("'{}' is listed twice", *v));
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<double> SceneTable::numbers(std::string_view key, std::size_t size, double lo,
+                                        double hi) const {
+  const toml::node* n = get(key, true);
+  const toml::array* a = n->as_array();
+  if (!a || a->empty() || (size && a->size() != size))
+    fail(n, key, size ? fmt::format("expected an array of {} numbers", size)
+                      : std::string("expected a non-empty array of numbers"));
+  std::vector<double> out;
+  for (const toml::node& item : *a) {
+    const auto v = as_number(item);
+    if (!v) fail(&item, key, fmt::format("expected numbers, got {}", type_name(item)));
+    if (!(*v >= lo && *v <= hi) || !std::isfinite(*v))
+      fail(&item, key, fmt::format("{} is out of range [{}, {}]", *v, lo, hi));
+    out.push_back(*v);
+  }
+  return out;
+}
+
+SceneTable SceneTable::table(std::string_view key) const {
+  const toml::node* n = get(key, true);
+  const toml::table* t = n->as_table();
+  if (!t) fail(n, key, fmt::format("expected a table, got {}", type_name(*n)));
+  return SceneTable(t, prefix_ + std::string(key) + ".", file_, folder_);
+}
+
+void SceneTable::finish() const {
+  for (const auto& [k, v] : *table_)
+    if (!used_->count(std::string(k.str())))
+      fail(&v, k.str(), "unknown key (misspelt, or not used by this kind of run)");
+}
+
+}  // namespace mfree

@@ -1,0 +1,222 @@
+#include "mfree/kernels/rk_shape_functions.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+std::string_view to_string(Window kind) {
+  return kind == Window::cubic_bspline ? "cubic_bspline" : "quadratic_spline";
+}
+std::string_view to_string(RKOrder order) {
+  return order == RKOrder::linear ? "linear" : "quadratic";
+}
+std::string_view to_string(SupportShape shape) {
+  return shape == SupportShape::circular ? "circular" : "tensor";
+}
+
+namespace {
+
+/// Window value and gradient (with respect to x) for the offset d = x - x_I.
+struct WindowSample {
+  double w;
+  Vec2 grad;
+};
+
+template <Window W>
+WindowValue window(double r) {
+  if constexpr (W == Window::cubic_bspline) return cubic_bspline(r);
+  else return quadratic_spline(r);
+}
+
+template <Window W, SupportShape S>
+WindowSample sample_window(const Vec2& d, double inv_a) {
+  // inv_a: 1 / a_I of the node whose window this is.
+  if constexpr (S == SupportShape::circular) {
+    const double dist = d.norm();
+    const WindowValue v = window<W>(dist * inv_a);
+    // w'(0) = 0 for both windows, so the node's own gradient is zero, not 0/0.
+    const Vec2 g = dist > 0.0 ? Vec2(d * (v.dw * inv_a / dist)) : Vec2::Zero();
+    return {v.w, g};
+  } else {
+    const WindowValue vx = window<W>(std::abs(d.x()) * inv_a);
+    const WindowValue vy = window<W>(std::abs(d.y()) * inv_a);
+    const double sx = d.x() < 0.0 ? -1.0 : 1.0, sy = d.y() < 0.0 ? -1.0 : 1.0;
+    return {vx.w * vy.w, Vec2(sx * vx.dw * inv_a * vy.w, sy * vy.dw * inv_a * vx.w)};
+  }
+}
+
+[[noreturn]] void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, int nb,
+                                       double rcond) {
+  const std::string what = rcond >= 0.0
+                               ? fmt::format("badly conditioned (reciprocal condition {:.2e} < {:.1e})",
+                                             rcond, s.rcond_min)
+                               : std::string("singular");
+  throw NumericalError(fmt::format(
+      "RK moment matrix at point ({:.6g}, {:.6g}) is {}: {} neighbour(s) within the {} support of "
+      "radius {:.4g}; a {} basis needs at least {} neighbours, not all on one {}. Increase the "
+      "support radius (kernel support factor) or make the cloud denser or more regular near "
+      "this point.",
+      x.x(), x.y(), what, n, to_string(s.support), s.radius, to_string(s.order), nb,
+      s.order == RKOrder::linear ? "line" : "conic"));
+}
+
+/// The per-point RK construction for one basis, window and support (SPEC section 1).
+/// `out.nodes` holds the neighbours on entry; phi and grad are filled.
+template <int Order, Window W, SupportShape S>
+void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, ShapeValues& out,
+              bool with_gradient) {
+  using Basis = PolynomialBasis<Order>;
+  constexpr int nb = Basis::size;
+  using Vector = typename Basis::Vector;
+  using Matrix = Eigen::Matrix<double, nb, nb>;
+
+  const std::size_t n = out.nodes.size();
+  out.phi.resize(n);
+  out.grad.resize(with_gradient ? n : 0);
+  const double inv_a = 1.0 / s.radius;  // basis scale
+  const bool per_node = !s.node_radii.empty();
+  if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, nb, -1.0);
+
+  // Pass 1: windows and the moment matrix M; phi temporarily holds w_I, grad holds grad w_I.
+  Matrix m = Matrix::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 d = x - nodes[out.nodes[k]];
+    const WindowSample ws =
+        sample_window<W, S>(d, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
+    const Vector h = Basis::value(d * inv_a);
+    m.noalias() += ws.w * h * h.transpose();
+    out.phi[k] = ws.w;
+    if (with_gradient) out.grad[k] = ws.grad;
+  }
+  const Eigen::LLT<Matrix> llt(m);
+  if (llt.info() != Eigen::Success) throw_moment_failure(x, n, s, nb, -1.0);
+  const double rcond = llt.rcond();
+  if (!(rcond >= s.rcond_min)) throw_moment_failure(x, n, s, nb, rcond);
+
+  // b = M^-1 H(0), H(0) = e_1 in the shifted basis: phi_I = b . H(z_I) w_I.
+  const Vector b = llt.solve(Vector::Unit(0));
+  if (!with_gradient) {
+    for (std::size_t k = 0; k < n; ++k)
+      out.phi[k] *= b.dot(Basis::value((x - nodes[out.nodes[k]]) * inv_a));
+    return;
+  }
+
+  // Pass 2: (d M / d x_j) b, accumulated as vectors (O(n nb) instead of O(n nb^2)).
+  Vector dmb1 = Vector::Zero(), dmb2 = Vector::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 z = (x - nodes[out.nodes[k]]) * inv_a;
+    const Vector h = Basis::value(z);
+    const Vector h1 = Basis::d1(z) * inv_a, h2 = Basis::d2(z) * inv_a;  // dz/dx = I / a
+    const double hb = h.dot(b);
+    const double w = out.phi[k];
+    const Vec2& gw = out.grad[k];
+    dmb1 += (gw.x() * hb + w * h1.dot(b)) * h + (w * hb) * h1;
+    dmb2 += (gw.y() * hb + w * h2.dot(b)) * h + (w * hb) * h2;
+  }
+  // d b / d x_j = -M^-1 (d M / d x_j) b.
+  const Vector db1 = -llt.solve(dmb1), db2 = -llt.solve(dmb2);
+
+  // Pass 3: phi_I and grad phi_I = (db . H + b . dH) w_I + (b . H) grad w_I.
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 z = (x - nodes[out.nodes[k]]) * inv_a;
+    const Vector h = Basis::value(z);
+    const double hb = h.dot(b);
+    const double w = out.phi[k];
+    const Vec2 gw = out.grad[k];
+    out.phi[k] = hb * w;
+    out.grad[k] = Vec2((db1.dot(h) + b.dot(Basis::d1(z)) * inv_a) * w + hb * gw.x(),
+                       (db2.dot(h) + b.dot(Basis::d2(z)) * inv_a) * w + hb * gw.y());
+  }
+}
+
+using PointKernel = void (*)(const Vec2&, std::span<const Vec2>, const RKSettings&, ShapeValues&,
+                             bool);
+
+template <int Order>
+PointKernel select_kernel(Window w, SupportShape s) {
+  if (w == Window::cubic_bspline)
+    return s == SupportShape::circular ? &rk_point<Order, Window::cubic_bspline, SupportShape::circular>
+                                       : &rk_point<Order, Window::cubic_bspline, SupportShape::tensor>;
+  return s == SupportShape::circular
+             ? &rk_point<Order, Window::quadratic_spline, SupportShape::circular>
+             : &rk_point<Order, Window::quadratic_spline, SupportShape::tensor>;
+}
+
+}  // namespace
+
+RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
+    : nodes_(std::move(nodes)), settings_(settings) {
+  if (nodes_.empty()) throw InputError("RK shape functions: the node cloud is empty");
+  if (!(settings_.radius > 0.0) || !std::isfinite(settings_.radius))
+    throw InputError(
+        fmt::format("RK shape functions: support radius must be positive, got {}", settings_.radius));
+  if (!settings_.node_radii.empty()) {
+    if (settings_.node_radii.size() != nodes_.size())
+      throw InputError(fmt::format("RK shape functions: {} node radii for {} nodes",
+                                   settings_.node_radii.size(), nodes_.size()));
+    for (double a : settings_.node_radii)
+      if (!(a >= settings_.radius) || !std::isfinite(a))
+        throw InputError(fmt::format("RK shape functions: node radius {} is below the base radius {}",
+                                     a, settings_.radius));
+    max_radius_ = *std::max_element(settings_.node_radii.begin(), settings_.node_radii.end());
+  } else {
+    max_radius_ = settings_.radius;
+  }
+  cells_ = CellList(nodes_, max_radius_);
+}
+
+std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,
+                                        int k) {
+  const CellList cells(nodes, 2.0 * h);
+  std::vector<double> radii(nodes.size());
+  parallel_blocks(static_cast<Index>(nodes.size()), 1024, [&](Index begin, Index end) {
+    std::vector<double> d2;
+    for (Index i = begin; i < end; ++i) {
+      double r = 2.0 * h;
+      for (;;) {  // widen the search until k other nodes are found
+        d2.clear();
+        cells.for_each_in_box(nodes[i], r, [&](Index j, const Vec2& p) {
+          if (j != i) d2.push_back((p - nodes[i]).squaredNorm());
+        });
+        if (static_cast<int>(d2.size()) >= k || d2.size() + 1 == nodes.size()) break;
+        r *= 2.0;
+      }
+      double dk = 0.0;
+      if (!d2.empty()) {
+        const auto kth = d2.begin() + std::min<std::size_t>(k, d2.size()) - 1;
+        std::nth_element(d2.begin(), kth, d2.end());
+        dk = std::sqrt(*kth);
+      }
+      radii[i] = factor * std::max(h, dk);
+    }
+  });
+  return radii;
+}
+
+void RKShapeFunctions::evaluate(const Vec2& x, ShapeValues& out, bool with_gradient) const {
+  const std::vector<double>& radii = settings_.node_radii;
+  const auto radius = [&](Index i) { return radii.empty() ? settings_.radius : radii[i]; };
+  out.nodes.clear();
+  if (settings_.support == SupportShape::circular) {
+    cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
+      const double a = radius(i);
+      if ((p - x).squaredNorm() < a * a) out.nodes.push_back(i);
+    });
+  } else {
+    cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
+      const double a = radius(i);
+      if (std::abs(p.x() - x.x()) < a && std::abs(p.y() - x.y()) < a) out.nodes.push_back(i);
+    });
+  }
+  const PointKernel kernel = settings_.order == RKOrder::linear
+                                 ? select_kernel<1>(settings_.window, settings_.support)
+                                 : select_kernel<2>(settings_.window, settings_.support);
+  kernel(x, nodes_, settings_, out, with_gradient);
+}
+
+}  // namespace mfree

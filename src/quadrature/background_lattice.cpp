@@ -1,0 +1,149 @@
+#include "mfree/quadrature/background_lattice.hpp"
+
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/quadrature/quadrature_rule.hpp"
+
+namespace mfree {
+
+namespace {
+
+// Lagrange functions L_i of equispaced nodes on [0, 1] and their antiderivatives
+// Lambda_i(t) = integral from 0 to t of L_i, as polynomial coefficients (ascending powers).
+// Order 1: L = {1 - t, t}. Order 2: L = {2t^2 - 3t + 1, 4t - 4t^2, 2t^2 - t}.
+// Lambda_i(1) are the Newton–Cotes weights: {1/2, 1/2} and {1/6, 2/3, 1/6}.
+constexpr int max_order = 2;
+using Poly = std::array<double, 4>;
+constexpr std::array<std::array<Poly, 3>, 2> lagrange = {{
+    {{{1.0, -1.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {}}},
+    {{{1.0, -3.0, 2.0, 0.0}, {0.0, 4.0, -4.0, 0.0}, {0.0, -1.0, 2.0, 0.0}}},
+}};
+constexpr std::array<std::array<Poly, 3>, 2> antiderivative = {{
+    {{{0.0, 1.0, -0.5, 0.0}, {0.0, 0.0, 0.5, 0.0}, {}}},
+    {{{0.0, 1.0, -1.5, 2.0 / 3.0}, {0.0, 0.0, 2.0, -4.0 / 3.0}, {0.0, 0.0, -0.5, 2.0 / 3.0}}},
+}};
+
+double horner(const Poly& c, double t) { return ((c[3] * t + c[2]) * t + c[1]) * t + c[0]; }
+
+}  // namespace
+
+void lagrange_cell_integrals(const std::vector<Ring>& rings, const Vec2& lo, double side,
+                             int order, double* out) {
+  const int n = order + 1;
+  std::fill(out, out + n * n, 0.0);
+  // Green's theorem: integral over the region of L_i(s) L_j(t) = ring integral of
+  // Lambda_i(s) L_j(t) dt, in cell coordinates (s, t) = (x - lo) / side. Along a straight
+  // edge the integrand is a polynomial of degree 2 order + 1: order + 1 Gauss points are exact.
+  static const GaussLegendre1D gauss[max_order] = {gauss_legendre(2), gauss_legendre(3)};
+  const GaussLegendre1D& g = gauss[order - 1];
+  const auto& L = lagrange[order - 1];
+  const auto& A = antiderivative[order - 1];
+  for (const Ring& ring : rings) {
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      const Vec2 p = (ring[e] - lo) / side;
+      const Vec2 q = (ring[(e + 1) % ring.size()] - lo) / side;
+      const double dt = q.y() - p.y();
+      if (dt == 0.0) continue;
+      for (std::size_t k = 0; k < g.points.size(); ++k) {
+        const Vec2 x = p + g.points[k] * (q - p);
+        for (int j = 0; j < n; ++j) {
+          const double lj = horner(L[j], x.y()) * g.weights[k] * dt;
+          for (int i = 0; i < n; ++i) out[j * n + i] += horner(A[i], x.x()) * lj;
+        }
+      }
+    }
+  }
+  for (int k = 0; k < n * n; ++k) out[k] *= side * side;
+}
+
+BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int order)
+    : spacing_(spacing), order_(order) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing))
+    throw InputError(fmt::format("background lattice: spacing must be positive, got {}", spacing));
+  if (order < 1 || order > max_order)
+    throw InputError(fmt::format("background lattice: order must be 1 (trapezoid) or 2 (Simpson), "
+                                 "got {}",
+                                 order));
+  const Box box = domain.bounding_box();
+  const double side = order * spacing;  // integration cell side
+  const Index ncx = std::max<Index>(1, static_cast<Index>(std::ceil(box.size().x() / side - 1e-9)));
+  const Index ncy = std::max<Index>(1, static_cast<Index>(std::ceil(box.size().y() / side - 1e-9)));
+  const Index nvx = ncx * order + 1, nvy = ncy * order + 1;
+  if (static_cast<double>(nvx) * nvy > 2e9)
+    throw InputError(fmt::format("background lattice: {} x {} vertices is too many; increase the "
+                                 "lattice spacing",
+                                 nvx, nvy));
+  const Vec2 origin = box.lo;
+  const auto cell_lo = [&](Index ci, Index cj) {
+    return Vec2(origin.x() + ci * side, origin.y() + cj * side);
+  };
+
+  // Cells that a boundary segment's bounding box touches may be cut; the rest are wholly
+  // inside or outside, decided by their centre.
+  std::vector<char> maybe_cut(static_cast<std::size_t>(ncx) * ncy, 0);
+  const double pad = 1e-9 * side;
+  for (const BoundarySegment& s : domain.boundary()) {
+    const Vec2 lo = s.a.cwiseMin(s.b).array() - pad, hi = s.a.cwiseMax(s.b).array() + pad;
+    const auto cell = [&](double v, double o, Index n) {
+      return std::clamp<Index>(static_cast<Index>(std::floor((v - o) / side)), 0, n - 1);
+    };
+    for (Index cj = cell(lo.y(), origin.y(), ncy); cj <= cell(hi.y(), origin.y(), ncy); ++cj)
+      for (Index ci = cell(lo.x(), origin.x(), ncx); ci <= cell(hi.x(), origin.x(), ncx); ++ci)
+        maybe_cut[static_cast<std::size_t>(cj) * ncx + ci] = 1;
+  }
+
+  const int n = order + 1;
+  std::array<double, (max_order + 1) * (max_order + 1)> full{};
+  {
+    const Vec2 lo = Vec2::Zero();
+    const std::vector<Ring> square = {{lo, Vec2(side, 0.0), Vec2(side, side), Vec2(0.0, side)}};
+    lagrange_cell_integrals(square, lo, side, order, full.data());
+  }
+
+  // Cell by cell, each thread scattering into its own copy of the vertex weights; the
+  // copies are added in thread order, so the result does not depend on scheduling.
+  const Index ncells = ncx * ncy;
+  std::vector<std::vector<double>> partial(thread_count());
+  std::vector<Index> cut_count(thread_count(), 0);
+  parallel_ranges(ncells, [&](int t, Index begin, Index end) {
+    std::vector<double>& c = partial[t];
+    c.assign(static_cast<std::size_t>(nvx) * nvy, 0.0);
+    std::array<double, (max_order + 1) * (max_order + 1)> local{};
+    for (Index cell = begin; cell < end; ++cell) {
+      const Index ci = cell % ncx, cj = cell / ncx;
+      const Vec2 lo = cell_lo(ci, cj);
+      const double* w = full.data();
+      if (maybe_cut[cell]) {
+        const std::vector<Ring> inside = domain.clip(Box{lo, lo + Vec2(side, side)});
+        if (inside.empty()) continue;
+        lagrange_cell_integrals(inside, lo, side, order, local.data());
+        w = local.data();
+        ++cut_count[t];
+      } else if (!domain.contains(lo + Vec2(0.5 * side, 0.5 * side))) {
+        continue;
+      }
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          c[static_cast<std::size_t>(cj * order + j) * nvx + ci * order + i] += w[j * n + i];
+    }
+  });
+  std::vector<double> c = std::move(partial[0]);
+  for (std::size_t t = 1; t < partial.size(); ++t)
+    for (std::size_t v = 0; v < c.size(); ++v) c[v] += partial[t][v];
+  for (Index k : cut_count) cut_cells_ += k;
+
+  for (Index vj = 0; vj < nvy; ++vj)
+    for (Index vi = 0; vi < nvx; ++vi) {
+      const double cv = c[static_cast<std::size_t>(vj) * nvx + vi];
+      if (cv == 0.0) continue;
+      points_.emplace_back(origin.x() + vi * spacing, origin.y() + vj * spacing);
+      weights_.push_back(cv);
+    }
+  cells_ = ncells;
+}
+
+}  // namespace mfree

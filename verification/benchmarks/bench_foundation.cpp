@@ -1,0 +1,145 @@
+// Throughput of the foundation stages: neighbour search (cell list against CGAL's
+// kd-tree), RK shape function values + gradients (linear and quadratic), background
+// lattice and quadrature weights. Run with 1 and 2 threads:
+//
+//   OMP_NUM_THREADS=1 build/mfree_bench --benchmark_counters_tabular=true
+//   OMP_NUM_THREADS=2 build/mfree_bench --benchmark_counters_tabular=true
+//
+// Sizes: 10^4 to 10^6 points in the 2 x 1 rectangle, lattice spacing h, support radius
+// 2 h (linear, ~13 neighbours on a lattice) and 3 h (quadratic, ~29 neighbours).
+// Counters: items_per_second is points (searches, evaluations, quadrature points) per second.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Fuzzy_sphere.h>
+#include <CGAL/Kd_tree.h>
+#include <CGAL/Search_traits_2.h>
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "mfree/clouds/point_cloud.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/kernels/rk_shape_functions.hpp"
+#include "mfree/quadrature/background_lattice.hpp"
+#include "mfree/quadrature/rk_quadrature.hpp"
+#include "mfree/search/cell_list.hpp"
+
+namespace {
+
+using namespace mfree;
+
+const Domain& rectangle() {
+  static const Domain d = Domain::rectangle(Vec2(-1.0, -0.5), Vec2(1.0, 0.5));
+  return d;
+}
+
+/// A cell-centred lattice of about n points and its spacing.
+std::pair<std::vector<Vec2>, double> cloud(std::int64_t n) {
+  CloudSettings s;
+  s.spacing = std::sqrt(2.0 / static_cast<double>(n));
+  s.cell_centred = true;
+  return {make_cloud(rectangle(), s), s.spacing};
+}
+
+void BM_search_cell_list(benchmark::State& state) {
+  const auto [points, h] = cloud(state.range(0));
+  for (auto _ : state) {
+    const CellList cells(points, 2.0 * h);
+    std::size_t found = 0;
+    parallel_blocks(static_cast<Index>(points.size()), 4096, [&](Index b, Index e) {
+      std::vector<Index> out;
+      std::size_t local = 0;
+      for (Index i = b; i < e; ++i) {
+        cells.within(points[i], 2.0 * h, out);
+        local += out.size();
+      }
+#pragma omp atomic
+      found += local;
+    });
+    benchmark::DoNotOptimize(found);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
+  state.counters["threads"] = thread_count();
+}
+
+void BM_search_cgal_kdtree(benchmark::State& state) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Traits = CGAL::Search_traits_2<K>;
+  using Tree = CGAL::Kd_tree<Traits>;
+  using Sphere = CGAL::Fuzzy_sphere<Traits>;
+  const auto [points, h] = cloud(state.range(0));
+  std::vector<K::Point_2> p;
+  for (const Vec2& x : points) p.emplace_back(x.x(), x.y());
+  for (auto _ : state) {
+    Tree tree(p.begin(), p.end());
+    tree.build();
+    std::size_t found = 0;
+    // CGAL's tree is safe for concurrent queries once built.
+    parallel_blocks(static_cast<Index>(p.size()), 4096, [&](Index b, Index e) {
+      std::vector<K::Point_2> out;
+      std::size_t local = 0;
+      for (Index i = b; i < e; ++i) {
+        out.clear();
+        tree.search(std::back_inserter(out), Sphere(p[i], 2.0 * h, 0.0));
+        local += out.size();
+      }
+#pragma omp atomic
+      found += local;
+    });
+    benchmark::DoNotOptimize(found);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
+  state.counters["threads"] = thread_count();
+}
+
+void BM_rk_value_gradient(benchmark::State& state) {
+  const auto order = state.range(1) == 1 ? RKOrder::linear : RKOrder::quadratic;
+  const auto [nodes, h] = cloud(state.range(0));
+  RKSettings s;
+  s.order = order;
+  s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
+  const RKShapeFunctions rk(nodes, s);
+  // Evaluation points: a lattice offset from the nodes, as many as nodes.
+  std::vector<Vec2> x(nodes.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = nodes[i] + Vec2(0.31 * h, 0.17 * h);
+  std::size_t neighbours = 0;
+  for (auto _ : state) {
+    std::size_t total = 0;
+    rk.for_each(x, true, [&](Index, const ShapeValues& v) {
+      benchmark::DoNotOptimize(v.grad.data());
+      if (v.size() == 0) std::abort();
+    });
+    ShapeValues v;
+    rk.evaluate(x[x.size() / 2], v);
+    total = v.size();
+    neighbours = total;
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(x.size()));
+  state.counters["neighbours"] = static_cast<double>(neighbours);
+  state.counters["threads"] = thread_count();
+}
+
+void BM_quadrature_weights(benchmark::State& state) {
+  const auto order = state.range(1) == 1 ? RKOrder::linear : RKOrder::quadratic;
+  const auto [points, h] = cloud(state.range(0));
+  RKSettings s;
+  s.order = order;
+  s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
+  for (auto _ : state) {
+    const RKShapeFunctions rk(points, s);
+    const BackgroundLattice lattice(rectangle(), h / 2.0, order == RKOrder::linear ? 1 : 2);
+    const std::vector<double> w = rk_quadrature_weights(rk, lattice);
+    benchmark::DoNotOptimize(w.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
+  state.counters["threads"] = thread_count();
+}
+
+}  // namespace
+
+BENCHMARK(BM_search_cell_list)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_search_cgal_kdtree)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_rk_value_gradient)->ArgsProduct({{10000, 100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_quadrature_weights)->ArgsProduct({{10000, 100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK_MAIN();
