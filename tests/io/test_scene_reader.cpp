@@ -1,0 +1,58 @@
+#include <catch2/catch.hpp>
+#include <functional>
+
+#include "mfree/core/error.hpp"
+#include "mfree/io/scene_reader.hpp"
+
+using namespace mfree;
+
+namespace {
+std::string error_of(const std::string& text, const std::function<void(const SceneTable&)>& read) {
+  try {
+    read(Scene::parse(text, "scene.toml").root());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("scene reader: typed values, and errors that name the key and position", "[io]") {
+  const auto read = [](const SceneTable& root) {
+    const SceneTable m = root.table("material");
+    (void)m.number("E", 0.0, 1e300);
+    (void)m.number_or("nu", 0.3, -1.0, 0.5);
+    m.finish();
+    root.finish();
+  };
+  CHECK(error_of("[material]\nE = 3e7\nnu = 0.3\n", read).empty());
+  CHECK_THAT(error_of("[material]\nE = -3e7\n", read),
+             Catch::Contains("scene.toml:2:") && Catch::Contains("material.E") &&
+                 Catch::Contains("out of range"));
+  CHECK_THAT(error_of("[material]\nE = 'big'\n", read),
+             Catch::Contains("material.E") && Catch::Contains("expected a number"));
+  CHECK_THAT(error_of("[material]\nnu = 0.3\n", read),
+             Catch::Contains("material.E") && Catch::Contains("missing"));
+  CHECK_THAT(error_of("[material]\nE = 1.0\nEE = 2.0\n", read),
+             Catch::Contains("scene.toml:3:") && Catch::Contains("material.EE") &&
+                 Catch::Contains("unknown key"));
+  CHECK_THAT(error_of("[material]\nE = 1.0\n[solver]\n", read),
+             Catch::Contains("'solver'") && Catch::Contains("unknown key"));
+  CHECK_THAT(error_of("[material\nE = 1.0\n", read), Catch::Contains("scene.toml:1:"));
+}
+
+TEST_CASE("scene reader: choices and arrays", "[io]") {
+  const auto read = [](const SceneTable& root) {
+    (void)root.choices("clouds", {"lattice", "random"});
+    (void)root.numbers("lo", 2, -10, 10);
+    root.finish();
+  };
+  CHECK(error_of("clouds = ['lattice']\nlo = [0, 1]\n", read).empty());
+  CHECK_THAT(error_of("clouds = ['lattice', 'lattice']\nlo = [0, 1]\n", read), Catch::Contains("twice"));
+  CHECK_THAT(error_of("clouds = ['grid']\nlo = [0, 1]\n", read),
+             Catch::Contains("'grid' is not one of: lattice, random"));
+  CHECK_THAT(error_of("clouds = ['lattice']\nlo = [0, 1, 2]\n", read),
+             Catch::Contains("array of 2 numbers"));
+  CHECK_THROWS_WITH(Scene::load("/nonexistent/scene.toml"),
+                    Catch::Contains("/nonexistent/scene.toml") && Catch::Contains("cannot open"));
+}
