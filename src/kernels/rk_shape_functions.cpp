@@ -1,6 +1,7 @@
 #include "mfree/kernels/rk_shape_functions.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -65,6 +66,12 @@ WindowSample sample_window(const Vec2& d, double inv_a) {
       s.order == RKOrder::linear ? "line" : "conic"));
 }
 
+/// L1 norm (largest column sum) of a small matrix.
+template <class Matrix>
+double norm1(const Matrix& m) {
+  return m.cwiseAbs().colwise().sum().maxCoeff();
+}
+
 /// The per-point RK construction for one basis, window and support (SPEC section 1).
 /// `out.nodes` holds the neighbours on entry; phi and grad are filled.
 template <int Order, Window W, SupportShape S>
@@ -78,6 +85,7 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   const std::size_t n = out.nodes.size();
   out.phi.resize(n);
   out.grad.resize(with_gradient ? n : 0);
+  out.z.resize(n);
   const double inv_a = 1.0 / s.radius;  // basis scale
   const bool per_node = !s.node_radii.empty();
   if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, nb, -1.0);
@@ -88,28 +96,39 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
     const Vec2 d = x - nodes[out.nodes[k]];
     const WindowSample ws =
         sample_window<W, S>(d, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
-    const Vector h = Basis::value(d * inv_a);
-    m.noalias() += ws.w * h * h.transpose();
+    out.z[k] = d * inv_a;
+    const Vector h = Basis::value(out.z[k]);
+    m.noalias() += (ws.w * h) * h.transpose();
     out.phi[k] = ws.w;
     if (with_gradient) out.grad[k] = ws.grad;
   }
-  const Eigen::LLT<Matrix> llt(m);
-  if (llt.info() != Eigen::Success) throw_moment_failure(x, n, s, nb, -1.0);
-  const double rcond = llt.rcond();
+
+  // M^-1 explicitly (3x3 or 6x6): it serves b, both d b / d x_j, and the exact reciprocal
+  // condition number 1 / (|M|_1 |M^-1|_1) that decides whether the point is well posed.
+  Matrix minv;
+  if constexpr (nb == 3) {
+    const double det = m.determinant();
+    if (!(std::abs(det) > 0.0)) throw_moment_failure(x, n, s, nb, -1.0);
+    minv = m.inverse();
+  } else {
+    const Eigen::LLT<Matrix> llt(m);
+    if (llt.info() != Eigen::Success) throw_moment_failure(x, n, s, nb, -1.0);
+    minv = llt.solve(Matrix::Identity());
+  }
+  const double rcond = 1.0 / (norm1(m) * norm1(minv));
   if (!(rcond >= s.rcond_min)) throw_moment_failure(x, n, s, nb, rcond);
 
   // b = M^-1 H(0), H(0) = e_1 in the shifted basis: phi_I = b . H(z_I) w_I.
-  const Vector b = llt.solve(Vector::Unit(0));
+  const Vector b = minv.col(0);
   if (!with_gradient) {
-    for (std::size_t k = 0; k < n; ++k)
-      out.phi[k] *= b.dot(Basis::value((x - nodes[out.nodes[k]]) * inv_a));
+    for (std::size_t k = 0; k < n; ++k) out.phi[k] *= b.dot(Basis::value(out.z[k]));
     return;
   }
 
   // Pass 2: (d M / d x_j) b, accumulated as vectors (O(n nb) instead of O(n nb^2)).
   Vector dmb1 = Vector::Zero(), dmb2 = Vector::Zero();
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2 z = (x - nodes[out.nodes[k]]) * inv_a;
+    const Vec2& z = out.z[k];
     const Vector h = Basis::value(z);
     const Vector h1 = Basis::d1(z) * inv_a, h2 = Basis::d2(z) * inv_a;  // dz/dx = I / a
     const double hb = h.dot(b);
@@ -119,11 +138,11 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
     dmb2 += (gw.y() * hb + w * h2.dot(b)) * h + (w * hb) * h2;
   }
   // d b / d x_j = -M^-1 (d M / d x_j) b.
-  const Vector db1 = -llt.solve(dmb1), db2 = -llt.solve(dmb2);
+  const Vector db1 = -(minv * dmb1), db2 = -(minv * dmb2);
 
   // Pass 3: phi_I and grad phi_I = (db . H + b . dH) w_I + (b . H) grad w_I.
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2 z = (x - nodes[out.nodes[k]]) * inv_a;
+    const Vec2& z = out.z[k];
     const Vector h = Basis::value(z);
     const double hb = h.dot(b);
     const double w = out.phi[k];

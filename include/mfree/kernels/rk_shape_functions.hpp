@@ -49,6 +49,7 @@ struct ShapeValues {
   std::vector<Index> nodes;
   std::vector<double> phi;
   std::vector<Vec2> grad;
+  std::vector<Vec2> z;  ///< scratch: scaled offsets (x - x_I) / a, kept to reuse the storage
   [[nodiscard]] std::size_t size() const { return nodes.size(); }
 };
 
