@@ -61,8 +61,8 @@ IntegrationStudySettings read_integration_study(const SceneTable& root) {
   }
   {
     const SceneTable q = root.table("quadrature");
-    s.lattice_refinement = static_cast<int>(q.integer_or("lattice_refinement", 4, 1, 64));
-    s.gauss_points = static_cast<int>(q.integer_or("gauss_points", 2, 1, 10));
+    s.lattice_refinement = static_cast<int>(q.integer_or("lattice_refinement", s.lattice_refinement, 1, 64));
+    s.gauss_points = static_cast<int>(q.integer_or("gauss_points", s.gauss_points, 1, 10));
     q.finish();
   }
   root.finish();

@@ -181,8 +181,12 @@ SceneTable SceneTable::table(std::string_view key) const {
 
 void SceneTable::finish() const {
   for (const auto& [k, v] : *table_)
-    if (!used_->count(std::string(k.str())))
-      fail(&v, k.str(), "unknown key (misspelt, or not used by this kind of run)");
+    if (!used_->count(std::string(k.str()))) {
+      const auto& at = k.source().begin;  // point at the key itself, not its value
+      throw InputError(fmt::format("{}:{}:{}: key '{}{}': unknown key (misspelt, or not used by "
+                                   "this kind of run)",
+                                   *file_, at.line, at.column, prefix_, k.str()));
+    }
 }
 
 }  // namespace mfree

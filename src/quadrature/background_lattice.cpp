@@ -1,11 +1,14 @@
 #include "mfree/quadrature/background_lattice.hpp"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/geometry/polygon_integrals.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 
 namespace mfree {
@@ -28,6 +31,88 @@ constexpr std::array<std::array<Poly, 3>, 2> antiderivative = {{
 }};
 
 double horner(const Poly& c, double t) { return ((c[3] * t + c[2]) * t + c[1]) * t + c[0]; }
+
+/// Monomials of degree <= order in the cell coordinates u = (x - centre) / side:
+/// 1, u, v (order 1) and u^2, u v, v^2 (order 2).
+int monomial_count(int order) { return order == 1 ? 3 : 6; }
+void monomials(const Vec2& u, int order, double* out) {
+  out[0] = 1.0;
+  out[1] = u.x();
+  out[2] = u.y();
+  if (order == 2) {
+    out[3] = u.x() * u.x();
+    out[4] = u.x() * u.y();
+    out[5] = u.y() * u.y();
+  }
+}
+
+/// Integrals over the region bounded by `rings` of the monomials above, by Green's
+/// theorem: integral of u^a v^b = ring integral of u^(a+1) v^b / (a+1) dv, a polynomial of
+/// degree <= 3 along each straight edge, so 2 Gauss points per edge are exact.
+void monomial_moments(const std::vector<Ring>& rings, const Vec2& centre, double side, int order,
+                      double* out) {
+  static const GaussLegendre1D g = gauss_legendre(2);
+  const int m = monomial_count(order);
+  std::fill(out, out + m, 0.0);
+  for (const Ring& ring : rings)
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      const Vec2 p = (ring[e] - centre) / side, q = (ring[(e + 1) % ring.size()] - centre) / side;
+      const double dv = q.y() - p.y();
+      if (dv == 0.0) continue;
+      for (std::size_t k = 0; k < g.points.size(); ++k) {
+        const Vec2 u = p + g.points[k] * (q - p);
+        const double f = g.weights[k] * dv;
+        out[0] += f * u.x();
+        out[1] += f * u.x() * u.x() / 2.0;
+        out[2] += f * u.x() * u.y();
+        if (order == 2) {
+          out[3] += f * u.x() * u.x() * u.x() / 3.0;
+          out[4] += f * u.x() * u.x() * u.y() / 2.0;
+          out[5] += f * u.x() * u.y() * u.y();
+        }
+      }
+    }
+  for (int k = 0; k < m; ++k) out[k] *= side * side;
+}
+
+/// A quadrature rule for the part of one cell inside the domain (`rings`, from
+/// Domain::clip), with every point in the closed domain and exact for polynomials of degree
+/// <= order. Points: the rings' vertices and edge midpoints (on the boundary of the cut
+/// part; they make a degree-2 unisolvent set even for a sliver triangle) and the cell's
+/// (order + 1)^2 Gauss points that lie inside. Weights: the equal-share weights corrected
+/// by the least change that matches the exact moments (moment fitting):
+///   w = w0 + V^T (V V^T)^-1 (m - V w0),  V_jk = monomial j at point k.
+/// Keeping the points inside the domain matters: the quadrature-cloud functions need not
+/// be defined outside it (a point inside a hole may see its neighbours on one line).
+void cut_cell_rule(const Domain& domain, const std::vector<Ring>& rings, const Vec2& lo,
+                   double side, int order, std::vector<Vec2>& points, std::vector<double>& weights) {
+  const int m = monomial_count(order);
+  const Vec2 centre = lo + Vec2(0.5 * side, 0.5 * side);
+  std::vector<Vec2> x;
+  for (const Ring& ring : rings)
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      x.push_back(ring[e]);
+      x.push_back(0.5 * (ring[e] + ring[(e + 1) % ring.size()]));
+    }
+  const GaussLegendre1D g = gauss_legendre(order + 1);
+  for (double gy : g.points)
+    for (double gx : g.points) {
+      const Vec2 p = lo + side * Vec2(gx, gy);
+      if (domain.contains(p)) x.push_back(p);
+    }
+  const Index n = static_cast<Index>(x.size());
+  Eigen::MatrixXd v(m, n);
+  for (Index k = 0; k < n; ++k) monomials((x[k] - centre) / side, order, v.col(k).data());
+  Eigen::VectorXd moments(m);
+  monomial_moments(rings, centre, side, order, moments.data());
+  const Eigen::VectorXd w0 = Eigen::VectorXd::Constant(n, moments[0] / n);
+  const Eigen::VectorXd w =
+      w0 + v.transpose() * (v * v.transpose()).ldlt().solve(moments - v * w0);
+  for (Index k = 0; k < n; ++k) {
+    points.push_back(x[k]);
+    weights.push_back(w[k]);
+  }
+}
 
 }  // namespace
 
@@ -104,31 +189,37 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
     lagrange_cell_integrals(square, lo, side, order, full.data());
   }
 
-  // Cell by cell, each thread scattering into its own copy of the vertex weights; the
-  // copies are added in thread order, so the result does not depend on scheduling.
+  // Cell by cell. Whole cells scatter their Newton–Cotes weights to the lattice vertices,
+  // each thread into its own copy (added in thread order: the result does not depend on
+  // scheduling); cut cells get their own moment-fitted points (cut_cell_rule).
   const Index ncells = ncx * ncy;
-  std::vector<std::vector<double>> partial(thread_count());
-  std::vector<Index> cut_count(thread_count(), 0);
+  const int nt = thread_count();
+  std::vector<std::vector<double>> partial(nt);
+  std::vector<std::vector<Vec2>> cut_points(nt);
+  std::vector<std::vector<double>> cut_weights(nt);
+  std::vector<Index> cut_count(nt, 0);
   parallel_ranges(ncells, [&](int t, Index begin, Index end) {
     std::vector<double>& c = partial[t];
     c.assign(static_cast<std::size_t>(nvx) * nvy, 0.0);
-    std::array<double, (max_order + 1) * (max_order + 1)> local{};
     for (Index cell = begin; cell < end; ++cell) {
       const Index ci = cell % ncx, cj = cell / ncx;
       const Vec2 lo = cell_lo(ci, cj);
-      const double* w = full.data();
       if (maybe_cut[cell]) {
         const std::vector<Ring> inside = domain.clip(Box{lo, lo + Vec2(side, side)});
         if (inside.empty()) continue;
-        lagrange_cell_integrals(inside, lo, side, order, local.data());
-        w = local.data();
-        ++cut_count[t];
+        double area = 0.0;
+        for (const Ring& r : inside) area += ring_area(r);
+        if (std::abs(area - side * side) > 1e-12 * side * side) {
+          cut_cell_rule(domain, inside, lo, side, order, cut_points[t], cut_weights[t]);
+          ++cut_count[t];
+          continue;
+        }
       } else if (!domain.contains(lo + Vec2(0.5 * side, 0.5 * side))) {
         continue;
       }
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-          c[static_cast<std::size_t>(cj * order + j) * nvx + ci * order + i] += w[j * n + i];
+          c[static_cast<std::size_t>(cj * order + j) * nvx + ci * order + i] += full[j * n + i];
     }
   });
   std::vector<double> c = std::move(partial[0]);
@@ -143,6 +234,10 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
       points_.emplace_back(origin.x() + vi * spacing, origin.y() + vj * spacing);
       weights_.push_back(cv);
     }
+  for (int t = 0; t < nt; ++t) {
+    points_.insert(points_.end(), cut_points[t].begin(), cut_points[t].end());
+    weights_.insert(weights_.end(), cut_weights[t].begin(), cut_weights[t].end());
+  }
   cells_ = ncells;
 }
 

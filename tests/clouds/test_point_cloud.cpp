@@ -1,9 +1,23 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
 
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 
 using namespace mfree;
+
+namespace {
+/// Distance from p to the domain's boundary.
+double boundary_distance(const Domain& d, const Vec2& p) {
+  double best = 1e300;
+  for (const BoundarySegment& s : d.boundary()) {
+    const Vec2 t = s.b - s.a;
+    const double u = std::clamp((p - s.a).dot(t) / t.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (s.a + u * t - p).norm());
+  }
+  return best;
+}
+}  // namespace
 
 TEST_CASE("clouds are reproducible from their seed and lie in the domain", "[clouds]") {
   const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/plate_with_hole.wkt");
@@ -16,7 +30,8 @@ TEST_CASE("clouds are reproducible from their seed and lie in the domain", "[clo
     s.seed = 42;
     const auto a = make_cloud(d, s), b = make_cloud(d, s);
     REQUIRE(a == b);
-    for (const Vec2& p : a) REQUIRE(d.contains(p));
+    // Inside the closed domain; lattice points meant for the boundary may be round-off off it.
+    for (const Vec2& p : a) REQUIRE((d.contains(p) || boundary_distance(d, p) <= 1e-9 * s.spacing));
     // About one point per h^2 of area (the hole and boundary take a few lattice points).
     CHECK(static_cast<double>(a.size()) == Approx(d.area() / 0.01).epsilon(0.06));
     if (kind != CloudKind::lattice) {

@@ -38,7 +38,7 @@ struct IntegrationStudySettings {
   double factor_linear = 2.0;     ///< support radius / spacing, linear RK
   double factor_quadratic = 3.0;  ///< support radius / spacing, quadratic RK
   double random_factor_scale = 1.25;  ///< support factor multiplier on irregular clouds
-  int lattice_refinement = 4;     ///< lattice spacing = spacing / refinement
+  int lattice_refinement = 2;     ///< lattice spacing = spacing / refinement
   int gauss_points = 2;           ///< Gauss points per direction per background cell
 };
 

@@ -13,7 +13,8 @@
 //              points on the boundary stay in the closed domain.
 //   random     round(|Omega| / h^2) points uniformly distributed in the domain.
 //
-// Only points inside the closed domain are kept.
+// Only points inside the closed domain are kept (lattice points up to round-off: a point
+// meant to lie on the boundary may land a few ulps outside it).
 
 #include <cstdint>
 #include <vector>

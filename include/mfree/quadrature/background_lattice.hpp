@@ -5,21 +5,19 @@
 //
 // Integration cells of side order * spacing carry a tensor Newton–Cotes rule:
 // order 1 is the trapezoid rule (cell vertices), order 2 Simpson's rule (vertices, edge
-// midpoints and centre). Each lattice vertex v gets the weight
-//
-//     c_v = integral over Omega of N_v,
-//
-// N_v the tensor Lagrange function of v on the cells around it, so the lattice rule
-// sum_v c_v f(x_v) integrates the piecewise (bi)linear / (bi)quadratic interpolant of f
-// over Omega. Cells cut by the boundary integrate that interpolant over their inside part
-// exactly (the cell clipped by Domain::clip, Green's theorem on the clipped rings):
-// no cut-cell approximation beyond the interpolation itself.
+// midpoints and centre). Each lattice vertex v of the cells wholly inside Omega gets the
+// weight c_v = sum over those cells of the integral of its Lagrange function N_v.
+// A cell cut by the boundary is clipped to Omega (Domain::clip) and integrated by its own
+// points, all in the closed domain (vertices and edge midpoints of the cut part, inside
+// Gauss points), with weights fitted to the exact moments of the cut part (Green's theorem):
+// exact for polynomials of degree <= order, so the whole rule is too.
 //
 // Why one lattice: a quadrature point's weight w_K = integral of phi_K is computed as
 // sum_v c_v phi_K(x_v), i.e. on the window of this lattice covering supp(phi_K). Because
-// every window shares the vertices and the c_v, the partition of unity sum_K phi_K = 1 and
+// every window shares the points and the c_v, the partition of unity sum_K phi_K = 1 and
 // linear reproduction give sum_K w_K = sum_v c_v = |Omega| and sum_K w_K x_K = integral of x
 // to round-off, and each phi_K(x_v) is evaluated once for all K instead of once per window.
+// Every point lies in the closed domain, where the quadrature-cloud functions are defined.
 
 #include <vector>
 
@@ -35,9 +33,9 @@ class BackgroundLattice {
 
   [[nodiscard]] double spacing() const { return spacing_; }
   [[nodiscard]] int order() const { return order_; }
-  /// Vertices with a non-zero weight (those of cells meeting Omega), in lattice order.
+  /// Lattice vertices with a non-zero weight, in lattice order, then the cut cells' points.
   [[nodiscard]] const std::vector<Vec2>& points() const { return points_; }
-  /// c_v for each of points(); may be negative on cut Simpson cells.
+  /// The weight of each of points(); cut cells' weights may be negative.
   [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
   [[nodiscard]] Index cut_cells() const { return cut_cells_; }
   [[nodiscard]] Index cells() const { return cells_; }
