@@ -1,0 +1,380 @@
+#include "mfree/geometry/domain.hpp"
+
+#include <CGAL/Boolean_set_operations_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2.h>
+#include <CGAL/Polygon_with_holes_2.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <utility>
+
+#include "mfree/core/error.hpp"
+#include "mfree/geometry/polygon_integrals.hpp"
+#include "mfree/geometry/segment_grid.hpp"
+
+namespace mfree {
+
+namespace {
+
+// Inside tests use exact predicates on double coordinates (Epick): exact answers, no
+// allocation. Boolean clipping constructs new points (edge crossings), so it runs on the
+// exact-constructions kernel (Epeck) and the results are rounded back to double.
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using FastPolygon = CGAL::Polygon_2<Epick>;
+using ExactPolygon = CGAL::Polygon_2<Epeck>;
+using ExactPolygonWithHoles = CGAL::Polygon_with_holes_2<Epeck>;
+
+std::string ring_name(std::size_t k) {
+  return k == 0 ? std::string("the outer ring") : fmt::format("hole {}", k);
+}
+
+/// Strict reader of one WKT POLYGON: POLYGON ((x y, x y, ...), (x y, ...), ...).
+/// Keywords are case-insensitive; anything else (Z/M coordinates, EMPTY, a second
+/// geometry, trailing text) is an error reported with its line and column.
+class WktReader {
+ public:
+  WktReader(std::string_view text, const std::string& source) : text_(text), source_(source) {}
+
+  std::vector<Ring> polygon() {
+    skip_space();
+    expect_keyword("POLYGON");
+    skip_space();
+    if (at_keyword("EMPTY")) fail("POLYGON EMPTY has no area");
+    expect('(');
+    std::vector<Ring> rings;
+    do {
+      rings.push_back(ring());
+    } while (accept(','));
+    expect(')');
+    skip_space();
+    if (pos_ != text_.size()) fail("unexpected text after the polygon");
+    return rings;
+  }
+
+ private:
+  Ring ring() {
+    expect('(');
+    Ring r;
+    do {
+      const double x = number();
+      const double y = number();
+      r.emplace_back(x, y);
+    } while (accept(','));
+    expect(')');
+    return r;
+  }
+
+  double number() {
+    skip_space();
+    const char* first = text_.data() + pos_;
+    const char* last = text_.data() + text_.size();
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(first, last, value);
+    if (ec != std::errc() || end == first) fail("expected a number");
+    if (!std::isfinite(value)) fail("coordinates must be finite numbers");
+    pos_ += static_cast<std::size_t>(end - first);
+    return value;
+  }
+
+  void skip_space() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+
+  bool accept(char c) {
+    skip_space();
+    if (pos_ < text_.size() && text_[pos_] == c) {
+      ++pos_;
+      return true;
+    }
+    return false;
+  }
+
+  void expect(char c) {
+    if (!accept(c)) fail(fmt::format("expected '{}'", c));
+  }
+
+  bool at_keyword(std::string_view word) const {
+    if (text_.size() - pos_ < word.size()) return false;
+    for (std::size_t i = 0; i < word.size(); ++i) {
+      if (std::toupper(static_cast<unsigned char>(text_[pos_ + i])) != word[i]) return false;
+    }
+    const std::size_t after = pos_ + word.size();
+    return after == text_.size() || !std::isalnum(static_cast<unsigned char>(text_[after]));
+  }
+
+  void expect_keyword(std::string_view word) {
+    if (!at_keyword(word)) fail(fmt::format("expected {} (only a single WKT POLYGON is read)", word));
+    pos_ += word.size();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < pos_ && i < text_.size(); ++i) {
+      if (text_[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    throw InputError(fmt::format("{}:{}:{}: malformed WKT: {}", source_, line, column, what));
+  }
+
+  std::string_view text_;
+  const std::string& source_;
+  std::size_t pos_ = 0;
+};
+
+Epick::Point_2 fast_point(const Vec2& x) { return {x.x(), x.y()}; }
+Epeck::Point_2 exact_point(const Vec2& x) { return {x.x(), x.y()}; }
+
+FastPolygon fast_polygon(const Ring& ring) {
+  FastPolygon p;
+  for (const Vec2& x : ring) p.push_back(fast_point(x));
+  return p;
+}
+
+ExactPolygon exact_polygon(const Ring& ring) {
+  ExactPolygon p;
+  for (const Vec2& x : ring) p.push_back(exact_point(x));
+  return p;
+}
+
+Ring to_ring(const ExactPolygon& p) {
+  Ring r;
+  r.reserve(p.size());
+  for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
+    r.emplace_back(CGAL::to_double(v->x()), CGAL::to_double(v->y()));
+  }
+  return r;
+}
+
+Box ring_box(const Ring& ring) {
+  Box b{ring[0], ring[0]};
+  for (const Vec2& x : ring) {
+    b.lo = b.lo.cwiseMin(x);
+    b.hi = b.hi.cwiseMax(x);
+  }
+  return b;
+}
+
+/// Whether the interiors of two boxes overlap (touching along an edge does not count).
+bool interiors_overlap(const Box& a, const Box& b) {
+  return a.lo.x() < b.hi.x() && b.lo.x() < a.hi.x() && a.lo.y() < b.hi.y() && b.lo.y() < a.hi.y();
+}
+
+/// Whether every vertex lies on one straight line (exact predicate), i.e. zero area.
+bool all_collinear(const Ring& r) {
+  const auto other = std::find_if(r.begin(), r.end(), [&](const Vec2& x) { return x != r[0]; });
+  if (other == r.end()) return true;
+  return std::all_of(r.begin(), r.end(), [&](const Vec2& x) {
+    return CGAL::collinear(fast_point(r[0]), fast_point(*other), fast_point(x));
+  });
+}
+
+/// Validates raw rings from the input and orients them: outer CCW, holes CW.
+/// `source` names the input in error messages.
+std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& source) {
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    Ring& r = rings[k];
+    if (r.size() > 1 && r.front() == r.back()) r.pop_back();
+    if (r.size() < 3) {
+      throw InputError(fmt::format("{}: {} has {} distinct vertices; a ring needs at least 3",
+                                   source, ring_name(k), r.size()));
+    }
+    if (all_collinear(r)) {
+      throw InputError(fmt::format("{}: {} has zero area", source, ring_name(k)));
+    }
+    const FastPolygon p = fast_polygon(r);
+    if (!p.is_simple()) {
+      throw InputError(fmt::format(
+          "{}: {} is not simple (it crosses itself or repeats a vertex)", source, ring_name(k)));
+    }
+    const bool ccw = p.orientation() == CGAL::COUNTERCLOCKWISE;
+    if (ccw != (k == 0)) std::reverse(r.begin(), r.end());
+  }
+
+  // Holes must lie strictly inside the outer ring and outside each other: no edge of one
+  // ring may meet an edge of another, and with that settled one vertex per ring decides
+  // nesting.
+  std::vector<FastPolygon> polys;
+  std::vector<Box> boxes;
+  for (const Ring& r : rings) {
+    polys.push_back(fast_polygon(r));
+    boxes.push_back(ring_box(r));
+  }
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    for (std::size_t j = i + 1; j < rings.size(); ++j) {
+      const Box& a = boxes[i];
+      const Box& b = boxes[j];
+      if (a.hi.x() < b.lo.x() || b.hi.x() < a.lo.x() || a.hi.y() < b.lo.y() || b.hi.y() < a.lo.y())
+        continue;
+      for (auto e = polys[i].edges_begin(); e != polys[i].edges_end(); ++e) {
+        for (auto f = polys[j].edges_begin(); f != polys[j].edges_end(); ++f) {
+          if (CGAL::do_intersect(*e, *f)) {
+            throw InputError(fmt::format("{}: {} and {} touch or cross", source, ring_name(i),
+                                         ring_name(j)));
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t k = 1; k < rings.size(); ++k) {
+    if (polys[0].bounded_side(polys[k].vertex(0)) != CGAL::ON_BOUNDED_SIDE) {
+      throw InputError(fmt::format("{}: {} lies outside the outer ring", source, ring_name(k)));
+    }
+    for (std::size_t m = 1; m < rings.size(); ++m) {
+      if (m != k && polys[m].bounded_side(polys[k].vertex(0)) == CGAL::ON_BOUNDED_SIDE) {
+        throw InputError(fmt::format("{}: {} lies inside {}", source, ring_name(k), ring_name(m)));
+      }
+    }
+  }
+  return rings;
+}
+
+}  // namespace
+
+struct Domain::Impl {
+  std::vector<Ring> rings;
+  std::vector<FastPolygon> fast_rings;  // rings for the inside test
+  std::vector<Box> ring_boxes;
+  std::vector<BoundarySegment> segments;
+  SegmentGrid grid;
+  Box box;
+  double area = 0.0;
+  Vec2 first_moment = Vec2::Zero();
+
+  explicit Impl(std::vector<Ring> oriented)
+      : rings(std::move(oriented)), segments(make_segments(rings)), grid(segments) {
+    for (const Ring& r : rings) {
+      fast_rings.push_back(fast_polygon(r));
+      ring_boxes.push_back(ring_box(r));
+      // Holes are clockwise: their signed integrals subtract (polygon_integrals.hpp).
+      area += ring_area(r);
+      first_moment += ring_first_moment(r);
+    }
+    box = ring_boxes[0];
+  }
+
+  static std::vector<BoundarySegment> make_segments(const std::vector<Ring>& rings) {
+    std::vector<BoundarySegment> out;
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+      const Ring& r = rings[k];
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const Vec2& a = r[i];
+        const Vec2& b = r[(i + 1) % r.size()];
+        const double length = (b - a).norm();
+        const Vec2 t = (b - a) / length;
+        // The domain lies to the left of a -> b, so the outward normal is t turned clockwise.
+        out.push_back(BoundarySegment{a, b, Vec2(t.y(), -t.x()), length, static_cast<int>(k)});
+      }
+    }
+    return out;
+  }
+};
+
+Domain::Domain(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Domain::Domain(const Domain& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+Domain::Domain(Domain&&) noexcept = default;
+Domain& Domain::operator=(const Domain& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+Domain& Domain::operator=(Domain&&) noexcept = default;
+Domain::~Domain() = default;
+
+Domain Domain::rectangle(Vec2 lo, Vec2 hi) {
+  if (!(lo.array() < hi.array()).all() || !lo.allFinite() || !hi.allFinite()) {
+    throw InputError(fmt::format(
+        "Domain::rectangle: need finite corners with lo < hi, got lo = ({}, {}), hi = ({}, {})",
+        lo.x(), lo.y(), hi.x(), hi.y()));
+  }
+  Ring r{lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
+  return Domain(std::make_unique<Impl>(std::vector<Ring>{std::move(r)}));
+}
+
+Domain Domain::from_wkt(std::string_view wkt, const std::string& source) {
+  WktReader reader(wkt, source);
+  return Domain(std::make_unique<Impl>(normalised_rings(reader.polygon(), source)));
+}
+
+Domain Domain::from_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(fmt::format("mesh file '{}' does not exist or is not a regular file",
+                                 path.string()));
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in || !text) {
+    throw InputError(fmt::format("cannot read mesh file '{}'", path.string()));
+  }
+  return from_wkt(text.str(), path.string());
+}
+
+bool Domain::contains(const Vec2& x) const {
+  const Impl& d = *impl_;
+  if (!d.box.contains(x)) return false;
+  const Epick::Point_2 p = fast_point(x);
+  if (d.fast_rings[0].bounded_side(p) == CGAL::ON_UNBOUNDED_SIDE) return false;
+  for (std::size_t k = 1; k < d.fast_rings.size(); ++k) {
+    // The hole's boundary belongs to the closed domain; only its open interior is excluded.
+    if (d.ring_boxes[k].contains(x) && d.fast_rings[k].bounded_side(p) == CGAL::ON_BOUNDED_SIDE)
+      return false;
+  }
+  return true;
+}
+
+double Domain::area() const { return impl_->area; }
+Vec2 Domain::first_moment() const { return impl_->first_moment; }
+Box Domain::bounding_box() const { return impl_->box; }
+const std::vector<Ring>& Domain::rings() const { return impl_->rings; }
+const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->segments; }
+
+std::vector<Ring> Domain::clip(const Box& box) const {
+  const Impl& d = *impl_;
+  if (!interiors_overlap(box, d.box)) return {};
+  if (box.contains(d.box.lo) && box.contains(d.box.hi)) return d.rings;
+  // A box the boundary cannot reach is wholly inside or wholly outside (segment_grid.hpp).
+  if (!d.grid.may_touch(box)) {
+    if (!contains(0.5 * (box.lo + box.hi))) return {};
+    return {Ring{box.lo, Vec2(box.hi.x(), box.lo.y()), box.hi, Vec2(box.lo.x(), box.hi.y())}};
+  }
+
+  // The exact polygons are built per call from the double rings, so concurrent calls share
+  // no CGAL object. Holes whose boxes miss the box's interior cannot change the
+  // (regularised) intersection and are left out of the sweep.
+  ExactPolygonWithHoles omega(exact_polygon(d.rings[0]));
+  for (std::size_t k = 1; k < d.rings.size(); ++k) {
+    if (interiors_overlap(box, d.ring_boxes[k])) omega.add_hole(exact_polygon(d.rings[k]));
+  }
+  ExactPolygon window;
+  window.push_back(Epeck::Point_2(box.lo.x(), box.lo.y()));
+  window.push_back(Epeck::Point_2(box.hi.x(), box.lo.y()));
+  window.push_back(Epeck::Point_2(box.hi.x(), box.hi.y()));
+  window.push_back(Epeck::Point_2(box.lo.x(), box.hi.y()));
+
+  std::vector<ExactPolygonWithHoles> pieces;
+  CGAL::intersection(omega, window, std::back_inserter(pieces));
+
+  // CGAL returns outer boundaries counter-clockwise and holes clockwise, as rings() does.
+  std::vector<Ring> out;
+  for (const ExactPolygonWithHoles& piece : pieces) {
+    out.push_back(to_ring(piece.outer_boundary()));
+    for (auto h = piece.holes_begin(); h != piece.holes_end(); ++h) out.push_back(to_ring(*h));
+  }
+  return out;
+}
+
+}  // namespace mfree

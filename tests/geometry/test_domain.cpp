@@ -1,0 +1,313 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mfree/core/error.hpp"
+#include "mfree/geometry/domain.hpp"
+#include "mfree/geometry/polygon_integrals.hpp"
+
+using mfree::Box;
+using mfree::Domain;
+using mfree::Ring;
+using mfree::Vec2;
+
+namespace {
+
+const double pi = std::acos(-1.0);
+
+std::string mesh_path(const std::string& name) {
+  return std::string(MFREE_SOURCE_DIR) + "/meshes/" + name;
+}
+
+Domain mesh(const std::string& name) { return Domain::from_file(mesh_path(name)); }
+
+// Area of the 64-gon inscribed in the circle of radius 0.5: 64 triangles of area
+// r^2 sin(2 pi / 64) / 2.
+double hole_area() { return 0.5 * 64 * 0.25 * std::sin(2 * pi / 64); }
+
+// The message of the InputError that f throws, or a marker when it throws none.
+template <class F>
+std::string input_error_message(F&& f) {
+  try {
+    f();
+  } catch (const mfree::InputError& e) {
+    return e.what();
+  }
+  return "<no InputError thrown>";
+}
+
+// Box edges at uneven positions along [lo, hi]: t_i = (i / n)^1.4 plus a wobble, so that
+// no two boxes are alike and some edges pass near (not only through) vertices.
+std::vector<double> uneven_breaks(double lo, double hi, int n) {
+  std::vector<double> t(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    const double s = static_cast<double>(i) / n;
+    t[i] = lo + (hi - lo) * (std::pow(s, 1.4) + 0.03 * std::sin(pi * s * 3.0));
+  }
+  t[0] = lo;
+  t[n] = hi;
+  return t;
+}
+
+struct Integrals {
+  double area = 0.0;
+  Vec2 moment = Vec2::Zero();
+};
+
+Integrals integrate(const std::vector<Ring>& rings) {
+  Integrals sum;
+  for (const Ring& r : rings) {
+    sum.area += mfree::ring_area(r);
+    sum.moment += mfree::ring_first_moment(r);
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("ring integrals match the exact values of a shifted triangle and square",
+          "[geometry]") {
+  // Triangle (1,1), (4,1), (1,3): area 3, centroid (2, 5/3).
+  const Ring tri{Vec2(1, 1), Vec2(4, 1), Vec2(1, 3)};
+  CHECK(mfree::ring_area(tri) == Approx(3.0).epsilon(1e-15));
+  CHECK(mfree::ring_first_moment(tri).x() == Approx(6.0).epsilon(1e-15));
+  CHECK(mfree::ring_first_moment(tri).y() == Approx(5.0).epsilon(1e-15));
+  // Reversing the ring flips the signs.
+  const Ring rev{Vec2(1, 3), Vec2(4, 1), Vec2(1, 1)};
+  CHECK(mfree::ring_area(rev) == Approx(-3.0).epsilon(1e-15));
+  CHECK(mfree::ring_first_moment(rev).x() == Approx(-6.0).epsilon(1e-15));
+  // A tiny square far from the origin keeps its accuracy: its corners are exact doubles,
+  // and the sums taken about a vertex are exact, while plain shoelace products of size
+  // 1e6 would lose about 1e-2 of h^2.
+  const double h = 1.0 / 8192;
+  const Vec2 c(1e3, -2e3);
+  const Ring sq{c, c + Vec2(h, 0), c + Vec2(h, h), c + Vec2(0, h)};
+  CHECK(mfree::ring_area(sq) == Approx(h * h).epsilon(1e-15));
+  CHECK(mfree::ring_first_moment(sq).x() == Approx((c.x() + h / 2) * h * h).epsilon(1e-15));
+  CHECK(mfree::ring_first_moment(sq).y() == Approx((c.y() + h / 2) * h * h).epsilon(1e-15));
+}
+
+TEST_CASE("mesh areas and first moments match the exact values", "[geometry]") {
+  const Domain rect = mesh("rectangle.wkt");
+  CHECK(rect.area() == Approx(2.0).epsilon(1e-15));
+  CHECK(std::abs(rect.first_moment().x()) < 1e-15);
+  CHECK(std::abs(rect.first_moment().y()) < 1e-15);
+
+  const Domain l = mesh("l_shape.wkt");
+  CHECK(l.area() == Approx(3.0).epsilon(1e-15));
+  // [-1,1]^2 has zero moment; the removed unit square has moment (0.5, 0.5).
+  CHECK(l.first_moment().x() == Approx(-0.5).epsilon(1e-15));
+  CHECK(l.first_moment().y() == Approx(-0.5).epsilon(1e-15));
+
+  const Domain plate = mesh("plate_with_hole.wkt");
+  CHECK(plate.area() == Approx(16.0 - hole_area()).epsilon(1e-14));
+  CHECK(std::abs(plate.first_moment().x()) < 1e-14);
+  CHECK(std::abs(plate.first_moment().y()) < 1e-14);
+
+  const Box box = plate.bounding_box();
+  CHECK(box.lo == Vec2(-2, -2));
+  CHECK(box.hi == Vec2(2, 2));
+}
+
+TEST_CASE("rings are normalised: outer CCW, holes CW, no closing vertex", "[geometry]") {
+  const Domain l = mesh("l_shape.wkt");
+  REQUIRE(l.rings().size() == 1);
+  CHECK(l.rings()[0].size() == 6);
+  CHECK(mfree::ring_area(l.rings()[0]) > 0.0);
+
+  // The file lists the hole counter-clockwise; the domain turns it clockwise.
+  const Domain plate = mesh("plate_with_hole.wkt");
+  REQUIRE(plate.rings().size() == 2);
+  CHECK(plate.rings()[0].size() == 4);
+  CHECK(plate.rings()[1].size() == 64);
+  CHECK(mfree::ring_area(plate.rings()[0]) == Approx(16.0));
+  CHECK(mfree::ring_area(plate.rings()[1]) == Approx(-hole_area()).epsilon(1e-14));
+
+  // A clockwise outer ring without closing vertex is accepted and reversed.
+  const Domain cw = Domain::from_wkt("polygon ((0 0, 0 1, 2 1, 2 0))");
+  CHECK(cw.rings()[0].size() == 4);
+  CHECK(cw.area() == Approx(2.0).epsilon(1e-15));
+
+  const Domain built = Domain::rectangle(Vec2(-1, -0.5), Vec2(1, 0.5));
+  const Domain read = mesh("rectangle.wkt");
+  CHECK(built.area() == read.area());
+  CHECK(built.boundary().size() == read.boundary().size());
+
+  Domain copy = plate;
+  CHECK(copy.area() == plate.area());
+  copy = l;
+  CHECK(copy.area() == l.area());
+  const Domain moved = std::move(copy);
+  CHECK(moved.area() == l.area());
+}
+
+TEST_CASE("boundary segments satisfy the divergence theorem and point outward", "[geometry]") {
+  for (const std::string name : {"rectangle.wkt", "l_shape.wkt", "plate_with_hole.wkt"}) {
+    INFO(name);
+    const Domain d = mesh(name);
+    Vec2 sum_nl = Vec2::Zero();
+    double sum_xn = 0.0;
+    double perimeter = 0.0;
+    for (const mfree::BoundarySegment& s : d.boundary()) {
+      CHECK(s.normal.norm() == Approx(1.0).epsilon(1e-15));
+      CHECK(s.length == Approx((s.b - s.a).norm()).epsilon(1e-15));
+      CHECK(std::abs(s.normal.dot(s.b - s.a)) < 1e-14 * s.length);
+      const Vec2 mid = 0.5 * (s.a + s.b);
+      const double eps = 1e-6 * s.length;
+      CHECK_FALSE(d.contains(mid + eps * s.normal));
+      CHECK(d.contains(mid - eps * s.normal));
+      sum_nl += s.normal * s.length;
+      sum_xn += mid.dot(s.normal) * s.length;
+      perimeter += s.length;
+    }
+    // int_dOmega n ds = 0 and int_dOmega x . n ds = int_Omega div x dA = 2 |Omega|
+    // (x . n is linear along a straight edge, so the midpoint rule is exact).
+    CHECK(sum_nl.norm() < 1e-14 * perimeter);
+    CHECK(sum_xn == Approx(2.0 * d.area()).epsilon(1e-14));
+  }
+  const Domain plate = mesh("plate_with_hole.wkt");
+  int hole_segments = 0;
+  for (const mfree::BoundarySegment& s : plate.boundary()) hole_segments += s.ring == 1;
+  CHECK(hole_segments == 64);
+}
+
+TEST_CASE("contains() on known points, boundary included", "[geometry]") {
+  const Domain l = mesh("l_shape.wkt");
+  CHECK(l.contains(Vec2(-0.5, 0.5)));
+  CHECK(l.contains(Vec2(0.5, -0.5)));
+  CHECK_FALSE(l.contains(Vec2(0.5, 0.5)));     // the cut-out quadrant
+  CHECK_FALSE(l.contains(Vec2(1e-9, 1e-9)));   // just past the re-entrant corner
+  CHECK(l.contains(Vec2(-1e-9, 1e-9)));
+  CHECK(l.contains(Vec2(0, 0)));               // the re-entrant corner itself
+  CHECK(l.contains(Vec2(0, 0.5)));             // on an edge
+  CHECK(l.contains(Vec2(0.5, 0)));
+  CHECK(l.contains(Vec2(-1, -1)));
+  CHECK_FALSE(l.contains(Vec2(1.0 + 1e-12, -0.5)));
+  CHECK_FALSE(l.contains(Vec2(5, 5)));
+
+  const Domain plate = mesh("plate_with_hole.wkt");
+  CHECK_FALSE(plate.contains(Vec2(0, 0)));
+  CHECK_FALSE(plate.contains(Vec2(0.3, 0.3)));
+  CHECK(plate.contains(Vec2(0.5, 0)));          // a vertex of the hole
+  CHECK(plate.contains(plate.rings()[1][17]));  // another one
+  CHECK(plate.contains(Vec2(0.36, 0.36)));      // outside the 64-gon (0.36 sqrt 2 > 0.5)
+  CHECK(plate.contains(Vec2(2, 2)));
+  CHECK(plate.contains(Vec2(-2, 0.3)));
+  CHECK_FALSE(plate.contains(Vec2(2.01, 0)));
+}
+
+TEST_CASE("clip() pieces tile the domain exactly", "[geometry]") {
+  for (const std::string name : {"rectangle.wkt", "l_shape.wkt", "plate_with_hole.wkt"}) {
+    INFO(name);
+    const Domain d = mesh(name);
+    const Box bb = d.bounding_box();
+    // Overhang the bounding box a little so that outer boxes stick out of the domain.
+    const std::vector<double> xs = uneven_breaks(bb.lo.x() - 0.1, bb.hi.x() + 0.07, 7);
+    const std::vector<double> ys = uneven_breaks(bb.lo.y() - 0.05, bb.hi.y() + 0.13, 5);
+    Integrals sum;
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+      for (std::size_t j = 0; j + 1 < ys.size(); ++j) {
+        const Box box{Vec2(xs[i], ys[j]), Vec2(xs[i + 1], ys[j + 1])};
+        const Integrals piece = integrate(d.clip(box));
+        CHECK(piece.area >= 0.0);
+        CHECK(piece.area <= box.area() * (1 + 1e-14));
+        sum.area += piece.area;
+        sum.moment += piece.moment;
+      }
+    }
+    CHECK(sum.area == Approx(d.area()).epsilon(1e-12));
+    CHECK((sum.moment - d.first_moment()).norm() < 1e-12 * d.area());
+  }
+}
+
+TEST_CASE("clip() with boxes in the hole, over the hole, at the corner and over all",
+          "[geometry]") {
+  const Domain plate = mesh("plate_with_hole.wkt");
+  CHECK(plate.clip(Box{Vec2(-0.3, -0.3), Vec2(0.3, 0.3)}).empty());
+  CHECK(plate.clip(Box{Vec2(3, 3), Vec2(4, 4)}).empty());
+
+  const std::vector<Ring> all = plate.clip(Box{Vec2(-10, -10), Vec2(10, 10)});
+  CHECK(integrate(all).area == Approx(plate.area()).epsilon(1e-15));
+
+  // A box holding the whole hole but not the plate: one CCW outer ring and one CW hole.
+  const std::vector<Ring> ring = plate.clip(Box{Vec2(-1, -1), Vec2(1, 1)});
+  REQUIRE(ring.size() == 2);
+  int ccw = 0, cw = 0;
+  for (const Ring& r : ring) (mfree::ring_area(r) > 0 ? ccw : cw) += 1;
+  CHECK(ccw == 1);
+  CHECK(cw == 1);
+  CHECK(integrate(ring).area == Approx(4.0 - hole_area()).epsilon(1e-14));
+
+  // Straddling the hole: the half plane y >= 0 of the plate.
+  const Integrals upper = integrate(plate.clip(Box{Vec2(-3, 0), Vec2(3, 3)}));
+  CHECK(upper.area == Approx(plate.area() / 2).epsilon(1e-14));
+  CHECK(std::abs(upper.moment.x()) < 1e-14);
+  // int y dA: the half square [-2,2]x[0,2] gives 8; the upper half of the 64-gon is the fan
+  // of triangles (0, v_k, v_k+1), k < 32, each of area r^2 sin(2 pi/64) / 2 and centroid
+  // height (y_k + y_k+1) / 3.
+  double fan = 0.0;
+  for (int k = 0; k < 32; ++k) {
+    const double yk = 0.5 * std::sin(2 * pi * k / 64);
+    const double yk1 = 0.5 * std::sin(2 * pi * (k + 1) / 64);
+    fan += 0.5 * 0.25 * std::sin(2 * pi / 64) * (yk + yk1) / 3.0;
+  }
+  CHECK(upper.moment.y() == Approx(8.0 - fan).epsilon(1e-14));
+
+  // A box the boundary does not reach comes back whole.
+  const Box inner{Vec2(1, 1), Vec2(1.5, 1.75)};
+  const std::vector<Ring> whole = plate.clip(inner);
+  REQUIRE(whole.size() == 1);
+  CHECK(mfree::ring_area(whole[0]) == Approx(inner.area()).epsilon(1e-15));
+
+  // The L's re-entrant corner: [-0.5, 0.5]^2 keeps three of its four quarters.
+  const Domain l = mesh("l_shape.wkt");
+  const Integrals corner = integrate(l.clip(Box{Vec2(-0.5, -0.5), Vec2(0.5, 0.5)}));
+  CHECK(corner.area == Approx(0.75).epsilon(1e-15));
+  // Moment: the full square's is 0, minus the quarter [0,0.5]^2 with moment (1/16, 1/16).
+  CHECK(corner.moment.x() == Approx(-1.0 / 16).epsilon(1e-14));
+  CHECK(corner.moment.y() == Approx(-1.0 / 16).epsilon(1e-14));
+  // A box wholly in the cut-out quadrant but touching the corner has no area inside.
+  CHECK(integrate(l.clip(Box{Vec2(0, 0), Vec2(1, 1)})).area == Approx(0.0).margin(1e-15));
+}
+
+TEST_CASE("bad WKT and bad rings are InputErrors naming the source", "[geometry]") {
+  using Catch::Contains;
+  auto wkt_error = [](const std::string& text) {
+    return input_error_message([&] { (void)Domain::from_wkt(text, "shape.wkt"); });
+  };
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, 1 1)"), Contains("shape.wkt") && Contains("')'"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, 1))"), Contains("shape.wkt") && Contains("number"));
+  CHECK_THAT(wkt_error("LINESTRING(0 0, 1 1)"), Contains("shape.wkt") && Contains("POLYGON"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, 1 1, 0 0)) POINT(1 1)"),
+             Contains("shape.wkt") && Contains("after"));
+  CHECK_THAT(wkt_error("POLYGON Z ((0 0 0, 1 0 0, 1 1 0, 0 0 0))"), Contains("shape.wkt"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, 1 1 1, 0 0))"), Contains("shape.wkt"));
+  CHECK_THAT(wkt_error("POLYGON EMPTY"), Contains("shape.wkt") && Contains("EMPTY"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, nan 1, 0 0))"), Contains("shape.wkt"));
+  CHECK_THAT(wkt_error(""), Contains("shape.wkt"));
+  // The position of the error: line 2, column 10 (the 'x').
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0,\n  1 1, 0 x))"), Contains("shape.wkt:2:10"));
+
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 1, 0 0))"),
+             Contains("shape.wkt") && Contains("at least 3"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 0, 2 0, 0 0))"),
+             Contains("shape.wkt") && Contains("zero area"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 1 1, 1 0, 0 1, 0 0))"),
+             Contains("shape.wkt") && Contains("not simple"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 4 0, 4 4, 0 4), (5 5, 6 5, 6 6, 5 6))"),
+             Contains("shape.wkt") && Contains("outside"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 4 0, 4 4, 0 4), (3 1, 5 1, 5 2, 3 2))"),
+             Contains("shape.wkt") && Contains("hole 1"));
+  CHECK_THAT(wkt_error("POLYGON((0 0, 4 0, 4 4, 0 4), (1 1, 3 1, 3 3, 1 3), (1.5 1.5, 2 1.5, 2 2))"),
+             Contains("shape.wkt") && Contains("hole 2"));
+
+  const std::string missing = mesh_path("no_such_mesh.wkt");
+  CHECK_THAT(input_error_message([&] { (void)Domain::from_file(missing); }), Contains(missing));
+  const std::string directory = std::string(MFREE_SOURCE_DIR) + "/meshes";
+  CHECK_THAT(input_error_message([&] { (void)Domain::from_file(directory); }),
+             Contains(directory));
+  CHECK_THAT(input_error_message([] { (void)Domain::rectangle(Vec2(0, 0), Vec2(1, 0)); }),
+             Contains("lo < hi"));
+}
