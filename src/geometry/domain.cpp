@@ -159,15 +159,6 @@ Ring to_ring(const ExactPolygon& p) {
   return r;
 }
 
-Box ring_box(const Ring& ring) {
-  Box b{ring[0], ring[0]};
-  for (const Vec2& x : ring) {
-    b.lo = b.lo.cwiseMin(x);
-    b.hi = b.hi.cwiseMax(x);
-  }
-  return b;
-}
-
 /// Whether the interiors of two boxes overlap (touching along an edge does not count).
 bool interiors_overlap(const Box& a, const Box& b) {
   return a.lo.x() < b.hi.x() && b.lo.x() < a.hi.x() && a.lo.y() < b.hi.y() && b.lo.y() < a.hi.y();
@@ -211,7 +202,7 @@ std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& s
   std::vector<Box> boxes;
   for (const Ring& r : rings) {
     polys.push_back(fast_polygon(r));
-    boxes.push_back(ring_box(r));
+    boxes.push_back(ring_bounding_box(r));
   }
   for (std::size_t i = 0; i < rings.size(); ++i) {
     for (std::size_t j = i + 1; j < rings.size(); ++j) {
@@ -258,7 +249,7 @@ struct Domain::Impl {
       : rings(std::move(oriented)), segments(make_segments(rings)), grid(segments) {
     for (const Ring& r : rings) {
       fast_rings.push_back(fast_polygon(r));
-      ring_boxes.push_back(ring_box(r));
+      ring_boxes.push_back(ring_bounding_box(r));
       // Holes are clockwise: their signed integrals subtract (polygon_integrals.hpp).
       area += ring_area(r);
       first_moment += ring_first_moment(r);

@@ -40,4 +40,13 @@ Vec2 ring_first_moment(const Ring& ring) {
   return six_moment / 6.0 + r * (0.5 * twice_area);
 }
 
+Box ring_bounding_box(const Ring& ring) {
+  Box b{ring[0], ring[0]};
+  for (const Vec2& x : ring) {
+    b.lo = b.lo.cwiseMin(x);
+    b.hi = b.hi.cwiseMax(x);
+  }
+  return b;
+}
+
 }  // namespace mfree

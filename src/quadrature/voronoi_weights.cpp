@@ -42,15 +42,6 @@ ExactPolygon exact_polygon(const Ring& ring) {
   return p;
 }
 
-Box ring_box(const Ring& ring) {
-  Box b{ring[0], ring[0]};
-  for (const Vec2& x : ring) {
-    b.lo = b.lo.cwiseMin(x);
-    b.hi = b.hi.cwiseMax(x);
-  }
-  return b;
-}
-
 bool boxes_meet(const Box& a, const Box& b) {
   return a.lo.x() <= b.hi.x() && b.lo.x() <= a.hi.x() && a.lo.y() <= b.hi.y() &&
          b.lo.y() <= a.hi.y();
@@ -135,7 +126,7 @@ std::vector<double> voronoi_weights(const std::vector<Vec2>& points, const Domai
 
   const std::vector<Ring>& rings = domain.rings();
   std::vector<Box> ring_boxes;
-  for (const Ring& r : rings) ring_boxes.push_back(ring_box(r));
+  for (const Ring& r : rings) ring_boxes.push_back(ring_bounding_box(r));
   const SegmentGrid grid(domain.boundary());
   const Box& omega_box = ring_boxes[0];
 
@@ -167,7 +158,7 @@ std::vector<double> voronoi_weights(const std::vector<Vec2>& points, const Domai
     Ring cell;
     cell.reserve(hull.size());
     for (const Epick::Point_2& q : hull) cell.emplace_back(q.x(), q.y());
-    const Box box = ring_box(cell);
+    const Box box = ring_bounding_box(cell);
 
     if (!boxes_meet(box, omega_box)) continue;
     if (!grid.may_touch(box)) {

@@ -15,6 +15,9 @@
 
 namespace mfree {
 
+/// Smallest box holding every vertex of a non-empty ring.
+[[nodiscard]] Box ring_bounding_box(const Ring& ring);
+
 /// Signed area enclosed by the ring (positive when counter-clockwise).
 [[nodiscard]] double ring_area(const Ring& ring);
 
