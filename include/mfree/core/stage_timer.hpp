@@ -1,0 +1,44 @@
+#pragma once
+// Wall-clock time of the named stages of a run, in the order they first ran.
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mfree {
+
+class StageTimer {
+ public:
+  /// Runs f() and adds its wall time to stage `name`; returns what f returns.
+  template <class F>
+  decltype(auto) time(const std::string& name, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    struct Record {
+      StageTimer& timer;
+      const std::string& name;
+      std::chrono::steady_clock::time_point t0;
+      ~Record() { timer.add(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()); }
+    } record{*this, name, t0};
+    return f();
+  }
+  void add(const std::string& name, double seconds) {
+    for (auto& [n, s] : stages_)
+      if (n == name) {
+        s += seconds;
+        return;
+      }
+    stages_.emplace_back(name, seconds);
+  }
+  [[nodiscard]] const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+  [[nodiscard]] double total() const {
+    double t = 0.0;
+    for (const auto& [n, s] : stages_) t += s;
+    return t;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>> stages_;
+};
+
+}  // namespace mfree

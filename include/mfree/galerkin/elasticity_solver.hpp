@@ -1,0 +1,72 @@
+#pragma once
+// One small-strain elasticity solve on two point clouds, stage by stage:
+//
+//   clouds -> shape functions -> quadrature (weights, projected gradients) ->
+//   consistency -> assembly -> factorisation -> solve
+//
+// The quadrature schemes compared in verification/cantilever:
+//   projected    our scheme: quadrature cloud (ratio points per node), w_K = integral of
+//                phi_K and projected gradients on the background lattice, consistency
+//                correction (symmetric by default).
+//   gauss_cells  n x n Gauss points on background cells of the nodal spacing, direct gradients.
+//   nodal        direct nodal integration: the nodes as quadrature points, clipped Voronoi
+//                weights, direct gradients.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "mfree/clouds/point_cloud.hpp"
+#include "mfree/core/stage_timer.hpp"
+#include "mfree/galerkin/consistency.hpp"
+#include "mfree/galerkin/exact_elasticity.hpp"
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/galerkin/small_strain_elasticity.hpp"
+
+namespace mfree {
+
+enum class QuadratureScheme { projected, gauss_cells, nodal };
+std::string_view to_string(QuadratureScheme s);
+
+struct ElasticitySettings {
+  CloudSettings nodes;
+  RKOrder order = RKOrder::linear;
+  Window window = Window::cubic_bspline;
+  SupportShape support = SupportShape::circular;
+  double support_factor = 2.0;          ///< a = factor * h
+  double irregular_factor_scale = 1.25; ///< node radii on irregular clouds (nodal_support_radii)
+
+  QuadratureScheme scheme = QuadratureScheme::projected;
+  double quadrature_ratio = 4.0;        ///< quadrature points per node
+  RKOrder quadrature_order = RKOrder::linear;
+  double quadrature_factor = 2.0;       ///< quadrature-cloud support / its spacing
+  int lattice_refinement = 2;           ///< lattice spacing = quadrature spacing / this
+  Consistency consistency = Consistency::symmetric;
+  int gauss_points = 4;                 ///< per direction per background cell
+  std::optional<SolverKind> solver;     ///< default: CHOLMOD if symmetric, else UMFPACK
+
+  ElasticityProblem problem;
+  int error_gauss_points = 6;           ///< independent error quadrature, per cell of h/2
+};
+
+struct ElasticityResult {
+  std::vector<Vec2> nodes;
+  std::unique_ptr<RKShapeFunctions> trial;
+  GalerkinQuadrature quadrature;
+  Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
+  StageTimer timer;
+  double consistency_before = 0.0;      ///< consistency defect of the gradients, relative
+  double consistency_after = 0.0;
+  double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
+  SolverKind solver = SolverKind::cholmod;
+  std::optional<ElasticErrors> errors;
+
+  /// u^h at arbitrary points.
+  [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points) const;
+};
+
+/// Runs the stages; errors against `exact` when given (independent Gauss cells of h/2).
+ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings& s,
+                                  const ExactElasticity* exact);
+
+}  // namespace mfree

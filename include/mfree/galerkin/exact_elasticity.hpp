@@ -1,0 +1,45 @@
+#pragma once
+// Exact solutions of small-strain elasticity used for verification, and the error norms
+// measured against them with an independent quadrature (never the solver's own).
+
+#include <functional>
+
+#include "mfree/core/types.hpp"
+#include "mfree/kernels/rk_shape_functions.hpp"
+#include "mfree/materials/linear_elastic.hpp"
+#include "mfree/quadrature/quadrature_rule.hpp"
+
+namespace mfree {
+
+struct ExactElasticity {
+  std::function<Vec2(const Vec2&)> displacement;
+  std::function<Eigen::Vector3d(const Vec2&)> stress;  ///< Voigt (xx, yy, xy)
+  std::function<Vec2(const Vec2&)> body_force;          ///< b with div sigma + b = 0
+  /// Traction sigma n on a boundary with outward normal n.
+  [[nodiscard]] Vec2 traction(const Vec2& x, const Vec2& n) const {
+    const Eigen::Vector3d s = stress(x);
+    return {s[0] * n.x() + s[2] * n.y(), s[2] * n.x() + s[1] * n.y()};
+  }
+};
+
+/// Timoshenko cantilever (SPEC section 4), beam 0 <= x <= L, -D/2 <= y <= D/2, shear load P
+/// on x = L, plane stress with E, nu of `material` (plane strain: E and nu are replaced by
+/// E / (1 - nu^2) and nu / (1 - nu)).
+ExactElasticity timoshenko_beam(double length, double depth, double load, const LinearElastic& material);
+
+/// A linear displacement u = a + G x: constant stress, no body force (the patch test).
+ExactElasticity linear_field(const Vec2& a, const Mat2& g, const LinearElastic& material);
+
+struct ElasticErrors {
+  double l2_displacement = 0.0;  ///< ||u^h - u||_L2 / ||u||_L2
+  double energy = 0.0;           ///< (int (eps^h - eps) D (eps^h - eps))^1/2 / (int eps D eps)^1/2
+  double l2_stress = 0.0;        ///< ||sigma^h - sigma||_L2 / ||sigma||_L2
+  double strain_energy = 0.0;    ///< 1/2 int eps^h D eps^h of the discrete solution
+};
+
+/// Errors of u^h = sum phi_I d_I (strain from the true gradients of phi_I) on the rule.
+ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorXd& d,
+                             const LinearElastic& material, const ExactElasticity& exact,
+                             const QuadratureRule& rule);
+
+}  // namespace mfree

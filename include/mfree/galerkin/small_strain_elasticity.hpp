@@ -1,0 +1,64 @@
+#pragma once
+// Small-strain elasticity on meshfree clouds with Nitsche's method for essential
+// boundary conditions (SPEC section 4):
+//
+//   a(u, v) = sum_K w_K eps(v)_K . D eps(u)_K
+//             - int_Gu [ v . (sigma(u) n) + (sigma(v) n) . u ] + (beta E / h) int_Gu v . u
+//   l(v)    = sum_K w_K v_K . b_K + int_Gt v . tbar
+//             - int_Gu (sigma(v) n) . ubar + (beta E / h) int_Gu v . ubar
+//
+// Domain terms at the quadrature points with the gradients of the GalerkinQuadrature (test
+// gradients may differ: VCI); boundary terms at the boundary Gauss points with the true
+// gradients of the trial functions. Unknowns: d = (d_0x, d_0y, d_1x, ...), coefficients of the
+// RK functions, not nodal displacements: u^h(x) = sum_I phi_I(x) d_I.
+//
+// Boundary parts: each boundary segment takes the first condition whose region box holds
+// its midpoint; segments in no region are traction free.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mfree/galerkin/boundary_quadrature.hpp"
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/materials/linear_elastic.hpp"
+
+namespace mfree {
+
+using VectorField = std::function<Vec2(const Vec2&)>;
+
+struct BoundaryCondition {
+  enum class Type { displacement, traction };
+  Type type = Type::traction;
+  Box region;          ///< segments whose midpoint lies in this box
+  VectorField value;   ///< ubar(x) or tbar(x)
+  std::string name;    ///< for messages
+};
+
+struct ElasticityProblem {
+  LinearElastic material;
+  VectorField body_force;  ///< b(x), force per volume; empty: none
+  std::vector<BoundaryCondition> conditions;
+  double nitsche_beta = 100.0;  ///< penalty beta E / h (dimensionless beta)
+  double spacing = 1.0;         ///< h in the penalty: nodal spacing
+};
+
+struct ElasticitySystem {
+  SparseMatrix stiffness;  ///< 2N x 2N
+  Eigen::VectorXd load;
+  bool symmetric = true;
+};
+
+/// Assembles the system. `test_gradients` (same layout as q.grad) replaces q.grad for the
+/// test functions when non-null (then the system is non-symmetric).
+ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
+                                     const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
+                                     const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary);
+
+/// Voigt strain at quadrature point k of q for coefficients d: (eps_xx, eps_yy, gamma_xy).
+Eigen::Vector3d strain_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d);
+/// u^h at point k of q.
+Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d);
+
+}  // namespace mfree

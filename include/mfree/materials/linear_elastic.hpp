@@ -1,0 +1,48 @@
+#pragma once
+// Small-strain linear elasticity in 2D, plane stress or plane strain.
+//
+// Voigt order (xx, yy, xy) with engineering shear strain gamma_xy = 2 eps_xy, so that
+// sigma = D eps and the strain energy density is eps . D eps / 2. Units: E in stress units
+// (e.g. Pa), nu dimensionless in (-1, 1/2).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string_view>
+
+namespace mfree {
+
+enum class PlaneModel { stress, strain };
+
+struct LinearElastic {
+  double youngs_modulus = 1.0;  ///< E > 0
+  double poisson_ratio = 0.0;   ///< -1 < nu < 1/2
+  PlaneModel model = PlaneModel::stress;
+
+  /// Throws InputError (naming the value) for E <= 0 or nu outside (-1, 1/2).
+  void validate() const;
+
+  /// D (3 x 3) with sigma = D eps in Voigt form.
+  [[nodiscard]] Eigen::Matrix3d voigt_tangent() const {
+    const double e = youngs_modulus, nu = poisson_ratio;
+    Eigen::Matrix3d d = Eigen::Matrix3d::Zero();
+    if (model == PlaneModel::stress) {
+      const double c = e / (1.0 - nu * nu);
+      d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0;
+    } else {
+      const double c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+      d << c * (1.0 - nu), c * nu, 0.0, c * nu, c * (1.0 - nu), 0.0, 0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0;
+    }
+    return d;
+  }
+
+  /// Von Mises stress of a Voigt stress (with sigma_zz = nu (sigma_xx + sigma_yy) in plane strain).
+  [[nodiscard]] double von_mises(const Eigen::Vector3d& s) const {
+    const double szz = model == PlaneModel::strain ? poisson_ratio * (s[0] + s[1]) : 0.0;
+    const double a = s[0] - s[1], b = s[1] - szz, c = szz - s[0];
+    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * s[2] * s[2]);
+  }
+};
+
+std::string_view to_string(PlaneModel model);
+
+}  // namespace mfree

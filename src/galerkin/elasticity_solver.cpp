@@ -1,0 +1,123 @@
+#include "mfree/galerkin/elasticity_solver.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/quadrature/gauss_cells.hpp"
+#include "mfree/quadrature/voronoi_weights.hpp"
+
+namespace mfree {
+
+std::string_view to_string(QuadratureScheme s) {
+  switch (s) {
+    case QuadratureScheme::projected: return "projected";
+    case QuadratureScheme::gauss_cells: return "gauss_cells";
+    case QuadratureScheme::nodal: return "nodal";
+  }
+  return "?";
+}
+
+std::vector<Vec2> ElasticityResult::displacement(const std::vector<Vec2>& points) const {
+  const GalerkinQuadrature at = sample_shape_functions(*trial, points, false);
+  std::vector<Vec2> u(points.size());
+  for (Index k = 0; k < at.size(); ++k) u[k] = displacement_at(at, k, coefficients);
+  return u;
+}
+
+namespace {
+
+/// RK settings for a cloud of nominal spacing h: uniform radius on lattices, node radii
+/// reaching across gaps on irregular clouds.
+RKSettings rk_settings(const std::vector<Vec2>& points, CloudKind kind, double h, RKOrder order,
+                       const ElasticitySettings& s, double factor) {
+  RKSettings r;
+  r.order = order;
+  r.window = s.window;
+  r.support = s.support;
+  r.radius = factor * h;
+  if (kind != CloudKind::lattice) r.node_radii = nodal_support_radii(points, h, factor * s.irregular_factor_scale);
+  return r;
+}
+
+}  // namespace
+
+ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings& s,
+                                  const ExactElasticity* exact) {
+  ElasticityResult res;
+  StageTimer& timer = res.timer;
+  const double h = s.nodes.spacing;
+
+  res.nodes = timer.time("clouds", [&] { return make_cloud(domain, s.nodes); });
+  res.trial = timer.time("shape functions", [&] {
+    return std::make_unique<RKShapeFunctions>(res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
+  });
+  const Index n = static_cast<Index>(res.nodes.size());
+
+  // Quadrature: points, weights, and the gradients of the weak form.
+  res.quadrature = timer.time("weights and projection", [&] {
+    switch (s.scheme) {
+      case QuadratureScheme::projected: {
+        const std::vector<Vec2> xq = make_quadrature_cloud(domain, s.nodes, s.quadrature_ratio);
+        const double hq = h / std::sqrt(s.quadrature_ratio);
+        const RKShapeFunctions quad(xq, rk_settings(xq, s.nodes.kind, hq, s.quadrature_order, s, s.quadrature_factor));
+        const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
+        return projected_quadrature(*res.trial, quad, lattice);
+      }
+      case QuadratureScheme::gauss_cells:
+        return direct_quadrature(*res.trial, gauss_cell_rule(domain, h, s.gauss_points));
+      case QuadratureScheme::nodal:
+        return direct_quadrature(*res.trial, QuadratureRule{res.nodes, voronoi_weights(res.nodes, domain)});
+    }
+    throw Error("unknown quadrature scheme");
+  });
+
+  // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
+  const BoundaryQuadrature bq = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3);
+  const GalerkinQuadrature at_boundary = timer.time("shape functions", [&] {
+    return sample_shape_functions(*res.trial, bq.points, true);
+  });
+  const std::vector<Vec2> b = boundary_sums(at_boundary, bq.normals, bq.weights, n);
+  res.consistency_before = consistency_defect(res.quadrature, res.quadrature.grad, b);
+
+  std::vector<Vec2> test_gradients;
+  const Consistency consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
+  timer.time("consistency", [&] {
+    if (consistency == Consistency::symmetric) {
+      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes, b);
+      res.correction_residual = c.residual;
+      res.consistency_after = consistency_defect(res.quadrature, res.quadrature.grad, b);
+    } else if (consistency == Consistency::vci) {
+      test_gradients = vci_test_gradients(res.quadrature, b);
+      res.consistency_after = consistency_defect(res.quadrature, test_gradients, b);
+    } else {
+      res.consistency_after = res.consistency_before;
+    }
+  });
+
+  ElasticityProblem problem = s.problem;
+  problem.spacing = h;
+  const ElasticitySystem sys = timer.time("assembly", [&] {
+    return assemble_elasticity(problem, domain, n, res.quadrature,
+                               consistency == Consistency::vci ? &test_gradients : nullptr, bq, at_boundary);
+  });
+  res.solver = s.solver.value_or(sys.symmetric ? SolverKind::cholmod : SolverKind::umfpack);
+  if (res.solver == SolverKind::cholmod && !sys.symmetric)
+    throw InputError("solver: CHOLMOD needs a symmetric system; VCI makes it non-symmetric (use umfpack)");
+  SparseSolver solver(res.solver);
+  timer.time("factorisation", [&] {
+    solver.analyze(sys.stiffness);
+    solver.factorize(sys.stiffness);
+  });
+  res.coefficients = timer.time("solve", [&] { return solver.solve(sys.load); });
+
+  if (exact) {
+    res.errors = timer.time("errors", [&] {
+      return elastic_errors(*res.trial, res.coefficients, s.problem.material, *exact,
+                            gauss_cell_rule(domain, 0.5 * h, s.error_gauss_points));
+    });
+  }
+  return res;
+}
+
+}  // namespace mfree

@@ -1,0 +1,145 @@
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// Fills the CSR rows of q from per-point evaluations of `trial`.
+void fill_rows(const RKShapeFunctions& trial, GalerkinQuadrature& q, bool with_gradient) {
+  const Index n = q.size();
+  std::vector<ShapeValues> rows(n);
+  trial.for_each(q.points, with_gradient, [&](Index k, const ShapeValues& v) {
+    ShapeValues& r = rows[k];
+    // Rows sorted by node index, so that row lookups elsewhere can bisect.
+    std::vector<std::size_t> order(v.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v.nodes[a] < v.nodes[b]; });
+    for (std::size_t i : order) {
+      r.nodes.push_back(v.nodes[i]);
+      r.phi.push_back(v.phi[i]);
+      if (with_gradient) r.grad.push_back(v.grad[i]);
+    }
+  });
+  q.offsets.assign(n + 1, 0);
+  for (Index k = 0; k < n; ++k) q.offsets[k + 1] = q.offsets[k] + static_cast<Index>(rows[k].size());
+  q.nodes.resize(q.offsets[n]);
+  q.phi.resize(q.offsets[n]);
+  q.grad.assign(q.offsets[n], Vec2::Zero());
+  for (Index k = 0; k < n; ++k) {
+    std::copy(rows[k].nodes.begin(), rows[k].nodes.end(), q.nodes.begin() + q.offsets[k]);
+    std::copy(rows[k].phi.begin(), rows[k].phi.end(), q.phi.begin() + q.offsets[k]);
+    if (with_gradient) std::copy(rows[k].grad.begin(), rows[k].grad.end(), q.grad.begin() + q.offsets[k]);
+  }
+}
+
+}  // namespace
+
+GalerkinQuadrature sample_shape_functions(const RKShapeFunctions& trial, const std::vector<Vec2>& points,
+                                          bool with_gradient) {
+  GalerkinQuadrature q;
+  q.points = points;
+  q.weights.assign(points.size(), 1.0);
+  fill_rows(trial, q, with_gradient);
+  return q;
+}
+
+GalerkinQuadrature direct_quadrature(const RKShapeFunctions& trial, const QuadratureRule& rule) {
+  GalerkinQuadrature q;
+  q.points = rule.points;
+  q.weights = rule.weights;
+  fill_rows(trial, q, true);
+  return q;
+}
+
+GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
+                                        const RKShapeFunctions& quadrature_functions,
+                                        const BackgroundLattice& lattice) {
+  GalerkinQuadrature q;
+  q.points = quadrature_functions.nodes();
+  const Index nq = q.size();
+
+  // Rows: every node whose support can meet supp(phi_K), |x_I - x_K| < a_I + a_K (a square
+  // test covers both support shapes); phi_I(x_K) where the node covers x_K, else 0.
+  GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
+  const auto radius = [](const RKShapeFunctions& f, Index i) {
+    const auto& r = f.settings().node_radii;
+    return r.empty() ? f.settings().radius : r[i];
+  };
+  double trial_max = trial.settings().radius;
+  for (double r : trial.settings().node_radii) trial_max = std::max(trial_max, r);
+  const CellList node_cells(trial.nodes(), trial_max);
+  std::vector<std::vector<Index>> row_nodes(nq);
+  parallel_blocks(nq, 512, [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k) {
+      const double ak = radius(quadrature_functions, k);
+      node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Vec2& p) {
+        const double reach = ak + radius(trial, i);
+        if (std::abs(p.x() - q.points[k].x()) < reach && std::abs(p.y() - q.points[k].y()) < reach)
+          row_nodes[k].push_back(i);
+      });
+      std::sort(row_nodes[k].begin(), row_nodes[k].end());
+    }
+  });
+  q.offsets.assign(nq + 1, 0);
+  for (Index k = 0; k < nq; ++k) q.offsets[k + 1] = q.offsets[k] + static_cast<Index>(row_nodes[k].size());
+  q.nodes.resize(q.offsets[nq]);
+  q.phi.assign(q.offsets[nq], 0.0);
+  q.grad.assign(q.offsets[nq], Vec2::Zero());
+  for (Index k = 0; k < nq; ++k) {
+    std::copy(row_nodes[k].begin(), row_nodes[k].end(), q.nodes.begin() + q.offsets[k]);
+    for (Index s = at_points.offsets[k]; s < at_points.offsets[k + 1]; ++s) {
+      const auto first = q.nodes.begin() + q.offsets[k], last = q.nodes.begin() + q.offsets[k + 1];
+      const auto it = std::lower_bound(first, last, at_points.nodes[s]);
+      q.phi[it - q.nodes.begin()] = at_points.phi[s];
+    }
+  }
+  row_nodes = {};
+
+  // One pass over the lattice: w_K += c_v phi_K(v) and row K += c_v phi_K(v) grad phi_I(v).
+  // Rows are shared between lattice points handled by different threads: atomic adds.
+  std::vector<double> w(nq, 0.0);
+  const auto& lp = lattice.points();
+  const auto& lc = lattice.weights();
+  double* g = q.grad.data()->data();
+  parallel_blocks(static_cast<Index>(lp.size()), 2048, [&](Index b, Index e) {
+    ShapeValues phik, phii;
+    for (Index v = b; v < e; ++v) {
+      quadrature_functions.evaluate(lp[v], phik, false);
+      trial.evaluate(lp[v], phii, true);
+      for (std::size_t a = 0; a < phik.size(); ++a) {
+        const Index k = phik.nodes[a];
+        const double c = lc[v] * phik.phi[a];
+#pragma omp atomic
+        w[k] += c;
+        const auto first = q.nodes.begin() + q.offsets[k], last = q.nodes.begin() + q.offsets[k + 1];
+        for (std::size_t i = 0; i < phii.size(); ++i) {
+          const auto it = std::lower_bound(first, last, phii.nodes[i]);
+          const std::size_t slot = static_cast<std::size_t>(it - q.nodes.begin());
+#pragma omp atomic
+          g[2 * slot] += c * phii.grad[i].x();
+#pragma omp atomic
+          g[2 * slot + 1] += c * phii.grad[i].y();
+        }
+      }
+    }
+  });
+  for (Index k = 0; k < nq; ++k) {
+    if (!(w[k] > 0.0))
+      throw NumericalError(fmt::format(
+          "quadrature point {} at ({:.6g}, {:.6g}) has weight {:.3e} <= 0: its projected gradients "
+          "are undefined. Use a linear quadrature cloud, a more regular quadrature cloud, or a "
+          "larger quadrature support.",
+          k, q.points[k].x(), q.points[k].y(), w[k]));
+    for (Index s = q.offsets[k]; s < q.offsets[k + 1]; ++s) q.grad[s] /= w[k];
+  }
+  q.weights = std::move(w);
+  return q;
+}
+
+}  // namespace mfree
