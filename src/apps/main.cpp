@@ -1,6 +1,8 @@
 // mfree: meshfree Galerkin solid mechanics and the Material Point Method.
 //
 // Usage:
+//   mfree run SCENE.toml                        one elasticity solve
+//   mfree converge SCENE.toml                   refinement study of an elasticity scene
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
 //
@@ -12,6 +14,7 @@
 #include <fmt/format.h>
 #include <iostream>
 
+#include "mfree/apps/elasticity_app.hpp"
 #include "mfree/apps/integration_study.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -46,9 +49,16 @@ int main(int argc, char** argv) {
   integration->add_option("scene", scene, "Study description (TOML)")->required();
   integration->add_option("--out", out, "Folder for integration.csv")->capture_default_str();
 
+  CLI::App* run = app.add_subcommand("run", "One solve of a scene: summary, errors, VTK fields");
+  run->add_option("scene", scene, "Scene file (TOML)")->required();
+  CLI::App* converge = app.add_subcommand("converge", "Refinement study of a scene: CSV, PNG plots, rates");
+  converge->add_option("scene", scene, "Scene file (TOML) with a [study] section")->required();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*integration) return run_integration(scene, out);
+    if (*run) return mfree::run_elasticity(scene);
+    if (*converge) return mfree::converge_elasticity(scene);
   } catch (const mfree::Error& e) {
     std::cerr << "mfree: error: " << e.what() << '\n';
     return 1;

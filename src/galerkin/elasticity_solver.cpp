@@ -58,9 +58,11 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   res.quadrature = timer.time("weights and projection", [&] {
     switch (s.scheme) {
       case QuadratureScheme::projected: {
-        const std::vector<Vec2> xq = make_quadrature_cloud(domain, s.nodes, s.quadrature_ratio);
+        CloudSettings qc = s.nodes;
+        if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
+        const std::vector<Vec2> xq = make_quadrature_cloud(domain, qc, s.quadrature_ratio);
         const double hq = h / std::sqrt(s.quadrature_ratio);
-        const RKShapeFunctions quad(xq, rk_settings(xq, s.nodes.kind, hq, s.quadrature_order, s, s.quadrature_factor));
+        const RKShapeFunctions quad(xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor));
         const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
         return projected_quadrature(*res.trial, quad, lattice);
       }

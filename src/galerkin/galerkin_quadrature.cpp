@@ -1,6 +1,7 @@
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
@@ -10,32 +11,47 @@ namespace mfree {
 
 namespace {
 
-/// Fills the CSR rows of q from per-point evaluations of `trial`.
+/// Fills the CSR rows of q from per-point evaluations of `trial`, each row sorted by node
+/// index so that row lookups elsewhere can bisect. Each block of points appends its rows to
+/// arrays of its own (no allocation per point); the blocks are then copied into place.
 void fill_rows(const RKShapeFunctions& trial, GalerkinQuadrature& q, bool with_gradient) {
   const Index n = q.size();
-  std::vector<ShapeValues> rows(n);
-  trial.for_each(q.points, with_gradient, [&](Index k, const ShapeValues& v) {
-    ShapeValues& r = rows[k];
-    // Rows sorted by node index, so that row lookups elsewhere can bisect.
-    std::vector<std::size_t> order(v.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v.nodes[a] < v.nodes[b]; });
-    for (std::size_t i : order) {
-      r.nodes.push_back(v.nodes[i]);
-      r.phi.push_back(v.phi[i]);
-      if (with_gradient) r.grad.push_back(v.grad[i]);
+  constexpr Index block = 1024;
+  struct Rows {
+    std::vector<Index> nodes;
+    std::vector<double> phi;
+    std::vector<Vec2> grad;
+  };
+  std::vector<Rows> blocks((n + block - 1) / block);
+  q.offsets.assign(n + 1, 0);
+  parallel_blocks(n, block, [&](Index begin, Index end) {
+    Rows& out = blocks[begin / block];
+    ShapeValues v;
+    std::vector<Index> order;
+    for (Index k = begin; k < end; ++k) {
+      trial.evaluate(q.points[k], v, with_gradient);
+      order.resize(v.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::sort(order.begin(), order.end(), [&](Index a, Index b) { return v.nodes[a] < v.nodes[b]; });
+      for (Index a : order) {
+        out.nodes.push_back(v.nodes[a]);
+        out.phi.push_back(v.phi[a]);
+        if (with_gradient) out.grad.push_back(v.grad[a]);
+      }
+      q.offsets[k + 1] = static_cast<Index>(v.size());
     }
   });
-  q.offsets.assign(n + 1, 0);
-  for (Index k = 0; k < n; ++k) q.offsets[k + 1] = q.offsets[k] + static_cast<Index>(rows[k].size());
+  for (Index k = 0; k < n; ++k) q.offsets[k + 1] += q.offsets[k];
   q.nodes.resize(q.offsets[n]);
   q.phi.resize(q.offsets[n]);
   q.grad.assign(q.offsets[n], Vec2::Zero());
-  for (Index k = 0; k < n; ++k) {
-    std::copy(rows[k].nodes.begin(), rows[k].nodes.end(), q.nodes.begin() + q.offsets[k]);
-    std::copy(rows[k].phi.begin(), rows[k].phi.end(), q.phi.begin() + q.offsets[k]);
-    if (with_gradient) std::copy(rows[k].grad.begin(), rows[k].grad.end(), q.grad.begin() + q.offsets[k]);
-  }
+  parallel_blocks(static_cast<Index>(blocks.size()), 1, [&](Index b, Index) {
+    const Rows& in = blocks[b];
+    const Index at = q.offsets[b * block];
+    std::copy(in.nodes.begin(), in.nodes.end(), q.nodes.begin() + at);
+    std::copy(in.phi.begin(), in.phi.end(), q.phi.begin() + at);
+    std::copy(in.grad.begin(), in.grad.end(), q.grad.begin() + at);
+  });
 }
 
 }  // namespace

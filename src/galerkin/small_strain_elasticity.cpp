@@ -4,6 +4,7 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/linalg/node_pattern.hpp"
 
 namespace mfree {
 
@@ -27,22 +28,43 @@ Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd
 
 namespace {
 
-/// Global strain-displacement matrix: rows 3K..3K+2 (Voigt strain at point K), columns 2I, 2I+1.
-SparseMatrix strain_matrix(const GalerkinQuadrature& q, const std::vector<Vec2>& grad, Index nodes) {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(4 * q.nodes.size());
-  for (Index k = 0; k < q.size(); ++k)
-    for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
-      const Index i = q.nodes[s];
-      const Vec2& g = grad[s];
-      t.emplace_back(3 * k, 2 * i, g.x());
-      t.emplace_back(3 * k + 1, 2 * i + 1, g.y());
-      t.emplace_back(3 * k + 2, 2 * i, g.y());
-      t.emplace_back(3 * k + 2, 2 * i + 1, g.x());
+/// Adds the domain term of a(u, v), block by block:
+///
+///   K_IJ += w_K Bt_I^T D B_J,   B_J = [[gx, 0], [0, gy], [gy, gx]] (trial gradient of J at x_K),
+///
+/// Bt_I likewise with the test gradient of I, over every row K holding I and J. Node J's two
+/// columns are written only by the thread that owns J, with the rows holding J in increasing
+/// order: no two threads touch one value, and the sums are the same on any thread count.
+void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& test, const Eigen::Matrix3d& d,
+                          const RowIncidence& rows, const NodePattern& pattern, double* values) {
+  const Index n = pattern.size();
+  parallel_ranges(n, [&](int, Index begin, Index end) {
+    std::vector<Index> at(n);  // at[I] = p with P_J[p] = I, for the current J
+    for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> p = pattern.neighbours(j);
+      for (std::size_t a = 0; a < p.size(); ++a) at[p[a]] = static_cast<Index>(a);
+      // Column 2J holds (2I, 2I + 1) at 2p, 2p + 1 for I = P_J[p]; column 2J + 1 follows it.
+      double* col0 = values + 4 * pattern.offsets[j];
+      double* col1 = col0 + 2 * p.size();
+      const std::span<const Index> ks = rows.rows_of(j), slots = rows.slots_of(j);
+      for (std::size_t e = 0; e < ks.size(); ++e) {
+        const Index k = ks[e];
+        const Vec2& g = q.grad[slots[e]];
+        Eigen::Matrix<double, 3, 2> bj;
+        bj << g.x(), 0.0, 0.0, g.y(), g.y(), g.x();
+        const Eigen::Matrix<double, 3, 2> db = q.weights[k] * (d * bj);
+        for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
+          const Vec2& t = test[s];
+          const std::int64_t a = 2 * std::int64_t{at[q.nodes[s]]};
+          // Bt_I^T (w D B_J) with Bt_I^T = [[tx, 0, ty], [0, ty, tx]].
+          col0[a] += t.x() * db(0, 0) + t.y() * db(2, 0);
+          col0[a + 1] += t.y() * db(1, 0) + t.x() * db(2, 0);
+          col1[a] += t.x() * db(0, 1) + t.y() * db(2, 1);
+          col1[a + 1] += t.y() * db(1, 1) + t.x() * db(2, 1);
+        }
+      }
     }
-  SparseMatrix b(3 * q.size(), 2 * nodes);
-  b.setFromTriplets(t.begin(), t.end());
-  return b;
+  });
 }
 
 /// Traction operator at a boundary point: t = N_n sigma with N_n = [[nx, 0, ny], [0, ny, nx]].
@@ -64,35 +86,7 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
   ElasticitySystem sys;
   sys.symmetric = test_gradients == nullptr;
 
-  // Domain term: K = B_test^T (W D) B_trial, W = diag(w_K).
-  const SparseMatrix b = strain_matrix(q, q.grad, nodes);
-  SparseMatrix wdb(3 * q.size(), 3 * q.size());
-  {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(9 * q.size());
-    for (Index k = 0; k < q.size(); ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          if (d(r, c) != 0.0) t.emplace_back(3 * k + r, 3 * k + c, q.weights[k] * d(r, c));
-    wdb.setFromTriplets(t.begin(), t.end());
-  }
-  const SparseMatrix db = wdb * b;
-  if (test_gradients) {
-    const SparseMatrix bt = strain_matrix(q, *test_gradients, nodes);
-    sys.stiffness = SparseMatrix(bt.transpose()) * db;
-  } else {
-    sys.stiffness = SparseMatrix(b.transpose()) * db;
-  }
-
-  // Body force.
-  sys.load = Eigen::VectorXd::Zero(2 * nodes);
-  if (problem.body_force)
-    for (Index k = 0; k < q.size(); ++k) {
-      const Vec2 f = q.weights[k] * problem.body_force(q.points[k]);
-      for (Index s = q.row_begin(k); s < q.row_end(k); ++s) sys.load.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
-    }
-
-  // Boundary terms, segment by segment.
+  // Boundary condition of each boundary segment.
   const auto& segments = domain.boundary();
   std::vector<const BoundaryCondition*> condition(segments.size(), nullptr);
   for (std::size_t s = 0; s < segments.size(); ++s) {
@@ -103,14 +97,44 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
         break;
       }
   }
+  const auto nitsche = [&](Index p) {
+    const BoundaryCondition* c = condition[bq.segment[p]];
+    return c && c->type == BoundaryCondition::Type::displacement;
+  };
+
+  // Sparsity: node pairs sharing a quadrature row, and pairs sharing the row of a boundary
+  // point under Nitsche's terms (outside the domain pattern when the quadrature rows are
+  // narrower than the supports, as with Gauss cells).
+  std::vector<Index> boundary_offsets{0}, boundary_nodes;
+  for (Index p = 0; p < bq.size(); ++p)
+    if (nitsche(p)) {
+      boundary_nodes.insert(boundary_nodes.end(), at_boundary.nodes.begin() + at_boundary.row_begin(p),
+                            at_boundary.nodes.begin() + at_boundary.row_end(p));
+      boundary_offsets.push_back(static_cast<Index>(boundary_nodes.size()));
+    }
+  const RowIncidence domain_rows(q.offsets, q.nodes, nodes);
+  const RowIncidence boundary_rows(boundary_offsets, boundary_nodes, nodes);
+  const RowIncidence* const sets[] = {&domain_rows, &boundary_rows};
+  const NodePattern pattern = node_pattern(sets);
+  sys.stiffness = block_matrix(pattern, 2);
+  double* values = sys.stiffness.valuePtr();
+  add_domain_stiffness(q, test_gradients ? *test_gradients : q.grad, d, domain_rows, pattern, values);
+
+  // Body force.
+  sys.load = Eigen::VectorXd::Zero(2 * nodes);
+  if (problem.body_force)
+    for (Index k = 0; k < q.size(); ++k) {
+      const Vec2 f = q.weights[k] * problem.body_force(q.points[k]);
+      for (Index s = q.row_begin(k); s < q.row_end(k); ++s) sys.load.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
+    }
+
   const double penalty = problem.nitsche_beta * problem.material.youngs_modulus / problem.spacing;
-  std::vector<Eigen::Triplet<double>> t;
   for (Index p = 0; p < bq.size(); ++p) {
     const BoundaryCondition* c = condition[bq.segment[p]];
     if (!c) continue;
     const Vec2 x = bq.points[p];
     const double w = bq.weights[p];
-    const Vec2 value = c->value(x);
+    const Vec2 value = c->value(x, bq.normals[p]);
     const Index begin = at_boundary.row_begin(p), end = at_boundary.row_end(p);
     if (c->type == BoundaryCondition::Type::traction) {
       for (Index s = begin; s < end; ++s) sys.load.segment<2>(2 * at_boundary.nodes[s]) += w * at_boundary.phi[s] * value;
@@ -137,16 +161,10 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
         const Eigen::Matrix2d kij = w * (-phi_i * traction[bb] - traction[a].transpose() * phi_j +
                                          penalty * phi_i * phi_j * Eigen::Matrix2d::Identity());
         for (int r = 0; r < 2; ++r)
-          for (int cc = 0; cc < 2; ++cc) t.emplace_back(2 * i + r, 2 * j + cc, kij(r, cc));
+          for (int cc = 0; cc < 2; ++cc) values[block_slot(pattern, 2, i, j, r, cc)] += kij(r, cc);
       }
     }
   }
-  if (!t.empty()) {
-    SparseMatrix kb(2 * nodes, 2 * nodes);
-    kb.setFromTriplets(t.begin(), t.end());
-    sys.stiffness += kb;
-  }
-  sys.stiffness.makeCompressed();
   return sys;
 }
 

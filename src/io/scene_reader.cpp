@@ -189,4 +189,56 @@ void SceneTable::finish() const {
     }
 }
 
+bool SceneTable::is_string(std::string_view key) const {
+  const toml::node* n = table_->get(key);
+  return n && n->is_string();
+}
+
+bool SceneTable::is_array_empty(std::string_view key) const {
+  const toml::node* n = get(key, false);
+  return n && n->is_array() && n->as_array()->empty();
+}
+
+bool SceneTable::boolean_or(std::string_view key, bool fallback) const {
+  const toml::node* n = get(key, false);
+  if (!n) return fallback;
+  const auto v = n->value_exact<bool>();
+  if (!v) fail(n, key, fmt::format("expected true or false, got {}", type_name(*n)));
+  return *v;
+}
+
+std::vector<std::array<double, 2>> SceneTable::pairs(std::string_view key, std::size_t size) const {
+  const toml::node* n = get(key, true);
+  const toml::array* a = n->as_array();
+  if (!a || a->empty() || (size && a->size() != size))
+    fail(n, key, size ? fmt::format("expected an array of {} points [x, y]", size)
+                      : std::string("expected a non-empty array of points [x, y]"));
+  std::vector<std::array<double, 2>> out;
+  for (const toml::node& item : *a) {
+    const toml::array* p = item.as_array();
+    if (!p || p->size() != 2) fail(&item, key, "expected a point [x, y]");
+    std::array<double, 2> xy{};
+    for (std::size_t c = 0; c < 2; ++c) {
+      const auto v = as_number(*p->get(c));
+      if (!v || !std::isfinite(*v)) fail(p->get(c), key, "expected finite numbers");
+      xy[c] = *v;
+    }
+    out.push_back(xy);
+  }
+  return out;
+}
+
+std::vector<SceneTable> SceneTable::tables(std::string_view key) const {
+  const toml::node* n = get(key, false);
+  std::vector<SceneTable> out;
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) fail(n, key, "expected an array of tables ([[...]] sections)");
+  for (std::size_t i = 0; i < a->size(); ++i)
+    out.push_back(SceneTable(a->get(i)->as_table(), fmt::format("{}{}[{}].", prefix_, key, i), file_, folder_));
+  return out;
+}
+
+void SceneTable::error(std::string_view key, const std::string& what) const { fail(table_->get(key), key, what); }
+
 }  // namespace mfree

@@ -17,7 +17,11 @@ struct SparseSolver::Impl {
   Eigen::Index size = 0;
 };
 
-SparseSolver::SparseSolver(SolverKind kind) : kind_(kind), impl_(std::make_unique<Impl>()) {}
+SparseSolver::SparseSolver(SolverKind kind) : kind_(kind), impl_(std::make_unique<Impl>()) {
+  // Failures reach the user as NumericalError with advice; CHOLMOD's own stderr lines
+  // would only repeat them.
+  impl_->cholmod.cholmod().print = 0;
+}
 SparseSolver::SparseSolver(SparseSolver&&) noexcept = default;
 SparseSolver& SparseSolver::operator=(SparseSolver&&) noexcept = default;
 SparseSolver::~SparseSolver() = default;

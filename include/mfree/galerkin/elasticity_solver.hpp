@@ -38,6 +38,9 @@ struct ElasticitySettings {
 
   QuadratureScheme scheme = QuadratureScheme::projected;
   double quadrature_ratio = 4.0;        ///< quadrature points per node
+  /// Quadrature cloud a regular lattice whatever the node cloud (default), or of the node
+  /// cloud's kind. Irregular quadrature clouds give quadratic RK negative weights (SPEC 3).
+  bool quadrature_lattice = true;
   RKOrder quadrature_order = RKOrder::linear;
   double quadrature_factor = 2.0;       ///< quadrature-cloud support / its spacing
   int lattice_refinement = 2;           ///< lattice spacing = quadrature spacing / this

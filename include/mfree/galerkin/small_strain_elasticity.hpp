@@ -27,12 +27,14 @@
 namespace mfree {
 
 using VectorField = std::function<Vec2(const Vec2&)>;
+/// A boundary value at a point x of a segment with outward unit normal n.
+using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n)>;
 
 struct BoundaryCondition {
   enum class Type { displacement, traction };
   Type type = Type::traction;
   Box region;          ///< segments whose midpoint lies in this box
-  VectorField value;   ///< ubar(x) or tbar(x)
+  BoundaryValue value; ///< ubar(x, n) or tbar(x, n)
   std::string name;    ///< for messages
 };
 

@@ -6,6 +6,7 @@
 // read (a misspelt key must not be silently ignored). Every error is an InputError of
 // the form  "FILE:LINE:COLUMN: key 'section.key': what is wrong".
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -41,6 +42,17 @@ class SceneTable {
   /// Array of numbers, of length `size` (any length >= 1 when size is 0), each in [lo, hi].
   std::vector<double> numbers(std::string_view key, std::size_t size, double lo, double hi) const;
   bool has(std::string_view key) const;
+  /// True when the key holds a string (for keys that take a word or numbers).
+  bool is_string(std::string_view key) const;
+  /// True when the key holds an empty array (marks it read).
+  bool is_array_empty(std::string_view key) const;
+  bool boolean_or(std::string_view key, bool fallback) const;
+  /// Array of points [[x, y], ...] of length `size` (any length >= 1 when 0).
+  std::vector<std::array<double, 2>> pairs(std::string_view key, std::size_t size) const;
+  /// Array of tables ([[name]] sections); empty when the key is absent.
+  std::vector<SceneTable> tables(std::string_view key) const;
+  /// Throws an InputError at this key's position (for checks across several keys).
+  [[noreturn]] void error(std::string_view key, const std::string& what) const;
   /// A required sub-table.
   SceneTable table(std::string_view key) const;
   /// Throws for any key of this table that was never read.

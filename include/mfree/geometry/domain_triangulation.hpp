@@ -1,0 +1,45 @@
+#pragma once
+// A triangulation of the domain through a set of points, for contour plots of fields known
+// at those points (e.g. displacements and stresses at the DOF nodes, written with
+// io/vtk_output.hpp). The triangles only serve plotting; mfree's methods need no mesh.
+//
+// The triangulation is the constrained Delaunay triangulation of the points and the
+// domain's boundary vertices, with every boundary segment as a constraint, restricted to
+// the domain: holes and re-entrant notches stay empty, and the triangle areas add up to
+// |Omega| up to round-off.
+//
+// Points may lie on the boundary. A point a little outside it — up to 1e-9 times the
+// diagonal of the domain's bounding box, as lattice nodes meant to lie on a boundary do
+// after round-off (clouds/point_cloud.hpp) — is moved onto the nearest boundary point (or a
+// few ulps inside, where rounding leaves that point outside), so the triangles cover exactly
+// the domain and the point remains a vertex of the plot.
+//
+// CGAL does the work; its headers stay in domain_triangulation.cpp.
+
+#include <array>
+#include <vector>
+
+#include "mfree/core/types.hpp"
+#include "mfree/geometry/domain.hpp"
+
+namespace mfree {
+
+struct Triangulation {
+  /// Vertices: points[0 .. input_points) are the given points in their order (so fields
+  /// computed at them map 1:1; those a round-off outside the domain moved into it, see
+  /// above), then the boundary vertices that coincide with no given point, in ring order
+  /// (domain.rings()).
+  std::vector<Vec2> points;
+  /// Indices into points, counter-clockwise, each triangle of positive area.
+  std::vector<std::array<Index, 3>> triangles;
+  /// How many of `points` were given.
+  Index input_points = 0;
+};
+
+/// Triangulates the domain through the given points (see above). A given point repeated
+/// exactly is one vertex: triangles use one of its indices and never the others.
+/// Throws InputError naming the index of the first point that is not finite or lies outside
+/// the domain (beyond the tolerance above).
+Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& points);
+
+}  // namespace mfree

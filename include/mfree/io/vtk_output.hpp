@@ -1,0 +1,74 @@
+#pragma once
+// Output for ParaView: point clouds and triangulations with fields at their points, as VTK
+// XML unstructured grids (.vtu, binary appended data, LZ4-compressed), and ParaView
+// collections (.pvd) that string .vtu files into a time series.
+//
+// Points are 2D; the files hold them with z = 0. Values are written as 64-bit floats, so a
+// file read back gives every value bit for bit. NaN and infinity are never written: a field
+// or point holding one is a NumericalError naming the field (or "point coordinates") and the
+// first bad point index, and no file is touched.
+//
+// Every file is written atomically (see atomic_file.hpp): to a temporary file in the same
+// folder, then renamed over the target; on failure the temporary file is removed and the
+// target is left as it was. Missing parent folders are created.
+//
+// VTK's headers stay in the source file; this header needs none.
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mfree/core/types.hpp"
+
+namespace mfree {
+
+/// One named point-data array: `components` values per point, point after point
+/// (values.size() == components * number of points). The count decides how it is written:
+///   1  a scalar;
+///   2  a 2D vector, written as a 3-component VTK vector with z = 0 so ParaView can warp by it;
+///   3  a symmetric 2D tensor in the order xx, yy, xy, written as 3 components named xx, yy, xy;
+///   any other count >= 1: written as given.
+/// Names must be non-empty and distinct within one file.
+struct PointField {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+/// Writes the points as an unstructured grid of VTK_VERTEX cells, one per point.
+/// Throws InputError for a field of the wrong size, an empty or repeated name or a component
+/// count below 1; NumericalError for a non-finite value; Error when the file cannot be
+/// written. Every message names the path.
+void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                           const std::vector<PointField>& fields);
+
+/// Writes the triangles (three indices into `points` each) as VTK_TRIANGLE cells with the
+/// fields at the points. Errors as write_point_cloud_vtu, plus InputError for an index
+/// outside [0, points.size()).
+void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                         const std::vector<std::array<Index, 3>>& triangles,
+                         const std::vector<PointField>& fields);
+
+/// Writes a ParaView collection of time steps: (time, file name relative to the folder of
+/// the .pvd), in the given order. Throws NumericalError for a non-finite time, InputError for
+/// an empty file name, Error when the file cannot be written.
+void write_pvd(const std::filesystem::path& path,
+               const std::vector<std::pair<double, std::string>>& steps);
+
+/// What read_vtu finds in a .vtu file.
+struct VtuContents {
+  std::vector<Vec2> points;                         ///< x, y of every point (z dropped)
+  std::vector<std::string> array_names;             ///< point-data arrays in file order
+  std::map<std::string, std::vector<double>> arrays;  ///< values point after point
+  std::map<std::string, int> components;            ///< components per point of each array
+  Index cells = 0;                                  ///< number of cells of any type
+};
+
+/// Reads a .vtu file (any data mode) for tests and tools. A missing, unreadable or invalid
+/// file is an InputError naming the path.
+VtuContents read_vtu(const std::filesystem::path& path);
+
+}  // namespace mfree

@@ -1,0 +1,186 @@
+#include "mfree/io/elasticity_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+namespace {
+
+CloudKind cloud_kind(const std::string& s) {
+  return s == "lattice" ? CloudKind::lattice : s == "perturbed" ? CloudKind::perturbed : CloudKind::random;
+}
+RKOrder rk_order(const std::string& s) { return s == "linear" ? RKOrder::linear : RKOrder::quadratic; }
+QuadratureScheme scheme(const std::string& s) {
+  return s == "projected" ? QuadratureScheme::projected
+                          : s == "gauss_cells" ? QuadratureScheme::gauss_cells : QuadratureScheme::nodal;
+}
+const std::vector<std::string> cloud_names{"lattice", "perturbed", "random"};
+const std::vector<std::string> order_names{"linear", "quadratic"};
+const std::vector<std::string> scheme_names{"projected", "gauss_cells", "nodal"};
+
+Box region_box(const SceneTable& t, const std::string& key) {
+  const auto p = t.pairs(key, 2);
+  const Box b{Vec2(std::min(p[0][0], p[1][0]), std::min(p[0][1], p[1][1])),
+              Vec2(std::max(p[0][0], p[1][0]), std::max(p[0][1], p[1][1]))};
+  return b;
+}
+
+}  // namespace
+
+ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study) {
+  const Scene scene = Scene::load(file);
+  const SceneTable root = scene.root();
+  ElasticityScene out{file, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, {}, {}};
+  ElasticitySettings& s = out.settings;
+
+  {
+    const SceneTable t = root.table("domain");
+    if (t.has("rectangle") == t.has("mesh")) t.error("rectangle", "give exactly one of 'rectangle' and 'mesh'");
+    if (t.has("rectangle")) {
+      const Box b = region_box(t, "rectangle");
+      if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
+      out.domain = Domain::rectangle(b.lo, b.hi);
+    } else {
+      out.domain = Domain::from_file(root.folder() / t.string("mesh"));
+    }
+    t.finish();
+  }
+  {
+    const SceneTable t = root.table("nodes");
+    s.nodes.kind = cloud_kind(t.choice("cloud", cloud_names));
+    s.nodes.spacing = t.number("spacing", 1e-12, 1e12);
+    s.nodes.perturbation = t.number_or("perturbation", 0.3, 0.0, 1.0);
+    s.nodes.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
+    t.finish();
+  }
+  {
+    const SceneTable t = root.table("kernel");
+    s.order = rk_order(t.choice("order", order_names));
+    s.window = t.choice_or("window", "cubic_bspline", {"cubic_bspline", "quadratic_spline"}) == "cubic_bspline"
+                   ? Window::cubic_bspline : Window::quadratic_spline;
+    s.support = t.choice_or("support", "circular", {"circular", "tensor"}) == "circular" ? SupportShape::circular
+                                                                                           : SupportShape::tensor;
+    s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
+    s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
+    t.finish();
+  }
+  {
+    const SceneTable t = root.table("quadrature");
+    s.scheme = scheme(t.choice("scheme", scheme_names));
+    s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
+    s.quadrature_lattice = t.choice_or("cloud", "lattice", {"lattice", "like_nodes"}) == "lattice";
+    s.quadrature_order = rk_order(t.choice_or("order", "linear", order_names));
+    s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
+    s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
+    const std::string c = t.choice_or("consistency", "symmetric", {"symmetric", "vci", "none"});
+    s.consistency = c == "symmetric" ? Consistency::symmetric : c == "vci" ? Consistency::vci : Consistency::none;
+    s.gauss_points = static_cast<int>(t.integer_or("gauss_points", s.order == RKOrder::linear ? 4 : 6, 1, 12));
+    t.finish();
+  }
+  {
+    const SceneTable t = root.table("material");
+    s.problem.material.model = t.choice("model", {"plane_stress", "plane_strain"}) == "plane_stress"
+                                   ? PlaneModel::stress : PlaneModel::strain;
+    s.problem.material.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
+    s.problem.material.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
+    if (!(s.problem.material.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
+    if (!(s.problem.material.poisson_ratio > -1.0 && s.problem.material.poisson_ratio < 0.5))
+      t.error("poisson_ratio", "must lie strictly between -1 and 1/2");
+    t.finish();
+  }
+  if (root.has("exact")) {
+    const SceneTable t = root.table("exact");
+    ExactSpec e;
+    e.solution = t.choice("solution", {"timoshenko_beam", "linear"});
+    if (e.solution == "timoshenko_beam") {
+      e.load = t.number("load", -1e300, 1e300);
+    } else {
+      const auto a = t.numbers("offset", 2, -1e300, 1e300);
+      const auto g = t.pairs("gradient", 2);
+      e.offset = Vec2(a[0], a[1]);
+      e.gradient << g[0][0], g[0][1], g[1][0], g[1][1];
+    }
+    t.finish();
+    out.exact_spec = e;
+  }
+  const std::optional<ExactElasticity> exact = out.exact();
+  for (const SceneTable& t : root.tables("boundary")) {
+    BoundaryCondition c;
+    c.name = t.string("name");
+    c.type = t.choice("type", {"displacement", "traction"}) == "displacement" ? BoundaryCondition::Type::displacement
+                                                                              : BoundaryCondition::Type::traction;
+    c.region = region_box(t, "region");
+    if (t.is_string("value")) {
+      (void)t.choice("value", {"exact"});
+      if (!exact) t.error("value", "'exact' needs an [exact] section");
+      const ExactElasticity ex = *exact;
+      if (c.type == BoundaryCondition::Type::displacement)
+        c.value = [ex](const Vec2& x, const Vec2&) { return ex.displacement(x); };
+      else
+        c.value = [ex](const Vec2& x, const Vec2& n) { return ex.traction(x, n); };
+    } else {
+      const auto v = t.numbers("value", 2, -1e300, 1e300);
+      const Vec2 value(v[0], v[1]);
+      c.value = [value](const Vec2&, const Vec2&) { return value; };
+    }
+    t.finish();
+    s.problem.conditions.push_back(c);
+  }
+  if (exact) s.problem.body_force = exact->body_force;
+  if (root.has("nitsche")) {
+    const SceneTable t = root.table("nitsche");
+    s.problem.nitsche_beta = t.number_or("beta", s.problem.nitsche_beta, 1e-6, 1e12);
+    t.finish();
+  }
+  if (root.has("solver")) {
+    const SceneTable t = root.table("solver");
+    const std::string k = t.choice_or("kind", "auto", {"auto", "cholmod", "umfpack"});
+    if (k != "auto") s.solver = k == "cholmod" ? SolverKind::cholmod : SolverKind::umfpack;
+    t.finish();
+  }
+  {
+    const SceneTable t = root.table("output");
+    out.output.folder = t.string("folder");
+    // An empty list asks for nothing: no stress recovery, no files.
+    if (t.has("fields") && !(t.is_array_empty("fields")))
+      for (const auto& f : t.choices("fields", {"displacement", "stress", "von_mises", "error", "weights"}))
+        out.output.fields.insert(f);
+    out.output.vtk = t.boolean_or("vtk", true);
+    if (out.output.wants("error") && !exact) t.error("fields", "'error' needs an [exact] section");
+    t.finish();
+  }
+  if (want_study || root.has("study")) {
+    const SceneTable t = root.table("study");
+    StudySettings st;
+    st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
+    for (const auto& c : t.choices("clouds", cloud_names)) st.clouds.push_back(cloud_kind(c));
+    for (const auto& o : t.choices("orders", order_names)) st.orders.push_back(rk_order(o));
+    for (const auto& q : t.choices("schemes", scheme_names)) st.schemes.push_back(scheme(q));
+    st.betas = t.has("betas") ? t.numbers("betas", 0, 1e-6, 1e12) : std::vector<double>{s.problem.nitsche_beta};
+    if (t.has("probe")) {
+      const auto p = t.numbers("probe", 2, -1e300, 1e300);
+      st.probe = Vec2(p[0], p[1]);
+    }
+    if (t.has("reference")) st.reference = t.number("reference", -1e300, 1e300);
+    st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
+    st.quadratic_gauss_points = static_cast<int>(t.integer_or("quadratic_gauss_points", 6, 1, 12));
+    t.finish();
+    out.study = st;
+  }
+  root.finish();
+  return out;
+}
+
+std::optional<ExactElasticity> ElasticityScene::exact() const {
+  if (!exact_spec) return std::nullopt;
+  if (exact_spec->solution == "linear") return linear_field(exact_spec->offset, exact_spec->gradient, settings.problem.material);
+  const Box b = domain.bounding_box();
+  // The beam's axis is y = 0 from x = 0 (SPEC section 4): the domain must be [0, L] x [-D/2, D/2].
+  if (std::abs(b.lo.x()) > 1e-12 * b.size().x() || std::abs(b.lo.y() + b.hi.y()) > 1e-12 * b.size().y())
+    throw InputError(fmt::format("{}: the timoshenko_beam solution needs the domain [0, L] x [-D/2, D/2]", file.string()));
+  return timoshenko_beam(b.size().x(), b.size().y(), exact_spec->load, settings.problem.material);
+}
+
+}  // namespace mfree

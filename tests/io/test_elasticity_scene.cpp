@@ -1,0 +1,97 @@
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "mfree/core/error.hpp"
+#include "mfree/io/elasticity_output.hpp"
+#include "mfree/io/elasticity_scene.hpp"
+#include "mfree/io/vtk_output.hpp"
+
+using namespace mfree;
+
+namespace {
+
+std::string cantilever_text() {
+  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/cantilever/cantilever.toml");
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// The error message for a scene text, "" when it parses.
+std::string scene_error(const std::string& text, const std::string& name = "scene.toml") {
+  const auto dir = std::filesystem::temp_directory_path() / "mfree-scene-tests";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  try {
+    (void)read_elasticity_scene(path, false);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  return std::regex_replace(text, std::regex(from), to);
+}
+
+}  // namespace
+
+TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[io]") {
+  const std::string good = cantilever_text();
+  CHECK(scene_error(good).empty());
+  CHECK_THAT(scene_error(replace(good, "youngs_modulus = 3.0e7", "youngs_modulus = -3.0e7")),
+             Catch::Contains("material.youngs_modulus") && Catch::Contains("scene.toml:"));
+  CHECK_THAT(scene_error(replace(good, "poisson_ratio = 0.3", "poisson_ratio = 0.5")),
+             Catch::Contains("material.poisson_ratio"));
+  CHECK_THAT(scene_error(replace(good, "spacing = 1.5", "spacing = 'fine'")),
+             Catch::Contains("nodes.spacing") && Catch::Contains("expected a number"));
+  CHECK_THAT(scene_error(replace(good, "beta = 100.0", "betta = 100.0")),
+             Catch::Contains("nitsche.betta") && Catch::Contains("unknown key"));
+  CHECK_THAT(scene_error(replace(good, "cloud = \"lattice\"", "cloud = \"hexagonal\"")),
+             Catch::Contains("nodes.cloud") && Catch::Contains("not one of"));
+  CHECK_THAT(scene_error(replace(good, "rectangle = \\[\\[0.0, -6.0\\], \\[48.0, 6.0\\]\\]", "mesh = \"no/such.wkt\"")),
+             Catch::Contains("no/such.wkt"));
+  CHECK_THAT(scene_error(replace(replace(good, "\\[exact\\]\nsolution = \"timoshenko_beam\"\nload = 1000.0\n", ""), "\"error\", ", "")),
+             Catch::Contains("boundary[0].value") && Catch::Contains("needs an [exact] section"));
+  CHECK_THAT(scene_error(replace(good, "region = \\[\\[-0.001, -6.001\\], \\[0.001, 6.001\\]\\]", "region = [[-0.001, -6.001]]")),
+             Catch::Contains("boundary[0].region") && Catch::Contains("2 points"));
+}
+
+TEST_CASE("elasticity output: VTK files read back with the arrays asked for", "[io]") {
+  const auto dir = std::filesystem::temp_directory_path() / "mfree-output-test";
+  std::filesystem::remove_all(dir);
+  std::string text = replace(cantilever_text(), "spacing = 1.5", "spacing = 3.0");
+  text = replace(text, "folder = \"results/cantilever\"", "folder = \"" + dir.string() + "\"");
+  std::ofstream(std::filesystem::temp_directory_path() / "mfree-output.toml") << text;
+  const ElasticityScene scene = read_elasticity_scene(std::filesystem::temp_directory_path() / "mfree-output.toml", false);
+  const ExactElasticity exact = *scene.exact();
+  const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, &exact);
+  const auto files = write_elasticity_fields(scene, r);
+  REQUIRE(files.size() == 3);
+  const VtuContents nodes = read_vtu(dir / "nodes.vtu");
+  CHECK(nodes.points.size() == r.nodes.size());
+  for (const char* a : {"displacement", "exact_displacement", "displacement_error", "stress_xx_yy_xy", "von_mises"})
+    CHECK(nodes.arrays.count(a) == 1);
+  // u^h at the nodes, not the coefficients: displacement - exact = error, and u^h != d.
+  const auto& u = nodes.arrays.at("displacement");
+  const auto& ue = nodes.arrays.at("exact_displacement");
+  const auto& e = nodes.arrays.at("displacement_error");
+  const int c = nodes.components.at("displacement");
+  double max_diff = 0.0, max_coef_gap = 0.0;
+  for (std::size_t i = 0; i < r.nodes.size(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      max_diff = std::max(max_diff, std::abs(u[c * i + k] - ue[c * i + k] - e[c * i + k]));
+      max_coef_gap = std::max(max_coef_gap, std::abs(u[c * i + k] - r.coefficients[2 * i + k]));
+    }
+  CHECK(max_diff <= 1e-15);
+  CHECK(max_coef_gap > 1e-8);
+  const VtuContents q = read_vtu(dir / "quadrature.vtu");
+  REQUIRE(q.arrays.count("weight") == 1);
+  double sum = 0.0;
+  for (double w : q.arrays.at("weight")) sum += w;
+  CHECK(sum == Approx(48.0 * 12.0).epsilon(1e-12));
+  const VtuContents f = read_vtu(dir / "field.vtu");
+  CHECK(f.cells > 0);
+  CHECK(f.arrays.count("von_mises") == 1);
+}

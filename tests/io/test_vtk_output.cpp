@@ -1,0 +1,279 @@
+#include <catch2/catch.hpp>
+#include <unistd.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLUtilities.h>
+
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mfree/core/error.hpp"
+#include "mfree/io/vtk_output.hpp"
+
+namespace fs = std::filesystem;
+using mfree::Index;
+using mfree::PointField;
+using mfree::Vec2;
+
+namespace {
+
+/// A fresh empty folder for one test case, removed when the case ends.
+struct ScratchFolder {
+  fs::path path;
+  explicit ScratchFolder(const std::string& name)
+      : path(fs::temp_directory_path() / ("mfree_test_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  [[nodiscard]] std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
+    return names;
+  }
+};
+
+/// Points built one by one: GCC 12 at -O2 with -march=native on AVX-512 processors copies
+/// the elements of a std::vector<Vec2> initializer list wrongly.
+std::vector<Vec2> points_of(std::initializer_list<std::array<double, 2>> xy) {
+  std::vector<Vec2> points;
+  for (const auto& p : xy) points.emplace_back(p[0], p[1]);
+  return points;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
+/// Values that exercise every bit of a double: random mantissas over many decades, both
+/// signs, negative zero, subnormals and the extremes.
+std::vector<double> awkward_values(std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-300, 300);
+  std::vector<double> v(n);
+  for (double& x : v) x = std::ldexp(mantissa(rng), exponent(rng));
+  const double specials[] = {-0.0, 0.0, std::numeric_limits<double>::denorm_min(),
+                             std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::lowest(), 1.0 / 3.0};
+  for (std::size_t k = 0; k < std::size(specials) && k < n; ++k) v[k] = specials[k];
+  return v;
+}
+
+template <class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "<nothing thrown>";
+}
+
+}  // namespace
+
+TEST_CASE("vtu point cloud: scalar, vector and tensor fields read back bit for bit", "[io]") {
+  ScratchFolder folder("vtu_cloud");
+  std::mt19937_64 rng(7);
+  const std::size_t n = 1000;
+  std::vector<Vec2> points;
+  std::uniform_real_distribution<double> coordinate(-3.0, 3.0);
+  for (std::size_t i = 0; i < n; ++i) points.emplace_back(coordinate(rng), coordinate(rng));
+
+  const std::vector<PointField> fields = {
+      {"temperature", 1, awkward_values(n, rng)},
+      {"displacement", 2, awkward_values(2 * n, rng)},
+      {"stress", 3, awkward_values(3 * n, rng)},
+  };
+  const fs::path path = folder.path / "cloud.vtu";
+  mfree::write_point_cloud_vtu(path, points, fields);
+  CHECK(folder.entries() == std::vector<std::string>{"cloud.vtu"});
+
+  const mfree::VtuContents read = mfree::read_vtu(path);
+  REQUIRE(read.points.size() == n);
+  CHECK(read.cells == static_cast<Index>(n));
+  bool points_exact = true;
+  for (std::size_t i = 0; i < n; ++i)
+    points_exact = points_exact && same_bits(read.points[i].x(), points[i].x()) &&
+                   same_bits(read.points[i].y(), points[i].y());
+  CHECK(points_exact);
+
+  CHECK(read.array_names == std::vector<std::string>{"temperature", "displacement", "stress"});
+  CHECK(read.components.at("temperature") == 1);
+  CHECK(read.components.at("displacement") == 3);  // 2D vector padded with z = 0
+  CHECK(read.components.at("stress") == 3);
+
+  const std::vector<double>& t = read.arrays.at("temperature");
+  const std::vector<double>& u = read.arrays.at("displacement");
+  const std::vector<double>& s = read.arrays.at("stress");
+  REQUIRE(t.size() == n);
+  REQUIRE(u.size() == 3 * n);
+  REQUIRE(s.size() == 3 * n);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!same_bits(t[i], fields[0].values[i])) ++mismatches;
+    if (!same_bits(u[3 * i], fields[1].values[2 * i])) ++mismatches;
+    if (!same_bits(u[3 * i + 1], fields[1].values[2 * i + 1])) ++mismatches;
+    if (!same_bits(u[3 * i + 2], 0.0)) ++mismatches;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (!same_bits(s[3 * i + c], fields[2].values[3 * i + c])) ++mismatches;
+  }
+  CHECK(mismatches == 0);
+  // The negative zero survives as such.
+  CHECK(std::signbit(t[0]));
+}
+
+TEST_CASE("vtu triangles: cells and fields read back", "[io]") {
+  ScratchFolder folder("vtu_triangles");
+  // Unit square split along its diagonal, and 4 components per point to cover other counts.
+  const std::vector<Vec2> points = points_of({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  const std::vector<std::array<Index, 3>> triangles = {{0, 1, 2}, {0, 2, 3}};
+  const std::vector<PointField> fields = {
+      {"p", 1, {1.0, 2.0, 3.0, 4.0}},
+      {"q", 4, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}},
+  };
+  const fs::path path = folder.path / "sub" / "square.vtu";  // the missing folder is created
+  mfree::write_triangles_vtu(path, points, triangles, fields);
+  const mfree::VtuContents read = mfree::read_vtu(path);
+  CHECK(read.cells == 2);
+  CHECK(read.points.size() == 4);
+  CHECK(read.points[2] == Vec2(1, 1));
+  CHECK(read.components.at("q") == 4);
+  CHECK(read.arrays.at("q") == fields[1].values);
+  CHECK(read.arrays.at("p") == fields[0].values);
+
+  const auto bad_index = [&] {
+    mfree::write_triangles_vtu(path, points, {{0, 1, 4}}, fields);
+  };
+  CHECK_THROWS_AS(bad_index(), mfree::InputError);
+  CHECK_THAT(message_of(bad_index), Catch::Contains("triangle 0 refers to point 4"));
+}
+
+TEST_CASE("vtu: a non-finite value throws and leaves no file behind", "[io]") {
+  ScratchFolder folder("vtu_nan");
+  const std::vector<Vec2> points = points_of({{0, 0}, {1, 0}, {2, 0}});
+  const fs::path path = folder.path / "bad.vtu";
+  std::vector<PointField> fields = {{"u", 2, {0, 0, 1, 1, 2, std::nan("")}}};
+
+  const auto write = [&] { mfree::write_point_cloud_vtu(path, points, fields); };
+  CHECK_THROWS_AS(write(), mfree::NumericalError);
+  const std::string message = message_of(write);
+  CHECK_THAT(message, Catch::Contains("bad.vtu"));
+  CHECK_THAT(message, Catch::Contains("field 'u'"));
+  CHECK_THAT(message, Catch::Contains("point 2"));
+  CHECK(folder.entries().empty());
+
+  fields[0].values[5] = 0.0;
+  fields[0].values[0] = -std::numeric_limits<double>::infinity();
+  CHECK_THAT(message_of(write), Catch::Contains("point 0"));
+  CHECK(folder.entries().empty());
+
+  // A failed write leaves an earlier file at the path as it was.
+  fields[0].values[0] = 0.0;
+  write();
+  const auto before = fs::file_size(path);
+  fields[0].values[3] = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(write(), mfree::NumericalError);
+  CHECK(folder.entries() == std::vector<std::string>{"bad.vtu"});
+  CHECK(fs::file_size(path) == before);
+  CHECK(mfree::read_vtu(path).arrays.at("u")[4] == 1.0);
+
+  // Non-finite coordinates are refused too.
+  const auto bad_point = [&] {
+    mfree::write_point_cloud_vtu(folder.path / "p.vtu", points_of({{0, 0}, {0, INFINITY}}), {});
+  };
+  CHECK_THROWS_AS(bad_point(), mfree::NumericalError);
+  CHECK_THAT(message_of(bad_point), Catch::Contains("point 1"));
+}
+
+TEST_CASE("vtu: mismatched fields and failed writes are errors naming the path", "[io]") {
+  ScratchFolder folder("vtu_errors");
+  const std::vector<Vec2> points = points_of({{0, 0}, {1, 0}});
+  const fs::path path = folder.path / "out.vtu";
+
+  const auto short_field = [&] {
+    mfree::write_point_cloud_vtu(path, points, {{"s", 3, {1, 2, 3, 4, 5}}});
+  };
+  CHECK_THROWS_AS(short_field(), mfree::InputError);
+  CHECK_THAT(message_of(short_field), Catch::Contains("out.vtu") && Catch::Contains("'s' has 5 values"));
+  const auto twice = [&] {
+    mfree::write_point_cloud_vtu(path, points, {{"a", 1, {1, 2}}, {"a", 1, {1, 2}}});
+  };
+  CHECK_THROWS_AS(twice(), mfree::InputError);
+
+  // The target is a folder: the temporary file is written, but cannot replace it.
+  fs::create_directories(path / "inside");
+  const auto onto_folder = [&] { mfree::write_point_cloud_vtu(path, points, {}); };
+  CHECK_THROWS_AS(onto_folder(), mfree::Error);
+  CHECK_THAT(message_of(onto_folder), Catch::Contains("out.vtu"));
+  CHECK(folder.entries() == std::vector<std::string>{"out.vtu"});
+
+  // The parent "folder" is a file.
+  std::ofstream(folder.path / "plain") << "x";
+  CHECK_THROWS_AS(mfree::write_point_cloud_vtu(folder.path / "plain" / "a.vtu", points, {}),
+                  mfree::Error);
+}
+
+TEST_CASE("read_vtu: missing and invalid files are input errors naming them", "[io]") {
+  ScratchFolder folder("vtu_read");
+  const fs::path missing = folder.path / "missing.vtu";
+  CHECK_THROWS_AS(mfree::read_vtu(missing), mfree::InputError);
+  CHECK_THAT(message_of([&] { mfree::read_vtu(missing); }), Catch::Contains("missing.vtu"));
+
+  const fs::path garbage = folder.path / "garbage.vtu";
+  std::ofstream(garbage) << "not a VTK file\n";
+  CHECK_THROWS_AS(mfree::read_vtu(garbage), mfree::InputError);
+  CHECK_THAT(message_of([&] { mfree::read_vtu(garbage); }), Catch::Contains("garbage.vtu"));
+
+  // A valid file cut short: the header parses, the appended data is missing.
+  const fs::path whole = folder.path / "whole.vtu";
+  std::vector<double> values(3000, 1.5);
+  std::vector<Vec2> points(1000, Vec2(0.25, 0.5));
+  mfree::write_point_cloud_vtu(whole, points, {{"v", 3, values}});
+  std::string text;
+  {
+    std::ifstream in(whole, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const fs::path cut = folder.path / "cut.vtu";
+  std::ofstream(cut, std::ios::binary) << text.substr(0, text.find("<AppendedData") + 40);
+  CHECK_THROWS_AS(mfree::read_vtu(cut), mfree::InputError);
+}
+
+TEST_CASE("pvd: a valid XML collection listing the steps", "[io]") {
+  ScratchFolder folder("pvd");
+  const std::vector<std::pair<double, std::string>> steps = {
+      {0.0, "run_0000.vtu"}, {0.1, "run_0001.vtu"}, {1.0 / 3.0, "odd & <name>.vtu"},
+      {2.5e-7, "steps/run_0003.vtu"}};
+  const fs::path path = folder.path / "run.pvd";
+  mfree::write_pvd(path, steps);
+  CHECK(folder.entries() == std::vector<std::string>{"run.pvd"});
+
+  vtkSmartPointer<vtkXMLDataElement> root;
+  root.TakeReference(vtkXMLUtilities::ReadElementFromFile(path.c_str()));
+  REQUIRE(root != nullptr);
+  CHECK(std::string(root->GetName()) == "VTKFile");
+  CHECK(std::string(root->GetAttribute("type")) == "Collection");
+  REQUIRE(root->GetNumberOfNestedElements() == 1);
+  vtkXMLDataElement* collection = root->GetNestedElement(0);
+  CHECK(std::string(collection->GetName()) == "Collection");
+  REQUIRE(collection->GetNumberOfNestedElements() == static_cast<int>(steps.size()));
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    vtkXMLDataElement* dataset = collection->GetNestedElement(static_cast<int>(s));
+    CHECK(std::string(dataset->GetName()) == "DataSet");
+    // The time is written exactly: it reads back to the same double.
+    CHECK(std::stod(dataset->GetAttribute("timestep")) == steps[s].first);
+    CHECK(std::string(dataset->GetAttribute("file")) == steps[s].second);
+  }
+
+  CHECK_THROWS_AS(mfree::write_pvd(path, {{std::nan(""), "x.vtu"}}), mfree::NumericalError);
+  CHECK_THROWS_AS(mfree::write_pvd(path, {{0.0, ""}}), mfree::InputError);
+}

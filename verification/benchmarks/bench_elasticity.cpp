@@ -1,0 +1,69 @@
+// Stages of one elasticity solve at growing size: the Timoshenko cantilever (SPEC section 4,
+// L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000, plane stress) with our default scheme
+// (linear RK, projected gradients with ratio 4, symmetric consistency correction): exact
+// displacement imposed by Nitsche on x = 0, exact traction on x = L. Run as
+//
+//   OMP_NUM_THREADS=1 build/mfree_bench --benchmark_filter=cantilever --benchmark_counters_tabular=true
+//
+// The argument is the number n of node spacings across the depth: h = 12 / n, a vertex
+// lattice of (4n + 1)(n + 1) nodes, 2 DOFs each (n = 35, 112, 250, 353: 10^4 to 10^6 DOFs).
+// Counters: the seconds of every stage of the solver's StageTimer (spaces in the stage names
+// become underscores), the DOFs and the relative L2 displacement error when measured: the independent error
+// quadrature (6 x 6 Gauss points on cells of h/2, 144 points per node) is skipped from
+// 5 * 10^5 DOFs on, where it would cost as much as the solve itself.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+
+#include "mfree/core/parallel.hpp"
+#include "mfree/galerkin/elasticity_solver.hpp"
+
+namespace {
+
+using namespace mfree;
+
+constexpr double length = 48.0, depth = 12.0, load = 1000.0;
+constexpr int error_limit = 250;  ///< n from which the error is not measured
+
+void BM_cantilever_stages(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Domain domain = Domain::rectangle(Vec2(0.0, -0.5 * depth), Vec2(length, 0.5 * depth));
+  ElasticitySettings s;
+  s.nodes.spacing = depth / n;
+  s.problem.material = LinearElastic{3.0e7, 0.3, PlaneModel::stress};
+  const ExactElasticity exact = timoshenko_beam(length, depth, load, s.problem.material);
+  s.problem.conditions = {
+      {BoundaryCondition::Type::displacement, Box{Vec2(-1.0, -depth), Vec2(1.0, depth)},
+       [&](const Vec2& x, const Vec2&) { return exact.displacement(x); }, "x = 0"},
+      {BoundaryCondition::Type::traction, Box{Vec2(length - 1.0, -depth), Vec2(length + 1.0, depth)},
+       [&](const Vec2& x, const Vec2& normal) { return exact.traction(x, normal); }, "x = L"}};
+  const bool with_error = n < error_limit;
+
+  StageTimer stages;  // summed over the iterations
+  double dofs = 0.0, error = 0.0;
+  for (auto _ : state) {
+    const ElasticityResult r = solve_elasticity(domain, s, with_error ? &exact : nullptr);
+    for (const auto& [name, seconds] : r.timer.stages()) stages.add(name, seconds);
+    dofs = static_cast<double>(r.coefficients.size());
+    if (r.errors) error = r.errors->l2_displacement;
+  }
+  for (auto [name, seconds] : stages.stages()) {
+    std::replace(name.begin(), name.end(), ' ', '_');
+    state.counters[name] = benchmark::Counter(seconds, benchmark::Counter::kAvgIterations);
+  }
+  state.counters["dofs"] = dofs;
+  if (with_error) state.counters["l2_error"] = error;
+  state.counters["threads"] = thread_count();
+}
+
+}  // namespace
+
+BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(35)->Arg(112)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_cantilever_stages)
+    ->Name("cantilever")
+    ->Arg(250)
+    ->Arg(353)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
