@@ -35,8 +35,12 @@ namespace {
 /// Bt_I likewise with the test gradient of I, over every row K holding I and J. Node J's two
 /// columns are written only by the thread that owns J, with the rows holding J in increasing
 /// order: no two threads touch one value, and the sums are the same on any thread count.
-void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& test, const Eigen::Matrix3d& d,
-                          const RowIncidence& rows, const NodePattern& pattern, double* values) {
+/// With symmetric = true (test gradients = trial gradients) only the blocks I >= J are summed
+/// (rows are sorted: from J's own slot on), and the others copied, K_IJ = K_JI^T: half the
+/// work, and K symmetric to the last bit.
+void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& test, bool symmetric,
+                          const Eigen::Matrix3d& d, const RowIncidence& rows, const NodePattern& pattern,
+                          double* values) {
   const Index n = pattern.size();
   parallel_ranges(n, [&](int, Index begin, Index end) {
     std::vector<Index> at(n);  // at[I] = p with P_J[p] = I, for the current J
@@ -53,7 +57,7 @@ void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& 
         Eigen::Matrix<double, 3, 2> bj;
         bj << g.x(), 0.0, 0.0, g.y(), g.y(), g.x();
         const Eigen::Matrix<double, 3, 2> db = q.weights[k] * (d * bj);
-        for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
+        for (Index s = symmetric ? slots[e] : q.row_begin(k); s < q.row_end(k); ++s) {
           const Vec2& t = test[s];
           const std::int64_t a = 2 * std::int64_t{at[q.nodes[s]]};
           // Bt_I^T (w D B_J) with Bt_I^T = [[tx, 0, ty], [0, ty, tx]].
@@ -63,6 +67,19 @@ void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& 
           col1[a + 1] += t.y() * db(1, 1) + t.x() * db(2, 1);
         }
       }
+    }
+  });
+  if (!symmetric) return;
+  // Upper blocks I < J of column J from the lower blocks J > I of column I: reads and writes
+  // never meet.
+  parallel_blocks(n, 1024, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> p = pattern.neighbours(j);
+      const std::int64_t size = static_cast<std::int64_t>(p.size());
+      for (std::int64_t a = 0; a < size && p[a] < j; ++a)
+        for (int r = 0; r < 2; ++r)
+          for (int c = 0; c < 2; ++c)
+            values[4 * pattern.offsets[j] + 2 * c * size + 2 * a + r] = values[block_slot(pattern, 2, j, p[a], c, r)];
     }
   });
 }
@@ -118,7 +135,7 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
   const NodePattern pattern = node_pattern(sets);
   sys.stiffness = block_matrix(pattern, 2);
   double* values = sys.stiffness.valuePtr();
-  add_domain_stiffness(q, test_gradients ? *test_gradients : q.grad, d, domain_rows, pattern, values);
+  add_domain_stiffness(q, test_gradients ? *test_gradients : q.grad, sys.symmetric, d, domain_rows, pattern, values);
 
   // Body force.
   sys.load = Eigen::VectorXd::Zero(2 * nodes);
