@@ -76,10 +76,15 @@ void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& 
     for (Index j = begin; j < end; ++j) {
       const std::span<const Index> p = pattern.neighbours(j);
       const std::int64_t size = static_cast<std::int64_t>(p.size());
-      for (std::int64_t a = 0; a < size && p[a] < j; ++a)
+      for (std::int64_t a = 0; a < size && p[a] < j; ++a) {
+        // K_IJ(r, c) = K_JI(c, r), entry (2J + c, 2I + r) in column 2I + r.
+        const Index i = p[a];
+        const std::int64_t from = block_slot(pattern, 2, j, i, 0, 0);
+        const std::int64_t column = 2 * (pattern.offsets[i + 1] - pattern.offsets[i]);
         for (int r = 0; r < 2; ++r)
           for (int c = 0; c < 2; ++c)
-            values[4 * pattern.offsets[j] + 2 * c * size + 2 * a + r] = values[block_slot(pattern, 2, j, p[a], c, r)];
+            values[4 * pattern.offsets[j] + 2 * c * size + 2 * a + r] = values[from + r * column + c];
+      }
     }
   });
 }
