@@ -41,20 +41,27 @@ std::pair<std::vector<Vec2>, double> cloud(std::int64_t n) {
   return {make_cloud(rectangle(), s), s.spacing};
 }
 
+/// Sum over points of count(i), the number of neighbours a search finds for point i, in parallel.
+template <class Count>
+std::size_t total_neighbours(Index n, Count&& count) {
+  std::size_t found = 0;
+  parallel_blocks(n, 4096, [&](Index b, Index e) {
+    std::size_t local = 0;
+    for (Index i = b; i < e; ++i) local += count(i);
+#pragma omp atomic
+    found += local;
+  });
+  return found;
+}
+
 void BM_search_cell_list(benchmark::State& state) {
   const auto [points, h] = cloud(state.range(0));
   for (auto _ : state) {
     const CellList cells(points, 2.0 * h);
-    std::size_t found = 0;
-    parallel_blocks(static_cast<Index>(points.size()), 4096, [&](Index b, Index e) {
-      std::vector<Index> out;
-      std::size_t local = 0;
-      for (Index i = b; i < e; ++i) {
-        cells.within(points[i], 2.0 * h, out);
-        local += out.size();
-      }
-#pragma omp atomic
-      found += local;
+    const std::size_t found = total_neighbours(static_cast<Index>(points.size()), [&](Index i) {
+      thread_local std::vector<Index> out;
+      cells.within(points[i], 2.0 * h, out);
+      return out.size();
     });
     benchmark::DoNotOptimize(found);
   }
@@ -73,18 +80,12 @@ void BM_search_cgal_kdtree(benchmark::State& state) {
   for (auto _ : state) {
     Tree tree(p.begin(), p.end());
     tree.build();
-    std::size_t found = 0;
     // CGAL's tree is safe for concurrent queries once built.
-    parallel_blocks(static_cast<Index>(p.size()), 4096, [&](Index b, Index e) {
-      std::vector<K::Point_2> out;
-      std::size_t local = 0;
-      for (Index i = b; i < e; ++i) {
-        out.clear();
-        tree.search(std::back_inserter(out), Sphere(p[i], 2.0 * h, 0.0));
-        local += out.size();
-      }
-#pragma omp atomic
-      found += local;
+    const std::size_t found = total_neighbours(static_cast<Index>(p.size()), [&](Index i) {
+      thread_local std::vector<K::Point_2> out;
+      out.clear();
+      tree.search(std::back_inserter(out), Sphere(p[i], 2.0 * h, 0.0));
+      return out.size();
     });
     benchmark::DoNotOptimize(found);
   }
