@@ -1,0 +1,38 @@
+#pragma once
+// Shared conventions of the materials: deformation gradient F (2 x 2, dimensionless),
+// first Piola–Kirchhoff stress P (force per reference area) and its tangent
+//
+//     A_iJkL = dP_iJ / dF_kL,  stored as a 4 x 4 matrix A(2 i + J, 2 k + L),
+//
+// strain energy W per reference area (2D, plane strain). A material is a small value type
+// (its constants) with energy(F), stress(F) and tangent(F); history, where a model has it,
+// lives in the solver's per-point arrays. The Galerkin solver and the MPM use the same types.
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <cmath>
+
+#include "mfree/core/types.hpp"
+
+namespace mfree {
+
+using Tangent = Eigen::Matrix4d;
+
+/// Row/column of A for the component (i, J) of a 2 x 2 tensor.
+constexpr int tensor_index(int i, int j) { return 2 * i + j; }
+
+/// Lamé constants of (E, nu): lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
+struct Lame {
+  double lambda;
+  double mu;
+};
+inline Lame lame_constants(double youngs_modulus, double poisson_ratio) {
+  const double e = youngs_modulus, nu = poisson_ratio;
+  return {e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))};
+}
+
+/// J = det F, throwing NumericalError ("J = ... <= 0 at <where>") when the material is
+/// inverted or collapsed.
+double checked_jacobian(const Mat2& f, const char* model);
+
+}  // namespace mfree
