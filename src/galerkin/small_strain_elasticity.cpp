@@ -76,15 +76,21 @@ void add_domain_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& 
     for (Index j = begin; j < end; ++j) {
       const std::span<const Index> p = pattern.neighbours(j);
       const std::int64_t size = static_cast<std::int64_t>(p.size());
-      for (std::int64_t a = 0; a < size && p[a] < j; ++a) {
+      double* col0 = values + 4 * pattern.offsets[j];
+      double* col1 = col0 + 2 * size;
+      std::int64_t a = 0;
+      for (; a < size && p[a] < j; ++a) {
         // K_IJ(r, c) = K_JI(c, r), entry (2J + c, 2I + r) in column 2I + r.
         const Index i = p[a];
         const std::int64_t from = block_slot(pattern, 2, j, i, 0, 0);
         const std::int64_t column = 2 * (pattern.offsets[i + 1] - pattern.offsets[i]);
-        for (int r = 0; r < 2; ++r)
-          for (int c = 0; c < 2; ++c)
-            values[4 * pattern.offsets[j] + 2 * c * size + 2 * a + r] = values[from + r * column + c];
+        for (int r = 0; r < 2; ++r) {
+          col0[2 * a + r] = values[from + r * column];
+          col1[2 * a + r] = values[from + r * column + 1];
+        }
       }
+      // The diagonal block (p[a] = J, present whenever a row holds J): K_JJ(0, 1) = K_JJ(1, 0).
+      if (a < size) col1[2 * a] = col0[2 * a + 1];
     }
   });
 }

@@ -6,11 +6,15 @@
 //   OMP_NUM_THREADS=1 build/mfree_bench --benchmark_filter=cantilever --benchmark_counters_tabular=true
 //
 // The argument is the number n of node spacings across the depth: h = 12 / n, a vertex
-// lattice of (4n + 1)(n + 1) nodes, 2 DOFs each (n = 35, 112, 250, 353: 10^4 to 10^6 DOFs).
+// lattice of (4n + 1)(n + 1) nodes, 2 DOFs each (n = 35, 112, 250: 10^4, 10^5, 5 * 10^5
+// DOFs). 10^6 DOFs (n = 353) is not registered: it needs more than the 23 GB of our machine
+// (README.md, "Cantilever stages").
+//
 // Counters: the seconds of every stage of the solver's StageTimer (spaces in the stage names
-// become underscores), the DOFs and the relative L2 displacement error when measured: the independent error
-// quadrature (6 x 6 Gauss points on cells of h/2, 144 points per node) is skipped from
-// 5 * 10^5 DOFs on, where it would cost as much as the solve itself.
+// become underscores), the DOFs and the relative L2 displacement error when measured. The
+// independent error quadrature (6 x 6 Gauss points on cells of h/2, 144 points per node) is
+// skipped from 5 * 10^5 DOFs on: at 10^5 DOFs it is already the costliest stage (a third of
+// the run).
 
 #include <benchmark/benchmark.h>
 
@@ -60,10 +64,4 @@ void BM_cantilever_stages(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(35)->Arg(112)->Unit(benchmark::kSecond)->UseRealTime();
-BENCHMARK(BM_cantilever_stages)
-    ->Name("cantilever")
-    ->Arg(250)
-    ->Arg(353)
-    ->Iterations(1)
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime();
+BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(250)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
