@@ -6,6 +6,7 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/linalg/node_pattern.hpp"
 #include "mfree/linalg/sparse_solver.hpp"
 
 namespace mfree {
@@ -97,28 +98,6 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
 
   // A = diag(sum_K w_K^2 [I in row K]) - V U^T with U_{I,3K+j} = w_K P_K(I, j) and
   // V = U blockdiag(M_K): the rank-3 projector of each row, assembled by one sparse product.
-  SparseMatrix a(n, n);
-  {
-    std::vector<Eigen::Triplet<double>> tu, tv;
-    tu.reserve(3 * q.nodes.size());
-    tv.reserve(3 * q.nodes.size());
-    Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
-    for (Index k = 0; k < nk; ++k)
-      for (Index i = q.row_begin(k); i < q.row_end(k); ++i) {
-        const Eigen::Vector3d p = q.weights[k] * basis(k, i);
-        const Eigen::Vector3d pm = gram_inv[k] * p;
-        for (int j = 0; j < 3; ++j) {
-          tu.emplace_back(q.nodes[i], 3 * k + j, p[j]);
-          tv.emplace_back(q.nodes[i], 3 * k + j, pm[j]);
-        }
-        diag[q.nodes[i]] += q.weights[k] * q.weights[k];
-      }
-    SparseMatrix u(n, 3 * nk), v(n, 3 * nk);
-    u.setFromTriplets(tu.begin(), tu.end());
-    v.setFromTriplets(tv.begin(), tv.end());
-    a = -(v * SparseMatrix(u.transpose()));
-    for (Index i = 0; i < n; ++i) a.coeffRef(i, i) += diag[i];
-  }
   // The null space span{1, x, y} is removed by pinning lambda at three nodes spanning a
   // large triangle: the pinned equations then hold too, since r and A lambda are both
   // orthogonal to that null space.
@@ -132,9 +111,32 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
     if (area > best) best = area, p2 = i;
   }
   const auto pinned = [&](Index i) { return i == p0 || i == p1 || i == p2; };
-  a.prune([&](Index r, Index c, double) { return !pinned(r) && !pinned(c); });
-  for (Index i : {p0, p1, p2}) a.coeffRef(i, i) = 1.0;
-  a.makeCompressed();
+
+  // A_IJ = sum over rows K holding I and J of w_K^2 (d_IJ - P_K(I)^T M_K P_K(J)), on the
+  // node-to-node pattern of the rows, column by column: each thread owns whole columns.
+  const RowIncidence incidence(q.offsets, q.nodes, n);
+  const RowIncidence* sets[] = {&incidence};
+  const NodePattern pattern = node_pattern(sets);
+  SparseMatrix a = block_matrix(pattern, 1);
+  double* values = a.valuePtr();
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> rows = incidence.rows_of(j), slots = incidence.slots_of(j);
+      for (std::size_t m = 0; m < rows.size(); ++m) {
+        const Index k = rows[m];
+        const double w2 = q.weights[k] * q.weights[k];
+        const Eigen::Vector3d mj = gram_inv[k] * basis(k, slots[m]);
+        for (Index s2 = q.row_begin(k); s2 < q.row_end(k); ++s2) {
+          const Index i = q.nodes[s2];
+          values[pattern.offsets[j] + pattern.position(i, j)] += w2 * ((i == j) - basis(k, s2).dot(mj));
+        }
+      }
+      for (std::int64_t e = pattern.offsets[j]; e < pattern.offsets[j + 1]; ++e) {
+        const Index i = pattern.nodes[e];
+        if (pinned(i) || pinned(j)) values[e] = i == j ? 1.0 : 0.0;
+      }
+    }
+  });
   SparseSolver solver(SolverKind::cholmod);
   solver.analyze(a);
   solver.factorize(a);

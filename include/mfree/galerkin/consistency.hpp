@@ -21,8 +21,8 @@
 //                A lambda = r,  A = sum_K w_K^2 S_K^T (I - Q_K) S_K,
 //              a symmetric positive semi-definite system whose null space span{1, x, y} is
 //              orthogonal to r (sum_I r_I = 0 and sum_I r_I x_I^T = 0 hold whenever the
-//              weights integrate 1 and x exactly). A is assembled (a sparse product of the
-//              rows' rank-3 projectors) and factorised once by CHOLMOD for both components:
+//              weights integrate 1 and x exactly). A is assembled on the node-to-node
+//              pattern of the rows and factorised once by CHOLMOD for both components:
 //              it behaves like a fourth-order operator, too ill-conditioned for iterative
 //              solvers. The stiffness stays symmetric positive definite (CHOLMOD).
 
