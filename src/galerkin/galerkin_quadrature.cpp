@@ -80,8 +80,10 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   q.points = quadrature_functions.nodes();
   const Index nq = q.size();
 
-  // Rows: every node whose support can meet supp(phi_K), |x_I - x_K| < a_I + a_K (a square
-  // test covers both support shapes); phi_I(x_K) where the node covers x_K, else 0.
+  // Rows: every node whose support can meet supp(phi_K): |x_I - x_K| < a_I + a_K for two
+  // circular supports, the same in the max-norm when either is a square (a circle of radius a
+  // lies in the square of half-width a). phi_I(x_K) where the node covers x_K, else 0.
+  // The rows set the stiffness pattern: the circular test keeps it ~1.6x sparser.
   GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
   const auto radius = [](const RKShapeFunctions& f, Index i) {
     const auto& r = f.settings().node_radii;
@@ -90,13 +92,16 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   double trial_max = trial.settings().radius;
   for (double r : trial.settings().node_radii) trial_max = std::max(trial_max, r);
   const CellList node_cells(trial.nodes(), trial_max);
+  const bool circular = trial.settings().support == SupportShape::circular &&
+                        quadrature_functions.settings().support == SupportShape::circular;
   std::vector<std::vector<Index>> row_nodes(nq);
   parallel_blocks(nq, 512, [&](Index b, Index e) {
     for (Index k = b; k < e; ++k) {
       const double ak = radius(quadrature_functions, k);
       node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Vec2& p) {
         const double reach = ak + radius(trial, i);
-        if (std::abs(p.x() - q.points[k].x()) < reach && std::abs(p.y() - q.points[k].y()) < reach)
+        const Vec2 d = p - q.points[k];
+        if (circular ? d.squaredNorm() < reach * reach : d.cwiseAbs().maxCoeff() < reach)
           row_nodes[k].push_back(i);
       });
       std::sort(row_nodes[k].begin(), row_nodes[k].end());
