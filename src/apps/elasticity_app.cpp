@@ -1,8 +1,9 @@
 #include "mfree/apps/elasticity_app.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdlib>
-#include <fmt/format.h>
 #include <iostream>
 #include <map>
 
@@ -29,14 +30,14 @@ int run_elasticity(const std::filesystem::path& path) {
   std::cout << fmt::format("mfree run: {} ({} thread(s))\n", path.string(), thread_count());
   ElasticityResult r = solve_elasticity(scene.domain, scene.settings, exact ? &*exact : nullptr);
   const ElasticitySettings& s = scene.settings;
+  std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points ({}), {} RK, {} cloud, spacing {}\n",
+                           r.nodes.size(), 2 * r.nodes.size(), r.quadrature.size(), to_string(s.scheme),
+                           to_string(s.order), to_string(s.nodes.kind), s.nodes.spacing);
   std::cout << fmt::format(
-      "  {} nodes ({} DOFs), {} quadrature points ({}), {} RK, {} cloud, spacing {}\n", r.nodes.size(),
-      2 * r.nodes.size(), r.quadrature.size(), to_string(s.scheme), to_string(s.order), to_string(s.nodes.kind),
-      s.nodes.spacing);
-  std::cout << fmt::format("  integration consistency defect: {:.2e} -> {:.2e} ({}), solver {}\n",
-                           r.consistency_before, r.consistency_after,
-                           to_string(s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none),
-                           to_string(r.solver));
+      "  integration consistency defect: {:.2e} -> {:.2e} ({}), solver {}\n", r.consistency_before,
+      r.consistency_after,
+      to_string(s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none),
+      to_string(r.solver));
   if (r.errors)
     std::cout << fmt::format(
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
@@ -60,8 +61,10 @@ int converge_elasticity(const std::filesystem::path& path) {
   const StudySettings& st = *scene.study;
   const std::optional<ExactElasticity> exact = scene.exact();
   if (!exact) throw InputError(fmt::format("{}: mfree converge needs an [exact] section", path.string()));
-  const std::size_t runs = st.clouds.size() * st.orders.size() * st.schemes.size() * st.betas.size() * st.spacings.size();
-  std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", path.string(), runs, thread_count());
+  const std::size_t runs =
+      st.clouds.size() * st.orders.size() * st.schemes.size() * st.betas.size() * st.spacings.size();
+  std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", path.string(), runs,
+                           thread_count());
 
   std::string csv =
       "cloud,order,scheme,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_stress,"
@@ -72,64 +75,67 @@ int converge_elasticity(const std::filesystem::path& path) {
     for (RKOrder order : st.orders)
       for (QuadratureScheme q : st.schemes)
         for (double beta : st.betas) {
-        std::vector<std::pair<double, ElasticErrors>> series;
-        for (double h : st.spacings) {
-          ElasticitySettings s = scene.settings;
-          s.nodes.kind = cloud;
-          s.nodes.spacing = h;
-          s.order = order;
-          s.scheme = q;
-          s.problem.nitsche_beta = beta;
-          if (order == RKOrder::quadratic) {
-            s.support_factor = st.quadratic_factor;
-            s.quadrature_order = RKOrder::quadratic;
-            s.quadrature_factor = st.quadratic_factor;
-            s.gauss_points = st.quadratic_gauss_points;
-          }
-          std::optional<ElasticityResult> solved;
-          try {
-            solved.emplace(solve_elasticity(scene.domain, s, &*exact));
-          } catch (const NumericalError& e) {
-            // A study goes on past a run that fails (a sweep is meant to find where they do).
-            const std::string line = fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} FAILED: {}", to_string(cloud),
-                                                 to_string(order), to_string(q), beta, h, e.what());
+          std::vector<std::pair<double, ElasticErrors>> series;
+          for (double h : st.spacings) {
+            ElasticitySettings s = scene.settings;
+            s.nodes.kind = cloud;
+            s.nodes.spacing = h;
+            s.order = order;
+            s.scheme = q;
+            s.problem.nitsche_beta = beta;
+            if (order == RKOrder::quadratic) {
+              s.support_factor = st.quadratic_factor;
+              s.quadrature_order = RKOrder::quadratic;
+              s.quadrature_factor = st.quadratic_factor;
+              s.gauss_points = st.quadratic_gauss_points;
+            }
+            std::optional<ElasticityResult> solved;
+            try {
+              solved.emplace(solve_elasticity(scene.domain, s, &*exact));
+            } catch (const NumericalError& e) {
+              // A study goes on past a run that fails (a sweep is meant to find where they do).
+              const std::string line =
+                  fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} FAILED: {}", to_string(cloud),
+                              to_string(order), to_string(q), beta, h, e.what());
+              table += line + "\n";
+              csv += fmt::format("{},{},{},{},{},,,,nan,nan,nan,nan,nan,nan,nan\n", to_string(cloud),
+                                 to_string(order), to_string(q), beta, h);
+              std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+              continue;
+            }
+            const ElasticityResult& r = *solved;
+            double seconds = r.timer.total();  // the solve; the error measurement is not part of it
+            for (const auto& [name, t] : r.timer.stages())
+              if (name == "errors") seconds -= t;
+            const double probe = st.probe ? r.displacement({*st.probe})[0].y() : std::nan("");
+            const ElasticErrors& e = *r.errors;
+            std::string rates;
+            if (!series.empty()) {
+              const auto& [h0, e0] = series.back();
+              const double lr = std::log(h0 / h);
+              rates = fmt::format(
+                  "{:5.2f} {:5.2f} {:5.2f}", std::log(e0.l2_displacement / e.l2_displacement) / lr,
+                  std::log(e0.energy / e.energy) / lr, std::log(e0.l2_stress / e.l2_stress) / lr);
+            }
+            series.emplace_back(h, e);
+            const std::string line = fmt::format(
+                "{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:10.3e} {:10.3e} {:10.3e} {:17} {:11.7f} {:8.3f}",
+                to_string(cloud), to_string(order), to_string(q), beta, h, 2 * r.nodes.size(),
+                e.l2_displacement, e.energy, e.l2_stress, rates, probe, seconds);
             table += line + "\n";
-            csv += fmt::format("{},{},{},{},{},,,,nan,nan,nan,nan,nan,nan,nan\n", to_string(cloud), to_string(order),
-                               to_string(q), beta, h);
+            csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.3e},{:.3e}\n",
+                               to_string(cloud), to_string(order), to_string(q), beta, h, r.nodes.size(),
+                               2 * r.nodes.size(), r.quadrature.size(), e.l2_displacement, e.energy,
+                               e.l2_stress, probe, seconds, r.consistency_before, r.consistency_after);
             std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
-            continue;
           }
-          const ElasticityResult& r = *solved;
-          double seconds = r.timer.total();  // the solve; the error measurement is not part of it
-          for (const auto& [name, t] : r.timer.stages())
-            if (name == "errors") seconds -= t;
-          const double probe = st.probe ? r.displacement({*st.probe})[0].y() : std::nan("");
-          const ElasticErrors& e = *r.errors;
-          std::string rates;
-          if (!series.empty()) {
-            const auto& [h0, e0] = series.back();
-            const double lr = std::log(h0 / h);
-            rates = fmt::format("{:5.2f} {:5.2f} {:5.2f}", std::log(e0.l2_displacement / e.l2_displacement) / lr,
-                                std::log(e0.energy / e.energy) / lr, std::log(e0.l2_stress / e.l2_stress) / lr);
-          }
-          series.emplace_back(h, e);
-          const std::string line = fmt::format(
-              "{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:10.3e} {:10.3e} {:10.3e} {:17} {:11.7f} {:8.3f}", to_string(cloud),
-              to_string(order), to_string(q), beta, h, 2 * r.nodes.size(), e.l2_displacement, e.energy, e.l2_stress, rates,
-              probe, seconds);
-          table += line + "\n";
-          csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.3e},{:.3e}\n", to_string(cloud),
-                             to_string(order), to_string(q), beta, h, r.nodes.size(), 2 * r.nodes.size(),
-                             r.quadrature.size(), e.l2_displacement, e.energy, e.l2_stress, probe, seconds,
-                             r.consistency_before, r.consistency_after);
-          std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
         }
-      }
   const std::filesystem::path csv_path = scene.output.folder / "convergence.csv";
   write_file_atomically(csv_path, csv);
-  std::cout << fmt::format("\n{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n", "cloud", "order",
-                           "scheme", "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress", "rates (L2 E S)",
-                           st.probe ? "probe u_y" : "-", "time [s]")
+  std::cout << fmt::format(
+                   "\n{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n",
+                   "cloud", "order", "scheme", "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress",
+                   "rates (L2 E S)", st.probe ? "probe u_y" : "-", "time [s]")
             << table;
   if (st.reference) std::cout << fmt::format("reference probe u_y: {:.7f}\n", *st.reference);
   std::cout << fmt::format("wrote {}\n", csv_path.string());
@@ -138,7 +144,8 @@ int converge_elasticity(const std::filesystem::path& path) {
   const std::string plot = fmt::format("/usr/bin/python3 '{}/verification/plot_convergence.py' '{}' '{}'",
                                        MFREE_SOURCE_DIR, csv_path.string(), scene.output.folder.string());
   if (std::system(plot.c_str()) != 0)
-    std::cerr << "mfree converge: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
+    std::cerr
+        << "mfree converge: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
   return 0;
 }
 
