@@ -7,8 +7,8 @@
 //
 // The argument is the number n of node spacings across the depth: h = 12 / n, a vertex
 // lattice of (4n + 1)(n + 1) nodes, 2 DOFs each (n = 35, 112, 250: 10^4, 10^5, 5 * 10^5
-// DOFs). 10^6 DOFs (n = 353) is not registered: it needs more than the 23 GB of our machine
-// (README.md, "Cantilever stages").
+// DOFs). 10^6 DOFs (n = 353) is not registered: its factorisation would need about 20 GB
+// of the 23 GB of our machine (README.md, "Cantilever stages").
 //
 // Counters: the seconds of every stage of the solver's StageTimer (spaces in the stage names
 // become underscores), the DOFs and the relative L2 displacement error when measured. The
