@@ -28,8 +28,10 @@ int run_elasticity(const std::filesystem::path& path) {
   const ElasticityScene scene = read_elasticity_scene(path, false);
   const std::optional<ExactElasticity> exact = scene.exact();
   std::cout << fmt::format("mfree run: {} ({} thread(s))\n", path.string(), thread_count());
-  ElasticityResult r = solve_elasticity(scene.domain, scene.settings, exact ? &*exact : nullptr);
-  const ElasticitySettings& s = scene.settings;
+  ElasticitySettings s = scene.settings;
+  s.progress = &std::cout;  // a large solve takes minutes: show each stage as it ends
+  ElasticityResult r = solve_elasticity(scene.domain, s, exact ? &*exact : nullptr);
+  r.timer.report_to(nullptr);
   std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points ({}), {} RK, {} cloud, spacing {}\n",
                            r.nodes.size(), 2 * r.nodes.size(), r.quadrature.size(), to_string(s.scheme),
                            to_string(s.order), to_string(s.nodes.kind), s.nodes.spacing);

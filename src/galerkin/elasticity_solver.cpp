@@ -46,6 +46,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
                                   const ExactElasticity* exact) {
   ElasticityResult res;
   StageTimer& timer = res.timer;
+  timer.report_to(s.progress);
   const double h = s.nodes.spacing;
 
   res.nodes = timer.time("clouds", [&] { return make_cloud(domain, s.nodes); });

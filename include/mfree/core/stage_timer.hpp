@@ -1,7 +1,11 @@
 #pragma once
-// Wall-clock time of the named stages of a run, in the order they first ran.
+// Wall-clock time of the named stages of a run, in the order they first ran; optionally
+// reports each stage as it finishes (progress of long runs).
 
 #include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +14,9 @@ namespace mfree {
 
 class StageTimer {
  public:
+  /// Report every finished stage on `log` (nullptr: silent).
+  void report_to(std::ostream* log) { log_ = log; }
+
   /// Runs f() and adds its wall time to stage `name`; returns what f returns.
   template <class F>
   decltype(auto) time(const std::string& name, F&& f) {
@@ -23,6 +30,11 @@ class StageTimer {
     return f();
   }
   void add(const std::string& name, double seconds) {
+    if (log_) {
+      std::ostringstream line;
+      line << "  ... " << name << " done in " << std::fixed << std::setprecision(3) << seconds << " s\n";
+      *log_ << line.str() << std::flush;
+    }
     for (auto& [n, s] : stages_)
       if (n == name) {
         s += seconds;
@@ -39,6 +51,7 @@ class StageTimer {
 
  private:
   std::vector<std::pair<std::string, double>> stages_;
+  std::ostream* log_ = nullptr;
 };
 
 }  // namespace mfree

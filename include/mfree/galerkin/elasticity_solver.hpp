@@ -12,6 +12,7 @@
 //   nodal        direct nodal integration: the nodes as quadrature points, clipped Voronoi
 //                weights, direct gradients.
 
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +51,7 @@ struct ElasticitySettings {
 
   ElasticityProblem problem;
   int error_gauss_points = 6;           ///< independent error quadrature, per cell of h/2
+  std::ostream* progress = nullptr;     ///< where to report each finished stage, if anywhere
 };
 
 struct ElasticityResult {
