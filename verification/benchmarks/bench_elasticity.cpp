@@ -3,7 +3,7 @@
 // (linear RK, projected gradients with ratio 4, symmetric consistency correction): exact
 // displacement imposed by Nitsche on x = 0, exact traction on x = L. Run as
 //
-//   OMP_NUM_THREADS=1 build/mfree_bench --benchmark_filter=cantilever --benchmark_counters_tabular=true
+//   OMP_NUM_THREADS=1 build/mfree_bench --benchmark_filter='cantilever/(35|112|250)/' --benchmark_counters_tabular=true
 //
 // The argument is the number n of node spacings across the depth: h = 12 / n, a vertex
 // lattice of (4n + 1)(n + 1) nodes, 2 DOFs each (n = 35, 112, 250: 10^4, 10^5, 5 * 10^5
