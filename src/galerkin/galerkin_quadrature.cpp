@@ -85,21 +85,16 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   // lies in the square of half-width a). phi_I(x_K) where the node covers x_K, else 0.
   // The rows set the stiffness pattern: the circular test keeps it ~1.6x sparser.
   GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
-  const auto radius = [](const RKShapeFunctions& f, Index i) {
-    const auto& r = f.settings().node_radii;
-    return r.empty() ? f.settings().radius : r[i];
-  };
-  double trial_max = trial.settings().radius;
-  for (double r : trial.settings().node_radii) trial_max = std::max(trial_max, r);
+  const double trial_max = trial.max_support_radius();
   const CellList node_cells(trial.nodes(), trial_max);
   const bool circular = trial.settings().support == SupportShape::circular &&
                         quadrature_functions.settings().support == SupportShape::circular;
   std::vector<std::vector<Index>> row_nodes(nq);
   parallel_blocks(nq, 512, [&](Index b, Index e) {
     for (Index k = b; k < e; ++k) {
-      const double ak = radius(quadrature_functions, k);
+      const double ak = quadrature_functions.support_radius(k);
       node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Vec2& p) {
-        const double reach = ak + radius(trial, i);
+        const double reach = ak + trial.support_radius(i);
         const Vec2 d = p - q.points[k];
         if (circular ? d.squaredNorm() < reach * reach : d.cwiseAbs().maxCoeff() < reach)
           row_nodes[k].push_back(i);

@@ -218,17 +218,15 @@ std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h
 }
 
 void RKShapeFunctions::evaluate(const Vec2& x, ShapeValues& out, bool with_gradient) const {
-  const std::vector<double>& radii = settings_.node_radii;
-  const auto radius = [&](Index i) { return radii.empty() ? settings_.radius : radii[i]; };
   out.nodes.clear();
   if (settings_.support == SupportShape::circular) {
     cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
-      const double a = radius(i);
+      const double a = support_radius(i);
       if ((p - x).squaredNorm() < a * a) out.nodes.push_back(i);
     });
   } else {
     cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
-      const double a = radius(i);
+      const double a = support_radius(i);
       if (std::abs(p.x() - x.x()) < a && std::abs(p.y() - x.y()) < a) out.nodes.push_back(i);
     });
   }

@@ -61,6 +61,12 @@ class RKShapeFunctions {
   [[nodiscard]] const std::vector<Vec2>& nodes() const { return nodes_; }
   [[nodiscard]] const RKSettings& settings() const { return settings_; }
   [[nodiscard]] Index size() const { return static_cast<Index>(nodes_.size()); }
+  /// Support radius a_I of node i (settings.node_radii[i], or settings.radius for all).
+  [[nodiscard]] double support_radius(Index i) const {
+    return settings_.node_radii.empty() ? settings_.radius : settings_.node_radii[i];
+  }
+  /// The largest a_I.
+  [[nodiscard]] double max_support_radius() const { return max_radius_; }
   /// Number of basis terms (3 or 6): the fewest neighbours a point can have.
   [[nodiscard]] int basis_size() const { return settings_.order == RKOrder::linear ? 3 : 6; }
 
