@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include "../test_support.hpp"
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -27,15 +29,10 @@ Domain mesh(const std::string& name) { return Domain::from_file(mesh_path(name))
 // r^2 sin(2 pi / 64) / 2.
 double hole_area() { return 0.5 * 64 * 0.25 * std::sin(2 * pi / 64); }
 
-// The message of the InputError that f throws, or a marker when it throws none.
+// The message of the InputError that f throws.
 template <class F>
 std::string input_error_message(F&& f) {
-  try {
-    f();
-  } catch (const mfree::InputError& e) {
-    return e.what();
-  }
-  return "<no InputError thrown>";
+  return mfree::testing::message_of<mfree::InputError>(f);
 }
 
 // Box edges at uneven positions along [lo, hi]: t_i = (i / n)^1.4 plus a wobble, so that

@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include "../test_support.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -185,13 +187,8 @@ TEST_CASE("domain triangulation: points a round-off outside the boundary move in
 TEST_CASE("domain triangulation: points outside the domain are input errors naming them",
           "[geometry]") {
   const Domain plate = mesh("plate_with_hole.wkt");
-  const auto message = [&](std::initializer_list<std::array<double, 2>> xy) -> std::string {
-    try {
-      mfree::triangulate_domain(plate, points_of(xy));
-    } catch (const mfree::InputError& e) {
-      return e.what();
-    }
-    return "<no InputError thrown>";
+  const auto message = [&](std::initializer_list<std::array<double, 2>> xy) {
+    return mfree::testing::message_of<mfree::InputError>([&] { mfree::triangulate_domain(plate, points_of(xy)); });
   };
   CHECK_THAT(message({{1, 1}, {0, 0}}),
              Catch::Contains("point 1 at (0, 0) lies outside the domain"));

@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+
+#include "../test_support.hpp"
 #include <unistd.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLDataElement.h>
@@ -68,15 +70,7 @@ std::vector<double> awkward_values(std::size_t n, std::mt19937_64& rng) {
   return v;
 }
 
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "<nothing thrown>";
-}
+using mfree::testing::message_of;
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include "../test_support.hpp"
+
 #include <limits>
 #include <numeric>
 #include <random>
@@ -34,12 +36,7 @@ std::vector<Vec2> random_points(const Domain& d, int n, std::uint64_t seed) {
 }
 
 std::string input_error_message(const std::vector<Vec2>& points, const Domain& d) {
-  try {
-    (void)mfree::voronoi_weights(points, d);
-  } catch (const mfree::InputError& e) {
-    return e.what();
-  }
-  return "<no InputError thrown>";
+  return mfree::testing::message_of<mfree::InputError>([&] { (void)mfree::voronoi_weights(points, d); });
 }
 
 }  // namespace
