@@ -118,6 +118,8 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   row_nodes = {};
 
   // One pass over the lattice: w_K += c_v phi_K(v) and row K += c_v phi_K(v) grad phi_I(v).
+  // w_K is the sum rk_quadrature_weights takes; it is taken here too so that phi_K(v) is
+  // evaluated once for both.
   // Rows are shared between lattice points handled by different threads: atomic adds.
   std::vector<double> w(nq, 0.0);
   const auto& lp = lattice.points();
