@@ -18,10 +18,10 @@ std::string_view to_string(QuadratureScheme s) {
   return "?";
 }
 
-std::vector<Vec2> ElasticityResult::displacement(const std::vector<Vec2>& points) const {
+std::vector<Vec2> Discretisation::displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const {
   const GalerkinQuadrature at = sample_shape_functions(*trial, points, false);
   std::vector<Vec2> u(points.size());
-  for (Index k = 0; k < at.size(); ++k) u[k] = displacement_at(at, k, coefficients);
+  for (Index k = 0; k < at.size(); ++k) u[k] = displacement_at(at, k, d);
   return u;
 }
 
@@ -42,18 +42,14 @@ RKSettings rk_settings(const std::vector<Vec2>& points, CloudKind kind, double h
 
 }  // namespace
 
-ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings& s,
-                                  const ExactElasticity* exact) {
-  ElasticityResult res;
-  StageTimer& timer = res.timer;
-  timer.report_to(s.progress);
+Discretisation discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer) {
+  Discretisation res;
   const double h = s.nodes.spacing;
 
   res.nodes = timer.time("clouds", [&] { return make_cloud(domain, s.nodes); });
   res.trial = timer.time("shape functions", [&] {
     return std::make_unique<RKShapeFunctions>(res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
-  const Index n = static_cast<Index>(res.nodes.size());
 
   // Quadrature: points, weights, and the gradients of the weak form.
   res.quadrature = timer.time("weights and projection", [&] {
@@ -76,33 +72,41 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   });
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
-  const BoundaryQuadrature bq = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3);
-  const GalerkinQuadrature at_boundary = timer.time("shape functions", [&] {
-    return sample_shape_functions(*res.trial, bq.points, true);
+  res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3);
+  res.at_boundary = timer.time("shape functions", [&] {
+    return sample_shape_functions(*res.trial, res.boundary.points, true);
   });
-  const std::vector<Vec2> b = boundary_sums(at_boundary, bq.normals, bq.weights, n);
+  const std::vector<Vec2> b = boundary_sums(res.at_boundary, res.boundary.normals, res.boundary.weights, res.node_count());
   res.consistency_before = consistency_defect(res.quadrature, res.quadrature.grad, b);
 
-  std::vector<Vec2> test_gradients;
-  const Consistency consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
+  res.consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
   timer.time("consistency", [&] {
-    if (consistency == Consistency::symmetric) {
+    if (res.consistency == Consistency::symmetric) {
       const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes, b);
       res.correction_residual = c.residual;
       res.consistency_after = consistency_defect(res.quadrature, res.quadrature.grad, b);
-    } else if (consistency == Consistency::vci) {
-      test_gradients = vci_test_gradients(res.quadrature, b);
-      res.consistency_after = consistency_defect(res.quadrature, test_gradients, b);
+    } else if (res.consistency == Consistency::vci) {
+      res.test_gradients = vci_test_gradients(res.quadrature, b);
+      res.consistency_after = consistency_defect(res.quadrature, res.test_gradients, b);
     } else {
       res.consistency_after = res.consistency_before;
     }
   });
+  return res;
+}
+
+ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings& s,
+                                  const ExactElasticity* exact) {
+  ElasticityResult res;
+  StageTimer& timer = res.timer;
+  timer.report_to(s.progress);
+  static_cast<Discretisation&>(res) = discretise(domain, s, timer);
 
   ElasticityProblem problem = s.problem;
-  problem.spacing = h;
+  problem.spacing = s.nodes.spacing;
   const ElasticitySystem sys = timer.time("assembly", [&] {
-    return assemble_elasticity(problem, domain, n, res.quadrature,
-                               consistency == Consistency::vci ? &test_gradients : nullptr, bq, at_boundary);
+    return assemble_elasticity(problem, domain, res.node_count(), res.quadrature, res.test(), res.boundary,
+                               res.at_boundary);
   });
   res.solver = s.solver.value_or(sys.symmetric ? SolverKind::cholmod : SolverKind::umfpack);
   if (res.solver == SolverKind::cholmod && !sys.symmetric)
@@ -117,7 +121,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   if (exact) {
     res.errors = timer.time("errors", [&] {
       return elastic_errors(*res.trial, res.coefficients, s.problem.material, *exact,
-                            gauss_cell_rule(domain, 0.5 * h, s.error_gauss_points));
+                            gauss_cell_rule(domain, 0.5 * s.nodes.spacing, s.error_gauss_points));
     });
   }
   return res;

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "mfree/core/error.hpp"
+#include "mfree/materials/material.hpp"
 #include "mfree/materials/neo_hookean.hpp"
 #include "mfree/materials/st_venant_kirchhoff.hpp"
 
@@ -80,4 +81,31 @@ TEST_CASE("an inverted deformation (J <= 0) is a clear error", "[materials]") {
   CHECK_THROWS_AS(m.stress(f), NumericalError);
   CHECK_THROWS_WITH(m.stress(f), Catch::Contains("J = det F = -0.1 <= 0"));
   CHECK_THROWS_AS(StVenantKirchhoff{m.lame}.tangent(f), NumericalError);
+}
+
+TEST_CASE("small-strain law in F form: P = dW/dF, A = dP/dF, and the Voigt law it wraps", "[materials]") {
+  for (PlaneModel model : {PlaneModel::stress, PlaneModel::strain}) {
+    const LinearElastic m{2e5, 0.3, model};
+    check_derivatives(m);
+    Mat2 f;
+    f << 1.01, 0.003, -0.002, 0.995;
+    const Eigen::Vector3d s = m.voigt_tangent() * Eigen::Vector3d(0.01, -0.005, 0.001);
+    const Mat2 p = m.stress(f);
+    CHECK((Eigen::Vector3d(p(0, 0), p(1, 1), p(0, 1)) - s).norm() <= 1e-12 * s.norm());
+    CHECK(p(0, 1) == p(1, 0));
+  }
+}
+
+TEST_CASE("the variant Material dispatches, and its reference tangent is the linear law's", "[materials]") {
+  const Material nh = make_material("neo_hookean", 1e7, 0.3);
+  const Material lin = make_material("plane_strain", 1e7, 0.3);
+  // Neo-Hookean linearised at F = I is plane-strain linear elasticity.
+  CHECK((tangent(nh, Mat2::Identity()) - tangent(lin, Mat2::Identity())).norm() <= 1e-9 * tangent(lin, Mat2::Identity()).norm());
+  CHECK(wave_speed(nh, 1000.0) == Approx(std::sqrt(1e7 * 0.7 / (1.3 * 0.4) / 1000.0)).epsilon(1e-14));
+  Mat2 f;
+  f << 1.2, 0.1, -0.05, 0.9;
+  // sigma = P F^T / J is symmetric for an objective material.
+  const Mat2 sigma = cauchy_stress(nh, f);
+  CHECK(std::abs(sigma(0, 1) - sigma(1, 0)) <= 1e-12 * sigma.norm());
+  CHECK_THROWS_WITH(make_material("neo_hookean", -1.0, 0.3), Catch::Contains("Young's modulus must be positive"));
 }

@@ -19,6 +19,7 @@
 
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/stage_timer.hpp"
+#include "mfree/galerkin/boundary_quadrature.hpp"
 #include "mfree/galerkin/consistency.hpp"
 #include "mfree/galerkin/exact_elasticity.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
@@ -54,20 +55,39 @@ struct ElasticitySettings {
   std::ostream* progress = nullptr;     ///< where to report each finished stage, if anywhere
 };
 
-struct ElasticityResult {
+/// What every solve on the clouds shares: nodes and their RK functions, the domain
+/// quadrature with its (corrected) gradients, the boundary Gauss points.
+struct Discretisation {
   std::vector<Vec2> nodes;
   std::unique_ptr<RKShapeFunctions> trial;
   GalerkinQuadrature quadrature;
-  Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
-  StageTimer timer;
+  std::vector<Vec2> test_gradients;     ///< VCI's test gradients; empty otherwise
+  BoundaryQuadrature boundary;
+  GalerkinQuadrature at_boundary;       ///< trial functions and gradients at boundary's points
+  Consistency consistency = Consistency::none;  ///< the correction applied
   double consistency_before = 0.0;      ///< consistency defect of the gradients, relative
   double consistency_after = 0.0;
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
+
+  [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }
+  [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
+  /// u^h = sum phi_I d_I at arbitrary points.
+  [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const;
+};
+
+/// The stages clouds, shape functions, weights and projection, consistency, timed on timer.
+Discretisation discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer);
+
+struct ElasticityResult : Discretisation {
+  Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
+  StageTimer timer;
   SolverKind solver = SolverKind::cholmod;
   std::optional<ElasticErrors> errors;
 
   /// u^h at arbitrary points.
-  [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points) const;
+  [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points) const {
+    return Discretisation::displacement(points, coefficients);
+  }
 };
 
 /// Runs the stages; errors against `exact` when given (independent Gauss cells of h/2).

@@ -13,30 +13,19 @@
 // RK functions, not nodal displacements: u^h(x) = sum_I phi_I(x) d_I.
 //
 // Boundary parts: each boundary segment takes the first condition whose region box holds
-// its midpoint; segments in no region are traction free.
+// its midpoint; segments in no region are traction free. The system is the total-Lagrangian
+// one (total_lagrangian.hpp) with the small-strain law, linearised at d = 0: one assembly
+// path for both.
 
 #include <functional>
-#include <string>
 #include <vector>
 
-#include "mfree/galerkin/boundary_quadrature.hpp"
-#include "mfree/galerkin/galerkin_quadrature.hpp"
-#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/materials/linear_elastic.hpp"
 
 namespace mfree {
 
 using VectorField = std::function<Vec2(const Vec2&)>;
-/// A boundary value at a point x of a segment with outward unit normal n.
-using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n)>;
-
-struct BoundaryCondition {
-  enum class Type { displacement, traction };
-  Type type = Type::traction;
-  Box region;          ///< segments whose midpoint lies in this box
-  BoundaryValue value; ///< ubar(x, n) or tbar(x, n)
-  std::string name;    ///< for messages
-};
 
 struct ElasticityProblem {
   LinearElastic material;
@@ -45,7 +34,6 @@ struct ElasticityProblem {
   double nitsche_beta = 100.0;  ///< penalty beta E / h (dimensionless beta)
   double spacing = 1.0;         ///< h in the penalty: nodal spacing
 };
-
 struct ElasticitySystem {
   SparseMatrix stiffness;  ///< 2N x 2N
   Eigen::VectorXd load;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <string_view>
 
+#include "mfree/materials/finite_strain.hpp"
+
 namespace mfree {
 
 enum class PlaneModel { stress, strain };
@@ -33,6 +35,34 @@ struct LinearElastic {
       d << c * (1.0 - nu), c * nu, 0.0, c * nu, c * (1.0 - nu), 0.0, 0.0, 0.0, c * (1.0 - 2.0 * nu) / 2.0;
     }
     return d;
+  }
+
+  // The same law in the form every material has (finite_strain.hpp): F -> P, A = dP/dF with
+  // eps = sym(F - I) and P = sigma(eps). Not objective: a rigid rotation strains it.
+
+  /// Voigt index (xx, yy, xy) of the tensor component 2 i + J.
+  static constexpr int voigt_of(int t) { return t == 0 ? 0 : t == 3 ? 1 : 2; }
+
+  [[nodiscard]] double energy(const Mat2& f) const {
+    const Eigen::Vector3d e = voigt_strain(f);
+    return 0.5 * e.dot(voigt_tangent() * e);
+  }
+  [[nodiscard]] Mat2 stress(const Mat2& f) const {
+    const Eigen::Vector3d s = voigt_tangent() * voigt_strain(f);
+    Mat2 p;
+    p << s[0], s[2], s[2], s[1];
+    return p;
+  }
+  /// A(2 i + J, 2 k + L) = D(v(iJ), v(kL)): the shear strain gamma = H_xy + H_yx takes both.
+  [[nodiscard]] Tangent tangent(const Mat2&) const {
+    const Eigen::Matrix3d d = voigt_tangent();
+    Tangent a;
+    for (int t = 0; t < 4; ++t)
+      for (int s = 0; s < 4; ++s) a(t, s) = d(voigt_of(t), voigt_of(s));
+    return a;
+  }
+  static Eigen::Vector3d voigt_strain(const Mat2& f) {
+    return {f(0, 0) - 1.0, f(1, 1) - 1.0, f(0, 1) + f(1, 0)};
   }
 
   /// Von Mises stress of a Voigt stress (with sigma_zz = nu (sigma_xx + sigma_yy) in plane strain).

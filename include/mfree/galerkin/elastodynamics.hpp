@@ -1,0 +1,88 @@
+#pragma once
+// Time integration of the total-Lagrangian meshfree equations of motion
+//
+//   M d_tt + f_int(d) + f_c(d) = f_ext(t)      (f_c: Nitsche's terms of the walls)
+//
+// for the coefficients d (u^h = sum phi_I d_I), two schemes:
+//
+//   central_difference  explicit, lumped (row-sum) mass m_I = rho0 sum_K w_K phi_I(X_K),
+//                       every one checked positive. Leapfrog form: v_{n+1/2} = v_{n-1/2} +
+//                       dt a_n, d_{n+1} = d_n + dt v_{n+1/2}. Stable for dt <= 2 / omega_max;
+//                       omega_max^2 = largest eigenvalue of M_L^-1 K(d_0), estimated by power
+//                       iteration on M_L^-1/2 K M_L^-1/2 (critical_time_step()). A requested
+//                       step above that limit is refused; without one, dt = stability_factor x
+//                       the limit.
+//   newmark             implicit average acceleration (beta = 1/4, gamma = 1/2) with the
+//                       consistent mass and Newton in every step on the effective tangent
+//                       K(d) + 4 / dt^2 M (one symbolic factorisation for the whole run).
+//                       Unconditionally stable for linear problems; energy conserving there.
+//
+// Both take dt = end_time / ceil(end_time / requested): steps of equal length that end at
+// end_time. Energy through time: kinetic 1/2 v.M v (the scheme's mass), strain sum_K w_K W(F_K),
+// and the work of the external forces f_ext - f_c (wall reactions included) accumulated by
+// the trapezoidal rule; total = kinetic + strain - work is constant for the exact motion.
+
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
+
+namespace mfree {
+
+enum class TimeScheme { central_difference, newmark };
+std::string_view to_string(TimeScheme s);
+
+struct DynamicsSettings {
+  TimeScheme scheme = TimeScheme::newmark;
+  double density = 1.0;                 ///< rho0
+  double end_time = 0.0;
+  std::optional<double> time_step;      ///< requested dt (required for newmark)
+  double stability_factor = 0.5;        ///< explicit without time_step: dt = factor x limit
+  int energy_every = 1;                 ///< steps between energy records (work is summed every step)
+  NewtonSettings newton;                ///< newmark
+  std::ostream* progress = nullptr;     ///< a line per tenth of the run
+};
+
+struct EnergyRecord {
+  double time = 0.0;
+  double kinetic = 0.0;
+  double strain = 0.0;
+  double external_work = 0.0;
+  [[nodiscard]] double total() const { return kinetic + strain - external_work; }
+};
+
+/// The state handed to the caller after every step (and at t = 0, step 0).
+struct DynamicState {
+  int step = 0;
+  double time = 0.0;
+  const Eigen::VectorXd& d;
+  const Eigen::VectorXd& v;
+};
+
+struct DynamicsResult {
+  double time_step = 0.0;
+  int steps = 0;
+  std::optional<double> stability_limit;  ///< explicit: 2 / omega_max
+  long newton_iterations = 0;             ///< newmark: summed over the steps
+  std::vector<EnergyRecord> energy;
+  Eigen::VectorXd d, v;                   ///< at end_time
+};
+
+/// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0.
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
+                                 const std::function<Vec2(const Vec2&)>& field);
+
+/// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).
+double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d);
+
+/// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0).
+/// Stages "residual", "assembly", "factorisation", "solve", "energy" are timed on timer.
+DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+                                  Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
+                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {});
+
+}  // namespace mfree

@@ -1,0 +1,85 @@
+#pragma once
+// Newton–Raphson for the nonlinear systems of the total-Lagrangian solver, and the static
+// solve by load stepping built on it.
+//
+//   newton()        R(d) = 0 from a start d: K(d) delta = -R(d), d += alpha delta, with a
+//                   line search on the energy slope delta . R(d + alpha delta) (secant steps
+//                   until it is below 0.8 of its value at alpha = 0; a trial state with J <= 0
+//                   halves alpha). Converged when |R| <= tolerance |R_0| (R_0: the
+//                   residual at the start) or |R| <= absolute_tolerance. The tangent's
+//                   pattern is analysed once by the caller's SparseSolver; each iteration
+//                   factorises numerically.
+//   solve_static()  load factors 0 < lambda_1 < ... < 1 scale every load and prescribed
+//                   displacement (LoadState::factor). A step whose Newton fails (no
+//                   convergence, no decrease, J <= 0) is cut back: the increment is halved
+//                   from the last converged state, up to max_cutbacks times in a row, then
+//                   the solve gives up with a NumericalError saying where and why.
+//
+// Observed order of convergence (seed 004): p_k = log(r_{k+1} / r_k) / log(r_k / r_{k-1}),
+// 2 for Newton with an exact tangent near the solution. The log prints it per iteration.
+
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <vector>
+
+#include "mfree/core/stage_timer.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
+
+namespace mfree {
+
+struct NewtonSettings {
+  double tolerance = 1e-10;            ///< on |R| / |R_0|
+  double absolute_tolerance = 0.0;     ///< on |R|, for steps that start at equilibrium
+  int max_iterations = 25;
+  bool line_search = true;
+  int max_halvings = 8;                ///< line search: trials after the full step
+  std::vector<double> load_factors;    ///< static: increasing, ending at 1 (empty: uniform steps)
+  int load_steps = 10;                 ///< static: uniform steps when load_factors is empty
+  int max_cutbacks = 8;                ///< static: consecutive halvings of a failed increment
+  std::ostream* log = nullptr;         ///< one line per iteration, if set
+};
+
+struct NewtonIterate {
+  int iteration = 0;
+  double residual = 0.0;  ///< |R| after the iteration (iteration 0: at the start)
+  double alpha = 1.0;     ///< line-search step taken
+  double order = 0.0;     ///< observed order p_k (0 where not defined)
+};
+
+struct NewtonOutcome {
+  bool converged = false;
+  std::string failure;  ///< why not, when not
+  std::vector<NewtonIterate> history;
+};
+
+/// The equations of one Newton solve.
+struct NonlinearSystem {
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> residual;  ///< may throw NumericalError (J <= 0)
+  std::function<void(const Eigen::VectorXd&, SparseMatrix&)> tangent;
+};
+
+/// Newton from d (updated in place); k holds the tangent's pattern, solver has analysed it.
+/// Stages "assembly", "factorisation", "solve", "residual" are timed on `timer`.
+NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, SparseSolver& solver,
+                     const NewtonSettings& settings, StageTimer& timer);
+
+struct LoadStepRecord {
+  double factor = 0.0;
+  int cutbacks = 0;  ///< failed attempts before this step converged
+  std::vector<NewtonIterate> history;
+};
+
+struct StaticSolution {
+  Eigen::VectorXd coefficients;
+  std::vector<LoadStepRecord> steps;
+  SolverKind solver = SolverKind::cholmod;
+};
+
+/// Solves the static problem of `model` by load stepping; on_step(record, d) after every
+/// converged load step.
+StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& settings, StageTimer& timer,
+                            const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step = {});
+
+}  // namespace mfree

@@ -1,0 +1,138 @@
+#pragma once
+// Total-Lagrangian meshfree solid mechanics (seed 003; SPEC section 5): the discrete forces
+// and tangents of
+//
+//   int P(F) : grad_X v  +  N(u; v)  =  int rho0 b . v + int_Gt tbar . v     (statics)
+//
+// on the reference configuration, with F = I + grad_X u^h. At quadrature point K of the
+// GalerkinQuadrature (projected, integration-consistent gradients g_I = gradbar phi_I(X_K)):
+//
+//   F_K = I + sum_I d_I g_I^T,   f_int,I = sum_K w_K P(F_K) t_I,
+//   K_(I i)(J k) = sum_K w_K t_I,M A_iMkL(F_K) g_J,L
+//
+// (t_I the test gradients: g_I, or VCI's). Essential conditions by Nitsche's method on the
+// reference boundary Gamma_u, for the components picked by Pi (I for `displacement`, N N^T
+// for `slip`: a wall that only stops the normal component):
+//
+//   N(u; v) = - int Pi v . P(F) N  -  int Pi (C : grad v) N . (u - ubar)
+//             + (beta E / h) int Pi v . (u - ubar),
+//
+// C = A(I) the reference tangent. The first term is the traction of the current state, so the
+// form is consistent at any deformation; the second, with the constant C, makes it the
+// symmetric Nitsche form of SPEC section 4 for small strain (one Newton step then solves a
+// linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is
+// not symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
+//
+// Loads: `LoadState` scales body force, tractions and prescribed displacements by `factor`
+// (the load factor of a static solve) and evaluates the body force at `time` (dynamics).
+// Units: as the material's E; forces per unit thickness.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mfree/galerkin/boundary_quadrature.hpp"
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/linalg/node_pattern.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/materials/material.hpp"
+
+namespace mfree {
+
+/// A boundary value at a point X of a segment with outward unit normal N.
+using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n)>;
+/// Body force per reference volume (rho0 b) at reference position X and time t.
+using BodyForce = std::function<Vec2(const Vec2& x, double t)>;
+
+struct BoundaryCondition {
+  enum class Type {
+    displacement,  ///< u = ubar
+    slip,          ///< u . N = ubar . N, tangential traction free
+    traction,      ///< P N = tbar
+  };
+  Type type = Type::traction;
+  Box region;          ///< segments whose midpoint lies in this box
+  BoundaryValue value; ///< ubar(X, N) or tbar(X, N)
+  std::string name;    ///< for messages
+};
+
+struct LoadState {
+  double factor = 1.0;  ///< multiplies every load and prescribed displacement
+  double time = 0.0;    ///< time of the body force
+};
+
+struct SolidProblem {
+  Material material = LinearElastic{};
+  BodyForce body_force;                       ///< empty: none
+  std::vector<BoundaryCondition> conditions;  ///< each segment takes the first whose box holds its midpoint
+  double nitsche_beta = 100.0;                ///< dimensionless beta of the penalty beta E / h
+  double penalty_modulus = 1.0;               ///< E of the penalty
+  double spacing = 1.0;                       ///< h of the penalty: nodal spacing
+};
+
+class TotalLagrangian {
+ public:
+  /// Views q, test gradients (same layout as q.grad; null: q.grad), bq and at_boundary (the
+  /// trial functions with gradients at bq's points): they must outlive this object.
+  TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes, const GalerkinQuadrature& q,
+                  const std::vector<Vec2>* test_gradients, const BoundaryQuadrature& bq,
+                  const GalerkinQuadrature& at_boundary);
+
+  [[nodiscard]] Index nodes() const { return nodes_; }
+  [[nodiscard]] Eigen::Index dofs() const { return 2 * Eigen::Index{nodes_}; }
+  [[nodiscard]] const SolidProblem& problem() const { return problem_; }
+  [[nodiscard]] const GalerkinQuadrature& quadrature() const { return q_; }
+  /// True when the tangent is symmetric at every state (CHOLMOD applies).
+  [[nodiscard]] bool symmetric() const { return symmetric_; }
+  /// A 2N x 2N matrix with the tangent's sparsity, values zero: tangent(), mass() and
+  /// their sums share it.
+  [[nodiscard]] SparseMatrix zero_matrix() const { return block_matrix(pattern_, 2); }
+
+  /// F_K = I + sum_I d_I g_I^T at quadrature point k.
+  [[nodiscard]] Mat2 deformation_gradient(Index k, const Eigen::VectorXd& d) const;
+  /// sum_K w_K P(F_K) t_I: the domain term. Throws NumericalError when J <= 0 somewhere.
+  [[nodiscard]] Eigen::VectorXd internal_force(const Eigen::VectorXd& d) const;
+  /// Nitsche's terms N(u; phi_I e_i) of the essential conditions.
+  [[nodiscard]] Eigen::VectorXd constraint_force(const Eigen::VectorXd& d, const LoadState& load) const;
+  /// Body force and tractions against phi_I.
+  [[nodiscard]] Eigen::VectorXd external_force(const LoadState& load) const;
+  /// Overwrites k's values (k from zero_matrix()) with the tangent of internal_force +
+  /// constraint_force at d.
+  void tangent(const Eigen::VectorXd& d, SparseMatrix& k) const;
+  /// sum_K w_K W(F_K).
+  [[nodiscard]] double strain_energy(const Eigen::VectorXd& d) const;
+
+  /// Consistent mass sum_K w_K rho0 phi_I phi_J (times I_2), on the tangent's pattern (so
+  /// M and K add value by value).
+  [[nodiscard]] SparseMatrix mass_matrix(double density) const;
+  /// Row-sum lumped mass m_I = rho0 sum_K w_K phi_I(X_K) (per DOF: m_I twice). Throws
+  /// NumericalError naming the node when one is not positive.
+  [[nodiscard]] Eigen::VectorXd lumped_mass(double density, const std::vector<Vec2>& node_positions) const;
+
+ private:
+  struct NitschePoint {
+    Index point;            ///< index into bq / at_boundary
+    Mat2 projection;        ///< Pi
+    const BoundaryCondition* condition;
+  };
+  /// (C : grad(phi_I e_i)) N as the columns i of a 2 x 2 matrix, for each function of a row.
+  std::vector<Mat2> reference_tractions(const NitschePoint& p) const;
+
+  SolidProblem problem_;
+  Index nodes_;
+  const GalerkinQuadrature& q_;
+  const std::vector<Vec2>& test_;
+  const BoundaryQuadrature& bq_;
+  const GalerkinQuadrature& at_boundary_;
+  std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
+  std::vector<NitschePoint> nitsche_;
+  std::vector<Index> boundary_offsets_{0}, boundary_nodes_;
+  RowIncidence domain_rows_;
+  RowIncidence boundary_rows_;
+  NodePattern pattern_;
+  Tangent reference_tangent_;
+  bool domain_symmetric_ = true;  ///< test = trial gradients
+  bool symmetric_ = true;
+};
+
+}  // namespace mfree

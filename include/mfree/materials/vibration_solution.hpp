@@ -1,0 +1,38 @@
+#pragma once
+// The 2D axis-aligned vibration problem (SPEC section 6; seed 000 after Sadeghirad et al.
+// 2011): a manufactured large-deformation solution of rho0 u_tt = Div P + rho0 b for the
+// compressible Neo-Hookean material on the square [0, L]^2, with c = sqrt(E / rho0):
+//
+//   u_x = A sin(2 pi X / L) sin(c pi t / L),   u_y = A sin(2 pi Y / L) sin(c pi t / L + pi)
+//
+// and the body force of SPEC section 6 (seed 000's eq. (42) with its missing square on pi
+// restored), evaluated at reference positions. F is diagonal, so the walls X, Y in {0, L}
+// carry no shear traction and the normal displacement vanishes there: slip walls. The period
+// is 2 L / c. Units: SI as given (m, s, Pa, kg/m^3).
+
+#include "mfree/core/types.hpp"
+#include "mfree/materials/neo_hookean.hpp"
+
+namespace mfree {
+
+struct AxisAlignedVibration {
+  double amplitude = 0.05;  ///< A [m]
+  double length = 1.0;      ///< L [m]
+  double youngs_modulus = 1e7;
+  double poisson_ratio = 0.3;
+  double density = 1000.0;  ///< rho0
+
+  [[nodiscard]] double wave_speed() const;  ///< c = sqrt(E / rho0)
+  [[nodiscard]] double period() const { return 2.0 * length / wave_speed(); }
+  [[nodiscard]] NeoHookean material() const { return {lame_constants(youngs_modulus, poisson_ratio)}; }
+
+  [[nodiscard]] Vec2 displacement(const Vec2& x, double t) const;
+  [[nodiscard]] Vec2 velocity(const Vec2& x, double t) const;
+  [[nodiscard]] Vec2 acceleration(const Vec2& x, double t) const;
+  [[nodiscard]] Mat2 deformation_gradient(const Vec2& x, double t) const;
+  [[nodiscard]] Mat2 cauchy_stress(const Vec2& x, double t) const;
+  /// b (force per unit mass) with rho0 u_tt = Div P + rho0 b.
+  [[nodiscard]] Vec2 body_force(const Vec2& x, double t) const;
+};
+
+}  // namespace mfree

@@ -1,0 +1,180 @@
+#include "mfree/galerkin/elastodynamics.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <ostream>
+#include <random>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+std::string_view to_string(TimeScheme s) { return s == TimeScheme::newmark ? "newmark" : "central_difference"; }
+
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
+                                 const std::function<Vec2(const Vec2&)>& field) {
+  const GalerkinQuadrature& q = model.quadrature();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(model.dofs());
+  for (Index k = 0; k < q.size(); ++k) {
+    const Vec2 f = density * q.weights[k] * field(q.points[k]);
+    for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
+  }
+  const SparseMatrix m = model.mass_matrix(density);
+  SparseSolver solver(SolverKind::cholmod);
+  solver.analyze(m);
+  solver.factorize(m);
+  return solver.solve(rhs);
+}
+
+double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d) {
+  SparseMatrix k = model.zero_matrix();
+  model.tangent(d, k);
+  const Eigen::VectorXd scale = lumped.cwiseSqrt().cwiseInverse();
+  // Power iteration on S = M^-1/2 K M^-1/2 from a seeded random start: the Rayleigh
+  // quotient rises to omega_max^2. It stops when it changes by less than 1e-4 relative.
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd x(lumped.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = u(rng);
+  x.normalize();
+  double lambda = 0.0;
+  for (int it = 0; it < 2000; ++it) {
+    const Eigen::VectorXd y = scale.cwiseProduct(k * scale.cwiseProduct(x));
+    const double next = x.dot(y);
+    x = y.normalized();
+    if (it > 20 && std::abs(next - lambda) <= 1e-4 * std::abs(next)) {
+      lambda = next;
+      break;
+    }
+    lambda = next;
+  }
+  if (!(lambda > 0.0)) throw NumericalError("stability limit: the tangent has no positive eigenvalue");
+  return 2.0 / std::sqrt(lambda);
+}
+
+namespace {
+
+/// dt = end / ceil(end / requested).
+std::pair<double, int> equal_steps(double end_time, double requested) {
+  const int n = std::max(1, static_cast<int>(std::ceil(end_time / requested - 1e-9)));
+  return {end_time / n, n};
+}
+
+}  // namespace
+
+DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+                                  Eigen::VectorXd d, Eigen::VectorXd v, const DynamicsSettings& s,
+                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step) {
+  if (!(s.end_time > 0.0)) throw InputError(fmt::format("dynamics: end_time must be positive, got {}", s.end_time));
+  DynamicsResult out;
+  const bool explicit_scheme = s.scheme == TimeScheme::central_difference;
+
+  // Masses and the step.
+  Eigen::VectorXd lumped;
+  SparseMatrix mass;
+  double dt = 0.0;
+  if (explicit_scheme) {
+    lumped = model.lumped_mass(s.density, node_positions);
+    out.stability_limit = timer.time("stability limit", [&] { return critical_time_step(model, lumped, d); });
+    if (s.time_step && *s.time_step > *out.stability_limit)
+      throw InputError(fmt::format(
+          "dynamics: time_step {:.4e} s is above the stability limit {:.4e} s of the central-difference "
+          "scheme (2 / omega_max, omega_max^2 the largest eigenvalue of M_L^-1 K by power iteration); use "
+          "a smaller time_step or the newmark scheme",
+          *s.time_step, *out.stability_limit));
+    std::tie(dt, out.steps) = equal_steps(s.end_time, s.time_step.value_or(s.stability_factor * *out.stability_limit));
+  } else {
+    if (!s.time_step) throw InputError("dynamics: the newmark scheme needs a time_step");
+    mass = model.mass_matrix(s.density);
+    std::tie(dt, out.steps) = equal_steps(s.end_time, *s.time_step);
+  }
+  out.time_step = dt;
+
+  // Forces: g = f_ext - f_c (the work term), and the acceleration they and f_int give.
+  const auto applied = [&](const Eigen::VectorXd& x, double t) {
+    return timer.time("residual", [&] { return Eigen::VectorXd(model.external_force({1.0, t}) - model.constraint_force(x, {1.0, t})); });
+  };
+  const auto internal = [&](const Eigen::VectorXd& x) { return timer.time("residual", [&] { return model.internal_force(x); }); };
+  Eigen::VectorXd g = applied(d, 0.0);
+  Eigen::VectorXd a;
+  SparseSolver mass_solver(SolverKind::cholmod);
+  if (explicit_scheme) {
+    a = (g - internal(d)).cwiseQuotient(lumped);
+  } else {
+    mass_solver.analyze(mass);
+    mass_solver.factorize(mass);
+    a = mass_solver.solve(g - internal(d));
+  }
+  const auto kinetic = [&](const Eigen::VectorXd& vel) {
+    return 0.5 * (explicit_scheme ? vel.dot(lumped.cwiseProduct(vel)) : vel.dot(mass * vel));
+  };
+  double work = 0.0;
+  const auto record = [&](int step, double t) {
+    if (on_step) on_step({step, t, d, v});
+    if (step % s.energy_every == 0 || step == out.steps)
+      timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work}); });
+  };
+  record(0, 0.0);
+
+  // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once.
+  SparseSolver solver(model.symmetric() ? SolverKind::cholmod : SolverKind::umfpack);
+  SparseMatrix k;
+  if (!explicit_scheme) {
+    k = model.zero_matrix();
+    timer.time("factorisation", [&] { solver.analyze(k); });
+  }
+  const double c = 4.0 / (dt * dt);
+
+  Eigen::VectorXd v_half = v + 0.5 * dt * a;
+  for (int n = 1; n <= out.steps; ++n) {
+    const double t = n * dt;
+    const Eigen::VectorXd d_old = d;
+    if (explicit_scheme) {
+      d += dt * v_half;
+      a = (applied(d, t) - internal(d)).cwiseQuotient(lumped);
+      v = v_half + 0.5 * dt * a;
+      v_half = v + 0.5 * dt * a;
+      if (!std::isfinite(d.squaredNorm()))
+        throw NumericalError(fmt::format("central differences diverged at step {} (t = {:.4e} s)", n, t));
+    } else {
+      const Eigen::VectorXd base = d + dt * v + 0.25 * dt * dt * a;  // d_n+1 = base + dt^2/4 a_n+1
+      const Eigen::VectorXd f_ext = model.external_force({1.0, t});
+      const NonlinearSystem system{
+          [&](const Eigen::VectorXd& x) {
+            const Eigen::VectorXd acc = c * (x - base);
+            return Eigen::VectorXd(mass * acc + model.internal_force(x) + model.constraint_force(x, {1.0, t}) - f_ext);
+          },
+          [&](const Eigen::VectorXd& x, SparseMatrix& kt) {
+            model.tangent(x, kt);
+            Eigen::Map<Eigen::VectorXd>(kt.valuePtr(), kt.nonZeros()) +=
+                c * Eigen::Map<const Eigen::VectorXd>(mass.valuePtr(), mass.nonZeros());
+          }};
+      NewtonSettings ns = s.newton;
+      // A good predictor starts close to the solution: judge |R| against the step's forces.
+      ns.absolute_tolerance = std::max(ns.absolute_tolerance, ns.tolerance * (f_ext.norm() + (mass * a).norm()));
+      Eigen::VectorXd x = base + 0.25 * dt * dt * a;  // predictor: a_n+1 = a_n
+      const NewtonOutcome o = newton(system, x, k, solver, ns, timer);
+      if (!o.converged)
+        throw NumericalError(fmt::format("Newmark step {} (t = {:.4e} s): Newton failed: {}. Use a smaller time_step.",
+                                         n, t, o.failure));
+      out.newton_iterations += static_cast<long>(o.history.size()) - 1;
+      const Eigen::VectorXd a_new = c * (x - base);
+      v += 0.5 * dt * (a + a_new);
+      a = a_new;
+      d = std::move(x);
+    }
+    const Eigen::VectorXd g_new = applied(d, t);
+    work += 0.5 * (g + g_new).dot(d - d_old);
+    g = g_new;
+    record(n, t);
+    if (s.progress && (n % std::max(1, out.steps / 10) == 0 || n == out.steps))
+      *s.progress << fmt::format("    step {}/{}  t = {:.5f} s  energy {:.6e}\n", n, out.steps, t,
+                                 out.energy.back().total())
+                  << std::flush;
+  }
+  out.d = std::move(d);
+  out.v = std::move(v);
+  return out;
+}
+
+}  // namespace mfree

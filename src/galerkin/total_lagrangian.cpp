@@ -1,0 +1,308 @@
+#include "mfree/galerkin/total_lagrangian.hpp"
+
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// The condition of every boundary segment: the first whose region holds its midpoint.
+std::vector<const BoundaryCondition*> segment_conditions(const SolidProblem& p, const Domain& domain) {
+  const auto& segments = domain.boundary();
+  std::vector<const BoundaryCondition*> out(segments.size(), nullptr);
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const Vec2 mid = 0.5 * (segments[s].a + segments[s].b);
+    for (const BoundaryCondition& c : p.conditions)
+      if (c.region.contains(mid)) {
+        out[s] = &c;
+        break;
+      }
+  }
+  return out;
+}
+
+bool is_essential(const BoundaryCondition* c) { return c && c->type != BoundaryCondition::Type::traction; }
+
+/// Adds blocks sum over rows K of a 2 x 2 kernel to a block matrix on `pattern`, column by
+/// column: node J's two columns are written only by the thread that owns J, with the rows
+/// holding J in increasing order, so no two threads touch one value and the sums are the
+/// same on any thread count. column(k, slot_j) prepares what row K contributes to column J;
+/// it returns block(slot_i) -> the 2 x 2 block (I, J). With symmetric = true only the blocks
+/// I >= J are summed (rows are sorted: from J's own slot on) and the others copied,
+/// K_IJ = K_JI^T: half the work, and the matrix symmetric to the last bit.
+template <class Column>
+void add_column_blocks(const GalerkinQuadrature& q, const RowIncidence& rows, const NodePattern& pattern,
+                       bool symmetric, double* values, Column&& column) {
+  const Index n = pattern.size();
+  parallel_ranges(n, [&](int, Index begin, Index end) {
+    std::vector<Index> at(n);  // at[I] = p with P_J[p] = I, for the current J
+    for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> p = pattern.neighbours(j);
+      for (std::size_t a = 0; a < p.size(); ++a) at[p[a]] = static_cast<Index>(a);
+      // Column 2J holds (2I, 2I + 1) at 2p, 2p + 1 for I = P_J[p]; column 2J + 1 follows it.
+      double* col0 = values + 4 * pattern.offsets[j];
+      double* col1 = col0 + 2 * p.size();
+      const std::span<const Index> ks = rows.rows_of(j), slots = rows.slots_of(j);
+      for (std::size_t e = 0; e < ks.size(); ++e) {
+        const Index k = ks[e];
+        const auto block = column(k, slots[e]);
+        for (Index s = symmetric ? slots[e] : q.row_begin(k); s < q.row_end(k); ++s) {
+          const Eigen::Matrix2d b = block(s);
+          const std::int64_t a = 2 * std::int64_t{at[q.nodes[s]]};
+          col0[a] += b(0, 0);
+          col0[a + 1] += b(1, 0);
+          col1[a] += b(0, 1);
+          col1[a + 1] += b(1, 1);
+        }
+      }
+    }
+  });
+  if (!symmetric) return;
+  // Upper blocks I < J of column J from the lower blocks J > I of column I: reads and writes
+  // never meet.
+  parallel_blocks(n, 1024, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> p = pattern.neighbours(j);
+      const std::int64_t size = static_cast<std::int64_t>(p.size());
+      double* col0 = values + 4 * pattern.offsets[j];
+      double* col1 = col0 + 2 * size;
+      std::int64_t a = 0;
+      for (; a < size && p[a] < j; ++a) {
+        // K_IJ(r, c) = K_JI(c, r), entry (2J + c, 2I + r) in column 2I + r.
+        const Index i = p[a];
+        const std::int64_t from = block_slot(pattern, 2, j, i, 0, 0);
+        const std::int64_t column = 2 * (pattern.offsets[i + 1] - pattern.offsets[i]);
+        for (int r = 0; r < 2; ++r) {
+          col0[2 * a + r] = values[from + r * column];
+          col1[2 * a + r] = values[from + r * column + 1];
+        }
+      }
+      // The diagonal block (p[a] = J, present whenever a row holds J): K_JJ(0, 1) = K_JJ(1, 0).
+      if (a < size) col1[2 * a] = col0[2 * a + 1];
+    }
+  });
+}
+
+/// out_I = sum over the rows K holding I of value(k, slot): a gather per node, in parallel
+/// and in a fixed order.
+template <class Value>
+Eigen::VectorXd gather_nodes(const RowIncidence& rows, Value&& value) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(2 * Eigen::Index{rows.node_count()});
+  parallel_blocks(rows.node_count(), 512, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) {
+      Vec2 f = Vec2::Zero();
+      const std::span<const Index> ks = rows.rows_of(i), slots = rows.slots_of(i);
+      for (std::size_t e = 0; e < ks.size(); ++e) f += value(ks[e], slots[e]);
+      out.segment<2>(2 * i) = f;
+    }
+  });
+  return out;
+}
+
+/// (A : (e_k g^T)) N for k = 0, 1 as the columns of a 2 x 2 matrix: the traction change of
+/// the increment phi e_k with gradient g.
+Mat2 traction_operator(const Tangent& a, const Vec2& g, const Vec2& n) {
+  Mat2 t = Mat2::Zero();
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k)
+      for (int m = 0; m < 2; ++m)
+        for (int l = 0; l < 2; ++l) t(i, k) += a(tensor_index(i, m), tensor_index(k, l)) * g[l] * n[m];
+  return t;
+}
+
+}  // namespace
+
+TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes,
+                                 const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
+                                 const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary)
+    : problem_(std::move(problem)),
+      nodes_(nodes),
+      q_(q),
+      test_(test_gradients ? *test_gradients : q.grad),
+      bq_(bq),
+      at_boundary_(at_boundary),
+      domain_rows_(q.offsets, q.nodes, nodes),
+      boundary_rows_(boundary_offsets_, boundary_nodes_, nodes) {
+  if (!(problem_.nitsche_beta > 0.0))
+    throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
+  const std::vector<const BoundaryCondition*> condition = segment_conditions(problem_, domain);
+  traction_of_point_.assign(bq.size(), nullptr);
+  for (Index p = 0; p < bq.size(); ++p) {
+    const BoundaryCondition* c = condition[bq.segment[p]];
+    if (!c) continue;
+    if (!is_essential(c)) {
+      traction_of_point_[p] = c;
+      continue;
+    }
+    const Vec2& n = bq.normals[p];
+    nitsche_.push_back({p, c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(), c});
+    // Nitsche's terms couple the nodes of a boundary point's row (outside the domain pattern
+    // when quadrature rows are narrower than the supports, as with Gauss cells).
+    boundary_nodes_.insert(boundary_nodes_.end(), at_boundary.nodes.begin() + at_boundary.row_begin(p),
+                           at_boundary.nodes.begin() + at_boundary.row_end(p));
+    boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
+  }
+  boundary_rows_ = RowIncidence(boundary_offsets_, boundary_nodes_, nodes);
+  const RowIncidence* const sets[] = {&domain_rows_, &boundary_rows_};
+  pattern_ = node_pattern(sets);
+  reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
+  domain_symmetric_ = test_gradients == nullptr;
+  symmetric_ = domain_symmetric_ && (nitsche_.empty() || is_linear(problem_.material));
+}
+
+Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) const {
+  Mat2 f = Mat2::Identity();
+  for (Index s = q_.row_begin(k); s < q_.row_end(k); ++s) f += d.segment<2>(2 * q_.nodes[s]) * q_.grad[s].transpose();
+  return f;
+}
+
+Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const {
+  std::vector<Mat2> wp(q_.size());
+  parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
+    for (Index k = begin; k < end; ++k) wp[k] = q_.weights[k] * stress(problem_.material, deformation_gradient(k, d));
+  });
+  return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
+}
+
+std::vector<Mat2> TotalLagrangian::reference_tractions(const NitschePoint& p) const {
+  std::vector<Mat2> t;
+  for (Index s = at_boundary_.row_begin(p.point); s < at_boundary_.row_end(p.point); ++s)
+    t.push_back(traction_operator(reference_tangent_, at_boundary_.grad[s], bq_.normals[p.point]));
+  return t;
+}
+
+Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, const LoadState& load) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
+  const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
+  for (const NitschePoint& p : nitsche_) {
+    const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point);
+    Mat2 f_at = Mat2::Identity();
+    Vec2 u = Vec2::Zero();
+    for (Index s = begin; s < end; ++s) {
+      const auto di = d.segment<2>(2 * at_boundary_.nodes[s]);
+      f_at += di * at_boundary_.grad[s].transpose();
+      u += at_boundary_.phi[s] * di;
+    }
+    const Vec2& n = bq_.normals[p.point];
+    const double w = bq_.weights[p.point];
+    const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n));
+    const Vec2 traction = p.projection * (stress(problem_.material, f_at) * n);
+    const std::vector<Mat2> t0 = reference_tractions(p);
+    for (Index s = begin; s < end; ++s) {
+      const double phi = at_boundary_.phi[s];
+      f.segment<2>(2 * at_boundary_.nodes[s]) += w * (-phi * traction - t0[s - begin].transpose() * gap + penalty * phi * gap);
+    }
+  }
+  return f;
+}
+
+Eigen::VectorXd TotalLagrangian::external_force(const LoadState& load) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
+  if (problem_.body_force) {
+    std::vector<Vec2> wb(q_.size());
+    parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
+      for (Index k = begin; k < end; ++k) wb[k] = q_.weights[k] * load.factor * problem_.body_force(q_.points[k], load.time);
+    });
+    f = gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return q_.phi[s] * wb[k]; });
+  }
+  for (Index p = 0; p < bq_.size(); ++p) {
+    const BoundaryCondition* c = traction_of_point_[p];
+    if (!c) continue;
+    const Vec2 t = bq_.weights[p] * load.factor * c->value(bq_.points[p], bq_.normals[p]);
+    for (Index s = at_boundary_.row_begin(p); s < at_boundary_.row_end(p); ++s)
+      f.segment<2>(2 * at_boundary_.nodes[s]) += at_boundary_.phi[s] * t;
+  }
+  return f;
+}
+
+void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
+  std::fill(k.valuePtr(), k.valuePtr() + k.nonZeros(), 0.0);
+  double* values = k.valuePtr();
+
+  // Domain: w_K A(F_K), then K_IJ(i, k) = t_I,M [w A_iMkL g_J,L].
+  std::vector<Tangent> wa(q_.size());
+  const bool linear = is_linear(problem_.material);
+  parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p)
+      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : mfree::tangent(problem_.material, deformation_gradient(p, d)));
+  });
+  add_column_blocks(q_, domain_rows_, pattern_, domain_symmetric_, values, [&](Index kk, Index slot_j) {
+    const Vec2& g = q_.grad[slot_j];
+    Eigen::Matrix<double, 4, 2> ag;  // ag(2 i + M, k) = w A_iMkL g_L
+    for (int c = 0; c < 2; ++c) ag.col(c) = wa[kk].col(tensor_index(c, 0)) * g.x() + wa[kk].col(tensor_index(c, 1)) * g.y();
+    return [this, ag](Index s) {
+      const Vec2& t = test_[s];
+      Eigen::Matrix2d b;
+      b.row(0) = t.x() * ag.row(tensor_index(0, 0)) + t.y() * ag.row(tensor_index(0, 1));
+      b.row(1) = t.x() * ag.row(tensor_index(1, 0)) + t.y() * ag.row(tensor_index(1, 1));
+      return b;
+    };
+  });
+
+  // Nitsche: K_IJ = w [ -phi_I Pi T_J(F) - T0_I^T Pi phi_J + penalty phi_I phi_J Pi ].
+  const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
+  for (const NitschePoint& p : nitsche_) {
+    const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
+    Mat2 f_at = Mat2::Identity();
+    for (Index s = begin; s < end; ++s) f_at += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].transpose();
+    const Tangent a = linear ? reference_tangent_ : mfree::tangent(problem_.material, f_at);
+    const Vec2& n = bq_.normals[p.point];
+    const double w = bq_.weights[p.point];
+    const std::vector<Mat2> t0 = reference_tractions(p);
+    std::vector<Mat2> t(m);
+    for (Index b = 0; b < m; ++b) t[b] = p.projection * traction_operator(a, at_boundary_.grad[begin + b], n);
+    for (Index ai = 0; ai < m; ++ai) {
+      const Index i = at_boundary_.nodes[begin + ai];
+      const double phi_i = at_boundary_.phi[begin + ai];
+      const Mat2 t0p = t0[ai].transpose() * p.projection;
+      for (Index bj = 0; bj < m; ++bj) {
+        const Index j = at_boundary_.nodes[begin + bj];
+        const double phi_j = at_boundary_.phi[begin + bj];
+        const Mat2 kij = w * (-phi_i * t[bj] - phi_j * t0p + penalty * phi_i * phi_j * p.projection);
+        for (int r = 0; r < 2; ++r)
+          for (int c = 0; c < 2; ++c) values[block_slot(pattern_, 2, i, j, r, c)] += kij(r, c);
+      }
+    }
+  }
+}
+
+double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
+  std::vector<double> partial(thread_count(), 0.0);
+  parallel_ranges(q_.size(), [&](int thread, Index begin, Index end) {
+    double sum = 0.0;
+    for (Index k = begin; k < end; ++k) sum += q_.weights[k] * energy(problem_.material, deformation_gradient(k, d));
+    partial[thread] = sum;
+  });
+  double total = 0.0;
+  for (double s : partial) total += s;
+  return total;
+}
+
+SparseMatrix TotalLagrangian::mass_matrix(double density) const {
+  // The mass couples only nodes sharing a domain row: blocks rho0 w phi_I phi_J I_2.
+  SparseMatrix m = zero_matrix();
+  add_column_blocks(q_, domain_rows_, pattern_, true, m.valuePtr(), [&](Index k, Index slot_j) {
+    const double c = density * q_.weights[k] * q_.phi[slot_j];
+    return [this, c](Index s) -> Eigen::Matrix2d { return c * q_.phi[s] * Eigen::Matrix2d::Identity(); };
+  });
+  return m;
+}
+
+Eigen::VectorXd TotalLagrangian::lumped_mass(double density, const std::vector<Vec2>& node_positions) const {
+  const Eigen::VectorXd m = gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 {
+    return Vec2::Constant(density * q_.weights[k] * q_.phi[s]);
+  });
+  for (Index i = 0; i < nodes_; ++i)
+    if (!(m[2 * i] > 0.0))
+      throw NumericalError(fmt::format(
+          "lumped mass of node {} at ({:.6g}, {:.6g}) is {:.3e}, not positive: the row-sum mass needs "
+          "shape functions with a positive integral (use linear RK, or the implicit scheme with the "
+          "consistent mass)",
+          i, node_positions[i].x(), node_positions[i].y(), m[2 * i]));
+  return m;
+}
+
+}  // namespace mfree

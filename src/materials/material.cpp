@@ -1,0 +1,38 @@
+#include "mfree/materials/material.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+Mat2 cauchy_stress(const Material& m, const Mat2& f) {
+  const Mat2 p = stress(m, f);
+  if (is_linear(m)) return p;
+  return p * f.transpose() / f.determinant();
+}
+
+std::string_view name(const Material& m) {
+  if (const auto* l = std::get_if<LinearElastic>(&m)) return to_string(l->model);
+  return std::holds_alternative<NeoHookean>(m) ? "neo_hookean" : "st_venant_kirchhoff";
+}
+
+Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio) {
+  LinearElastic linear{youngs_modulus, poisson_ratio, model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain};
+  linear.validate();
+  if (model == "plane_stress" || model == "plane_strain") return linear;
+  const Lame lame = lame_constants(youngs_modulus, poisson_ratio);
+  if (model == "neo_hookean") return NeoHookean{lame};
+  if (model == "st_venant_kirchhoff") return StVenantKirchhoff{lame};
+  throw InputError(fmt::format("unknown material model '{}'", model));
+}
+
+double wave_speed(const Material& m, double density) {
+  if (!(density > 0.0)) throw InputError(fmt::format("density must be positive, got {}", density));
+  // The reference tangent's normal component A_xxxx = lambda + 2 mu (plane strain), or
+  // E / (1 - nu^2) in plane stress.
+  return std::sqrt(tangent(m, Mat2::Identity())(0, 0) / density);
+}
+
+}  // namespace mfree
