@@ -12,6 +12,7 @@
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
+#include "mfree/apps/solid_app.hpp"
 
 namespace mfree {
 
@@ -26,6 +27,8 @@ void print_stages(const StageTimer& t) {
 
 int run_elasticity(const std::filesystem::path& path) {
   const ElasticityScene scene = read_elasticity_scene(path, false);
+  if (scene.dynamics) return run_dynamics(scene);
+  if (scene.nonlinear()) return run_static(scene);
   const std::optional<ExactElasticity> exact = scene.exact();
   std::cout << fmt::format("mfree run: {} ({} thread(s))\n", path.string(), thread_count());
   ElasticitySettings s = scene.settings;
@@ -60,6 +63,10 @@ int run_elasticity(const std::filesystem::path& path) {
 
 int converge_elasticity(const std::filesystem::path& path) {
   const ElasticityScene scene = read_elasticity_scene(path, true);
+  if (scene.dynamics) return converge_dynamics(scene);
+  if (scene.nonlinear())
+    throw InputError(fmt::format("{}: mfree converge runs linear statics and dynamics; run a Newton scene with mfree run",
+                                 path.string()));
   const StudySettings& st = *scene.study;
   const std::optional<ExactElasticity> exact = scene.exact();
   if (!exact) throw InputError(fmt::format("{}: mfree converge needs an [exact] section", path.string()));

@@ -59,12 +59,19 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
   }
   double norm = *r0;
   for (int it = 1; it <= s.max_iterations; ++it) {
-    timer.time("assembly", [&] { system.tangent(d, k); });
-    try {
-      timer.time("factorisation", [&] { solver.factorize(k); });
-    } catch (const NumericalError& e) {
-      out.failure = fmt::format("tangent not factorisable at iteration {} ({})", it, e.what());
-      return out;
+    const bool slow = out.history.size() >= 2 && norm > 0.1 * out.history[out.history.size() - 2].residual;
+    if (!s.reuse_tangent || !solver.factorized() || slow) {
+      timer.time("assembly", [&] { system.tangent(d, k); });
+      try {
+        timer.time("factorisation", [&] {
+          if (!solver.analyzed()) solver.analyze(k);  // once: the pattern never changes
+          solver.factorize(k);
+        });
+      } catch (const NumericalError& e) {
+        out.failure = fmt::format("tangent not factorisable at iteration {} ({})", it, e.what());
+        return out;
+      }
+      ++out.factorisations;
     }
     const Eigen::VectorXd delta = timer.time("solve", [&] { return solver.solve(-r); });
     double alpha = 1.0;
@@ -132,7 +139,6 @@ StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& 
   out.solver = model.symmetric() ? SolverKind::cholmod : SolverKind::umfpack;
   SparseSolver solver(out.solver);
   SparseMatrix k = model.zero_matrix();
-  timer.time("factorisation", [&] { solver.analyze(k); });  // the pattern never changes
 
   const Eigen::VectorXd f_unit = model.external_force({});
   Eigen::VectorXd d = Eigen::VectorXd::Zero(model.dofs());

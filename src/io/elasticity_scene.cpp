@@ -1,5 +1,6 @@
 #include "mfree/io/elasticity_scene.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
@@ -81,21 +82,31 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("material");
-    s.problem.material.model = t.choice("model", {"plane_stress", "plane_strain"}) == "plane_stress"
-                                   ? PlaneModel::stress : PlaneModel::strain;
-    s.problem.material.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
-    s.problem.material.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
-    if (!(s.problem.material.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
-    if (!(s.problem.material.poisson_ratio > -1.0 && s.problem.material.poisson_ratio < 0.5))
+    const std::string model = t.choice("model", {"plane_stress", "plane_strain", "neo_hookean", "st_venant_kirchhoff"});
+    LinearElastic& lin = s.problem.material;
+    lin.model = model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;
+    lin.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
+    lin.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
+    if (!(lin.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
+    if (!(lin.poisson_ratio > -1.0 && lin.poisson_ratio < 0.5))
       t.error("poisson_ratio", "must lie strictly between -1 and 1/2");
+    out.material = make_material(model, lin.youngs_modulus, lin.poisson_ratio);
+    if (t.has("density")) {
+      out.density = t.number("density", 0.0, 1e300);
+      if (!(out.density > 0.0)) t.error("density", "must be positive");
+    }
     t.finish();
   }
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
     ExactSpec e;
-    e.solution = t.choice("solution", {"timoshenko_beam", "linear"});
+    e.solution = t.choice("solution", {"timoshenko_beam", "linear", "vibration"});
     if (e.solution == "timoshenko_beam") {
       e.load = t.number("load", -1e300, 1e300);
+    } else if (e.solution == "vibration") {
+      e.amplitude = t.number("amplitude", 0.0, 1e300);
+      if (!std::holds_alternative<NeoHookean>(out.material)) t.error("solution", "the vibration solution needs [material] model = \"neo_hookean\"");
+      if (!(out.density > 0.0)) t.error("solution", "the vibration solution needs [material] density");
     } else {
       const auto a = t.numbers("offset", 2, -1e300, 1e300);
       const auto g = t.pairs("gradient", 2);
@@ -109,14 +120,16 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   for (const SceneTable& t : root.tables("boundary")) {
     BoundaryCondition c;
     c.name = t.string("name");
-    c.type = t.choice("type", {"displacement", "traction"}) == "displacement" ? BoundaryCondition::Type::displacement
-                                                                              : BoundaryCondition::Type::traction;
+    const std::string type = t.choice("type", {"displacement", "slip", "traction"});
+    c.type = type == "displacement" ? BoundaryCondition::Type::displacement
+             : type == "slip"       ? BoundaryCondition::Type::slip
+                                    : BoundaryCondition::Type::traction;
     c.region = region_box(t, "region");
     if (t.is_string("value")) {
       (void)t.choice("value", {"exact"});
-      if (!exact) t.error("value", "'exact' needs an [exact] section");
+      if (!exact) t.error("value", "'exact' needs a static [exact] solution (timoshenko_beam or linear)");
       const ExactElasticity ex = *exact;
-      if (c.type == BoundaryCondition::Type::displacement)
+      if (c.type != BoundaryCondition::Type::traction)
         c.value = [ex](const Vec2& x, const Vec2&) { return ex.displacement(x); };
       else
         c.value = [ex](const Vec2& x, const Vec2& n) { return ex.traction(x, n); };
@@ -140,24 +153,95 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (k != "auto") s.solver = k == "cholmod" ? SolverKind::cholmod : SolverKind::umfpack;
     t.finish();
   }
+  if (root.has("newton")) {
+    const SceneTable t = root.table("newton");
+    NewtonSettings n;
+    n.tolerance = t.number_or("tolerance", n.tolerance, 1e-16, 1.0);
+    n.max_iterations = static_cast<int>(t.integer_or("max_iterations", n.max_iterations, 1, 1000));
+    n.line_search = t.boolean_or("line_search", true);
+    if (t.has("load_factors") && t.has("load_steps")) t.error("load_factors", "give load_steps or load_factors, not both");
+    if (t.has("load_factors")) {
+      n.load_factors = t.numbers("load_factors", 0, 1e-300, 1.0);
+      for (std::size_t i = 1; i < n.load_factors.size(); ++i)
+        if (!(n.load_factors[i] > n.load_factors[i - 1])) t.error("load_factors", "must increase");
+      if (n.load_factors.back() != 1.0) t.error("load_factors", "must end at 1 (the full load)");
+    }
+    n.load_steps = static_cast<int>(t.integer_or("load_steps", n.load_steps, 1, 100000));
+    n.max_cutbacks = static_cast<int>(t.integer_or("max_cutbacks", n.max_cutbacks, 0, 50));
+    t.finish();
+    out.newton = n;
+  }
+  if (root.has("dynamics")) {
+    const SceneTable t = root.table("dynamics");
+    DynamicsScene dyn;
+    DynamicsSettings& d = dyn.settings;
+    d.scheme = t.choice("scheme", {"central_difference", "newmark"}) == "newmark" ? TimeScheme::newmark
+                                                                                 : TimeScheme::central_difference;
+    d.end_time = t.number("end_time", 1e-300, 1e300);
+    if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
+    if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
+    d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
+    d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 1, 1 << 30));
+    dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
+    dyn.error_times = t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
+    if (!(out.density > 0.0)) t.error("scheme", "dynamics needs [material] density");
+    d.density = out.density;
+    if (out.newton) d.newton = *out.newton;
+    t.finish();
+    out.dynamics = dyn;
+  }
   {
     const SceneTable t = root.table("output");
     out.output.folder = t.string("folder");
     // An empty list asks for nothing: no stress recovery, no files.
     if (t.has("fields") && !(t.is_array_empty("fields")))
-      for (const auto& f : t.choices("fields", {"displacement", "stress", "von_mises", "error", "weights"}))
+      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "error", "weights"}))
         out.output.fields.insert(f);
     out.output.vtk = t.boolean_or("vtk", true);
-    if (out.output.wants("error") && !exact) t.error("fields", "'error' needs an [exact] section");
+    if (out.output.wants("velocity") && !out.dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
+    if (t.has("probe")) {
+      const auto p = t.numbers("probe", 2, -1e300, 1e300);
+      out.output.probe = Vec2(p[0], p[1]);
+    }
+    if (out.output.wants("error") && !exact && !out.vibration()) t.error("fields", "'error' needs an [exact] section");
     t.finish();
   }
   if (want_study || root.has("study")) {
     const SceneTable t = root.table("study");
     StudySettings st;
     st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
-    for (const auto& c : t.choices("clouds", cloud_names)) st.clouds.push_back(cloud_kind(c));
-    for (const auto& o : t.choices("orders", order_names)) st.orders.push_back(rk_order(o));
-    for (const auto& q : t.choices("schemes", scheme_names)) st.schemes.push_back(scheme(q));
+    // Lists left out take the scene's own value.
+    st.clouds = {s.nodes.kind};
+    st.orders = {s.order};
+    st.schemes = {s.scheme};
+    if (t.has("clouds")) st.clouds.clear();
+    if (t.has("orders")) st.orders.clear();
+    if (t.has("schemes")) st.schemes.clear();
+    if (t.has("clouds"))
+      for (const auto& c : t.choices("clouds", cloud_names)) st.clouds.push_back(cloud_kind(c));
+    if (t.has("orders"))
+      for (const auto& o : t.choices("orders", order_names)) st.orders.push_back(rk_order(o));
+    if (t.has("schemes"))
+      for (const auto& q : t.choices("schemes", scheme_names)) st.schemes.push_back(scheme(q));
+    if (t.has("time_schemes")) {
+      if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
+      for (const auto& q : t.choices("time_schemes", {"central_difference", "newmark"}))
+        st.time_schemes.push_back(q == "newmark" ? TimeScheme::newmark : TimeScheme::central_difference);
+    } else if (out.dynamics) {
+      st.time_schemes = {out.dynamics->settings.scheme};
+    }
+    if (t.has("time_steps")) {
+      st.time_steps = t.numbers("time_steps", st.time_schemes.size(), 1e-300, 1e300);
+    } else if (out.dynamics) {
+      if (!out.dynamics->settings.time_step &&
+          std::find(st.time_schemes.begin(), st.time_schemes.end(), TimeScheme::newmark) != st.time_schemes.end())
+        t.error("time_schemes", "newmark needs a time step: give [dynamics] time_step or [study] time_steps");
+      for (TimeScheme scheme : st.time_schemes) {
+        (void)scheme;
+        st.time_steps.push_back(out.dynamics->settings.time_step.value_or(0.0));  // 0: from the stability limit
+      }
+    }
+    st.time_step_check = t.boolean_or("time_step_check", false);
     st.betas = t.has("betas") ? t.numbers("betas", 0, 1e-6, 1e12) : std::vector<double>{s.problem.nitsche_beta};
     if (t.has("probe")) {
       const auto p = t.numbers("probe", 2, -1e300, 1e300);
@@ -173,8 +257,31 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   return out;
 }
 
+std::optional<AxisAlignedVibration> ElasticityScene::vibration() const {
+  if (!exact_spec || exact_spec->solution != "vibration") return std::nullopt;
+  const Box b = domain.bounding_box();
+  if (b.lo.norm() > 1e-12 * b.size().norm() || std::abs(b.size().x() - b.size().y()) > 1e-12 * b.size().x())
+    throw InputError(fmt::format("{}: the vibration solution needs the square domain [0, L] x [0, L]", file.string()));
+  const LinearElastic& m = settings.problem.material;
+  return AxisAlignedVibration{exact_spec->amplitude, b.size().x(), m.youngs_modulus, m.poisson_ratio, density};
+}
+
+SolidProblem ElasticityScene::solid_problem() const {
+  SolidProblem p;
+  p.material = material;
+  p.conditions = settings.problem.conditions;
+  p.nitsche_beta = settings.problem.nitsche_beta;
+  p.penalty_modulus = settings.problem.material.youngs_modulus;
+  p.spacing = settings.nodes.spacing;
+  if (const auto v = vibration())
+    p.body_force = [v = *v](const Vec2& x, double t) { return v.density * v.body_force(x, t); };
+  else if (settings.problem.body_force)
+    p.body_force = [b = settings.problem.body_force](const Vec2& x, double) { return b(x); };
+  return p;
+}
+
 std::optional<ExactElasticity> ElasticityScene::exact() const {
-  if (!exact_spec) return std::nullopt;
+  if (!exact_spec || exact_spec->solution == "vibration") return std::nullopt;
   if (exact_spec->solution == "linear") return linear_field(exact_spec->offset, exact_spec->gradient, settings.problem.material);
   const Box b = domain.bounding_box();
   // The beam's axis is y = 0 from x = 0 (SPEC section 4): the domain must be [0, L] x [-D/2, D/2].

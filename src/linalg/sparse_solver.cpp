@@ -21,10 +21,16 @@ SparseSolver::SparseSolver(SolverKind kind) : kind_(kind), impl_(std::make_uniqu
   // Failures reach the user as NumericalError with advice; CHOLMOD's own stderr lines
   // would only repeat them.
   impl_->cholmod.cholmod().print = 0;
+  // No iterative refinement in UMFPACK's solves: it triples their cost, and the callers
+  // that solve many times (Newton, Newmark) correct the solution by their own iterations.
+  impl_->umfpack.umfpackControl()(UMFPACK_IRSTEP) = 0;
 }
 SparseSolver::SparseSolver(SparseSolver&&) noexcept = default;
 SparseSolver& SparseSolver::operator=(SparseSolver&&) noexcept = default;
 SparseSolver::~SparseSolver() = default;
+
+bool SparseSolver::analyzed() const { return impl_->analyzed; }
+bool SparseSolver::factorized() const { return impl_->factorized; }
 
 void SparseSolver::analyze(const SparseMatrix& a) {
   if (a.rows() != a.cols())

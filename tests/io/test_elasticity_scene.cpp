@@ -53,9 +53,22 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
   CHECK_THAT(scene_error(replace(good, "rectangle = \\[\\[0.0, -6.0\\], \\[48.0, 6.0\\]\\]", "mesh = \"no/such.wkt\"")),
              Catch::Contains("no/such.wkt"));
   CHECK_THAT(scene_error(replace(replace(good, "\\[exact\\]\nsolution = \"timoshenko_beam\"\nload = 1000.0\n", ""), "\"error\", ", "")),
-             Catch::Contains("boundary[0].value") && Catch::Contains("needs an [exact] section"));
+             Catch::Contains("boundary[0].value") && Catch::Contains("needs a static [exact] solution"));
   CHECK_THAT(scene_error(replace(good, "region = \\[\\[-0.001, -6.001\\], \\[0.001, 6.001\\]\\]", "region = [[-0.001, -6.001]]")),
              Catch::Contains("boundary[0].region") && Catch::Contains("2 points"));
+  // Total-Lagrangian keys.
+  const std::string dyn = good + "\n[dynamics]\nscheme = \"newmark\"\nend_time = 0.01\n";
+  CHECK_THAT(scene_error(dyn), Catch::Contains("dynamics.scheme") && Catch::Contains("newmark needs a time_step"));
+  CHECK_THAT(scene_error(dyn + "time_step = 1e-4\n"),
+             Catch::Contains("dynamics.scheme") && Catch::Contains("needs [material] density"));
+  CHECK_THAT(scene_error(good + "\n[newton]\nload_factors = [0.5, 0.25, 1.0]\n"),
+             Catch::Contains("newton.load_factors") && Catch::Contains("must increase"));
+  CHECK_THAT(scene_error(good + "\n[newton]\nload_factors = [0.5, 0.75]\n"), Catch::Contains("must end at 1"));
+  CHECK_THAT(scene_error(replace(good, "model = \"plane_stress\"", "model = \"mooney_rivlin\"")),
+             Catch::Contains("material.model") && Catch::Contains("not one of"));
+  CHECK_THAT(scene_error(replace(good, "solution = \"timoshenko_beam\"\nload = 1000.0",
+                                 "solution = \"vibration\"\namplitude = 0.05")),
+             Catch::Contains("exact.solution") && Catch::Contains("neo_hookean"));
 }
 
 TEST_CASE("elasticity output: VTK files read back with the arrays asked for", "[io]") {

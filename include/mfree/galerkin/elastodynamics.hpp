@@ -13,8 +13,9 @@
 //                       step above that limit is refused; without one, dt = stability_factor x
 //                       the limit.
 //   newmark             implicit average acceleration (beta = 1/4, gamma = 1/2) with the
-//                       consistent mass and Newton in every step on the effective tangent
-//                       K(d) + 4 / dt^2 M (one symbolic factorisation for the whole run).
+//                       consistent mass and modified Newton in every step on the effective
+//                       tangent K(d) + 4 / dt^2 M (one symbolic factorisation for the whole
+//                       run; a numeric one only when an iteration cuts |R| less than tenfold).
 //                       Unconditionally stable for linear problems; energy conserving there.
 //
 // Both take dt = end_time / ceil(end_time / requested): steps of equal length that end at
@@ -68,6 +69,7 @@ struct DynamicsResult {
   int steps = 0;
   std::optional<double> stability_limit;  ///< explicit: 2 / omega_max
   long newton_iterations = 0;             ///< newmark: summed over the steps
+  long factorisations = 0;                ///< newmark: tangents factorised (modified Newton)
   std::vector<EnergyRecord> energy;
   Eigen::VectorXd d, v;                   ///< at end_time
 };

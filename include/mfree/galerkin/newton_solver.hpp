@@ -7,8 +7,8 @@
 //                   until it is below 0.8 of its value at alpha = 0; a trial state with J <= 0
 //                   halves alpha). Converged when |R| <= tolerance |R_0| (R_0: the
 //                   residual at the start) or |R| <= absolute_tolerance. The tangent's
-//                   pattern is analysed once by the caller's SparseSolver; each iteration
-//                   factorises numerically.
+//                   pattern is analysed once (the first tangent); each iteration factorises
+//                   numerically.
 //   solve_static()  load factors 0 < lambda_1 < ... < 1 scale every load and prescribed
 //                   displacement (LoadState::factor). A step whose Newton fails (no
 //                   convergence, no decrease, J <= 0) is cut back: the increment is halved
@@ -35,6 +35,10 @@ struct NewtonSettings {
   int max_iterations = 25;
   bool line_search = true;
   int max_halvings = 8;                ///< line search: trials after the full step
+  /// Modified Newton: keep the last factorised tangent (from earlier solves too) while each
+  /// iteration cuts |R| at least tenfold; refactorise when one does not. Converges linearly,
+  /// and pays where the tangent hardly changes (Newmark steps, dominated by 4 M / dt^2).
+  bool reuse_tangent = false;
   std::vector<double> load_factors;    ///< static: increasing, ending at 1 (empty: uniform steps)
   int load_steps = 10;                 ///< static: uniform steps when load_factors is empty
   int max_cutbacks = 8;                ///< static: consecutive halvings of a failed increment
@@ -51,6 +55,7 @@ struct NewtonIterate {
 struct NewtonOutcome {
   bool converged = false;
   std::string failure;  ///< why not, when not
+  int factorisations = 0;
   std::vector<NewtonIterate> history;
 };
 
@@ -60,7 +65,8 @@ struct NonlinearSystem {
   std::function<void(const Eigen::VectorXd&, SparseMatrix&)> tangent;
 };
 
-/// Newton from d (updated in place); k holds the tangent's pattern, solver has analysed it.
+/// Newton from d (updated in place); k holds the tangent's pattern. The solver analyses the
+/// first tangent it sees and keeps that analysis for every later one.
 /// Stages "assembly", "factorisation", "solve", "residual" are timed on `timer`.
 NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, SparseSolver& solver,
                      const NewtonSettings& settings, StageTimer& timer);

@@ -7,15 +7,24 @@
 //   [quadrature]  scheme (projected | gauss_cells | nodal), ratio, cloud (lattice | like_nodes),
 //                 order, factor,
 //                 lattice_refinement, consistency (symmetric | vci | none), gauss_points
-//   [material]    model (plane_stress | plane_strain), youngs_modulus, poisson_ratio
-//   [exact]       solution (timoshenko_beam: load; linear: offset, gradient)   optional
-//   [[boundary]]  name, type (displacement | traction), region = [[x0, y0], [x1, y1]],
+//   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
+//                 youngs_modulus, poisson_ratio, density (dynamics)
+//   [exact]       solution (timoshenko_beam: load; linear: offset, gradient;
+//                 vibration: amplitude)   optional
+//   [[boundary]]  name, type (displacement | slip | traction), region = [[x0, y0], [x1, y1]],
 //                 value = "exact" or [vx, vy]
 //   [nitsche]     beta (default 100: penalty beta E / h)
 //   [solver]      kind (auto | cholmod | umfpack)
-//   [output]      folder, fields (displacement, stress, von_mises, error, weights), vtk
+//   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance,
+//                 max_iterations, line_search, load_steps or load_factors, max_cutbacks
+//   [dynamics]    scheme (central_difference | newmark), end_time, time_step,
+//                 stability_factor, energy_every, frames (VTK frames over the run),
+//                 error_times (fractions of end_time at which errors are measured)
+//   [output]      folder, fields (displacement, velocity, stress, von_mises, error, weights),
+//                 vtk, probe = [x, y] (u^h there at every load or time step)
 //   [study]       for `mfree converge`: spacings, clouds, orders, schemes, betas, probe, reference,
-//                 quadratic_factor, quadratic_gauss_points
+//                 quadratic_factor, quadratic_gauss_points; time_schemes, time_steps,
+//                 time_step_check (dynamics)
 //
 // Every key is type- and range-checked; unknown keys are errors (scene_reader.hpp).
 
@@ -25,15 +34,18 @@
 #include <string>
 #include <vector>
 
+#include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/materials/vibration_solution.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/io/scene_reader.hpp"
 
 namespace mfree {
 
 struct ExactSpec {
-  std::string solution;  ///< timoshenko_beam | linear
+  std::string solution;  ///< timoshenko_beam | linear | vibration
   double load = 0.0;
+  double amplitude = 0.0;
   Vec2 offset = Vec2::Zero();
   Mat2 gradient = Mat2::Zero();
 };
@@ -42,6 +54,7 @@ struct OutputSettings {
   std::filesystem::path folder;
   std::set<std::string> fields;  ///< empty: nothing computed or written
   bool vtk = true;
+  std::optional<Vec2> probe;
   [[nodiscard]] bool wants(const std::string& f) const { return fields.count(f) > 0; }
 };
 
@@ -55,18 +68,38 @@ struct StudySettings {
   std::optional<double> reference;  ///< reference u_y at the probe
   double quadratic_factor = 3.0;
   int quadratic_gauss_points = 6;
+  std::vector<TimeScheme> time_schemes;  ///< dynamics: default the scene's scheme
+  std::vector<double> time_steps;        ///< dynamics: one per time scheme (default the scene's)
+  bool time_step_check = false;          ///< dynamics: rerun the finest level with dt / 2
+};
+
+struct DynamicsScene {
+  DynamicsSettings settings;
+  int frames = 0;                   ///< VTK frames written, evenly over the run (plus t = 0)
+  std::vector<double> error_times;  ///< fractions of end_time
 };
 
 struct ElasticityScene {
   std::filesystem::path file;
   Domain domain;
-  ElasticitySettings settings;
+  ElasticitySettings settings;  ///< settings.problem.material: the small-strain law (or the linearisation)
+  Material material;             ///< the law of [material] model
+  double density = 0.0;          ///< rho0; 0 when not given
+  std::optional<NewtonSettings> newton;
+  std::optional<DynamicsScene> dynamics;
   std::optional<ExactSpec> exact_spec;
   OutputSettings output;
   std::optional<StudySettings> study;
 
-  /// The exact solution of the scene, if any, for its domain and material.
+  /// The exact solution of the scene, if any, for its domain and material (statics).
   [[nodiscard]] std::optional<ExactElasticity> exact() const;
+  /// The vibration solution of [exact] solution = "vibration".
+  [[nodiscard]] std::optional<AxisAlignedVibration> vibration() const;
+  /// The finite-strain (or small-strain) problem of the scene; loads are those of statics
+  /// with the exact body force, or the vibration's body force rho0 b(X, t).
+  [[nodiscard]] SolidProblem solid_problem() const;
+  /// True when the scene is solved by the total-Lagrangian path (Newton or dynamics).
+  [[nodiscard]] bool nonlinear() const { return newton || dynamics || !is_linear(material); }
 };
 
 /// Parses and checks a scene; `want_study` makes [study] required (mfree converge).

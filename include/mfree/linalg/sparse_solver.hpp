@@ -30,7 +30,11 @@ class SparseSolver {
   ~SparseSolver();
 
   [[nodiscard]] SolverKind kind() const { return kind_; }
-  /// Symbolic analysis of a's pattern (a compressed square matrix).
+  [[nodiscard]] bool analyzed() const;
+  [[nodiscard]] bool factorized() const;
+  /// Symbolic analysis of a's pattern (a compressed square matrix). UMFPACK also reads the
+  /// values to choose its strategy (a zero diagonal makes it pick the unsymmetric one, with
+  /// orderings several times costlier here): analyse a matrix holding real values.
   void analyze(const SparseMatrix& a);
   /// Numeric factorisation; analyze() first. Throws NumericalError when the matrix is not
   /// positive definite (CHOLMOD) or is singular (UMFPACK).

@@ -1,0 +1,41 @@
+#pragma once
+// `mfree run` and `mfree converge` for total-Lagrangian scenes: statics by Newton with load
+// steps (finite-strain materials or a [newton] section) and dynamics ([dynamics]).
+
+#include <utility>
+#include <vector>
+
+#include "mfree/core/stage_timer.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
+#include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/io/elasticity_scene.hpp"
+
+namespace mfree {
+
+/// Newton with load steps: the iteration log, load_steps.csv (probe displacement and the
+/// difference from small-strain theory at every step), a load-deflection plot, VTK frames.
+int run_static(const ElasticityScene& scene);
+
+/// One dynamic run: progress, errors at [dynamics] error_times, energy.csv, VTK frames.
+int run_dynamics(const ElasticityScene& scene);
+
+/// Refinement study of a vibration scene over [study] spacings and time_schemes: errors at
+/// every error time, observed rates, run times, CSV and PNG plots.
+int converge_dynamics(const ElasticityScene& scene);
+
+struct DynamicRun {
+  Index nodes = 0;
+  double spacing = 0.0;
+  DynamicsResult result;
+  std::vector<MotionErrors> errors;             ///< at the scene's error times
+  std::vector<std::pair<double, Vec2>> probe;   ///< (t, u^h at the probe) every step
+  StageTimer timer;
+};
+
+/// The run behind run_dynamics and converge_dynamics (verbose: progress and VTK frames).
+DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose);
+
+/// max_t |E(t) - E(0)| / max_t (kinetic + strain): the energy error of a run.
+double energy_drift(const std::vector<EnergyRecord>& energy);
+
+}  // namespace mfree

@@ -1,0 +1,46 @@
+#pragma once
+// Errors of a meshfree motion against an exact one, measured with an independent quadrature
+// (Gauss points on cells, never the solver's own) as root-mean-square values over the body
+// (seed 000 eq. (43) with the sum over particles replaced by the integral):
+//
+//   e_u = ( int |u^h - u|^2 / |Omega| )^1/2,  u^h = sum phi_I d_I
+//   e_v = ( int |v^h - v|^2 / |Omega| )^1/2,  v^h = sum phi_I v_I (the coefficients' rates)
+//   e_s = ( int |sigma^h - sigma|_F^2 / |Omega| )^1/2,  sigma^h the Cauchy stress of
+//         F^h = I + sum d_I grad phi_I^T (true gradients), |.|_F the Frobenius norm.
+//
+// The shape functions are sampled at the points once; each evaluation is a pass over them.
+
+#include <functional>
+
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/materials/material.hpp"
+#include "mfree/quadrature/quadrature_rule.hpp"
+
+namespace mfree {
+
+struct ExactMotion {
+  std::function<Vec2(const Vec2&, double)> displacement;
+  std::function<Vec2(const Vec2&, double)> velocity;
+  std::function<Mat2(const Vec2&, double)> cauchy_stress;
+};
+
+struct MotionErrors {
+  double time = 0.0;
+  double displacement = 0.0;  ///< RMS, length units
+  double velocity = 0.0;      ///< RMS, length / time
+  double stress = 0.0;        ///< RMS, stress units
+};
+
+class MotionErrorSampler {
+ public:
+  MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, Material material);
+  [[nodiscard]] MotionErrors operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
+                                        const ExactMotion& exact) const;
+
+ private:
+  GalerkinQuadrature at_;
+  Material material_;
+  double volume_ = 0.0;
+};
+
+}  // namespace mfree

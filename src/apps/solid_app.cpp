@@ -1,0 +1,302 @@
+#include "mfree/apps/solid_app.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
+#include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/io/atomic_file.hpp"
+#include "mfree/io/solid_output.hpp"
+#include "mfree/quadrature/gauss_cells.hpp"
+
+namespace mfree {
+
+namespace {
+
+void print_stages(const StageTimer& t) {
+  for (const auto& [name, s] : t.stages()) std::cout << fmt::format("  {:<24} {:9.4f} s\n", name, s);
+  std::cout << fmt::format("  {:<24} {:9.4f} s\n", "total", t.total());
+}
+
+void plot(const std::string& script, const std::filesystem::path& csv, const std::filesystem::path& folder) {
+  std::cout.flush();
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}/verification/{}' '{}' '{}'", MFREE_SOURCE_DIR, script,
+                                      csv.string(), folder.string());
+  if (std::system(cmd.c_str()) != 0)
+    std::cerr << "mfree: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
+}
+
+/// The static exact solution scaled by the load factor (small-strain theory), as a motion
+/// whose "time" is the load factor.
+std::optional<ExactMotion> scaled_static(const ElasticityScene& scene) {
+  const std::optional<ExactElasticity> e = scene.exact();
+  if (!e) return std::nullopt;
+  return ExactMotion{[e = *e](const Vec2& x, double f) { return Vec2(f * e.displacement(x)); },
+                     [](const Vec2&, double) { return Vec2(0.0, 0.0); },
+                     [e = *e](const Vec2& x, double f) {
+                       const Eigen::Vector3d s = f * e.stress(x);
+                       Mat2 m;
+                       m << s[0], s[2], s[2], s[1];
+                       return m;
+                     }};
+}
+
+std::optional<ExactMotion> vibration_motion(const ElasticityScene& scene) {
+  const std::optional<AxisAlignedVibration> v = scene.vibration();
+  if (!v) return std::nullopt;
+  return ExactMotion{[v = *v](const Vec2& x, double t) { return v.displacement(x, t); },
+                     [v = *v](const Vec2& x, double t) { return v.velocity(x, t); },
+                     [v = *v](const Vec2& x, double t) { return v.cauchy_stress(x, t); }};
+}
+
+QuadratureRule error_rule(const ElasticityScene& scene) {
+  return gauss_cell_rule(scene.domain, 0.5 * scene.settings.nodes.spacing, scene.settings.error_gauss_points);
+}
+
+}  // namespace
+
+int run_static(const ElasticityScene& scene) {
+  std::cout << fmt::format("mfree run: {} (total-Lagrangian statics, {} material, {} thread(s))\n",
+                           scene.file.string(), name(scene.material), thread_count());
+  StageTimer timer;
+  timer.report_to(&std::cout);
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                              disc.boundary, disc.at_boundary);
+  timer.report_to(nullptr);
+  std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points, consistency defect {:.2e} -> {:.2e}, {} tangent\n",
+                           disc.nodes.size(), model.dofs(), disc.quadrature.size(), disc.consistency_before,
+                           disc.consistency_after, model.symmetric() ? "symmetric" : "non-symmetric");
+
+  const std::optional<ExactMotion> exact = scaled_static(scene);
+  std::optional<MotionErrorSampler> sampler;
+  if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
+  const OutputSettings& o = scene.output;
+  std::optional<SolidFrames> frames;
+  if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr);
+
+  NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
+  ns.log = &std::cout;
+  std::string csv = "load_factor,iterations,cutbacks,probe_ux,probe_uy,linear_probe_uy,l2_displacement_vs_linear\n";
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
+  const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+    const int iterations = static_cast<int>(step.history.size()) - 1;
+    Vec2 probe(std::nan(""), std::nan(""));
+    double linear = std::nan(""), relative = std::nan("");
+    if (o.probe) probe = disc.displacement({*o.probe}, d)[0];
+    if (exact) {
+      if (o.probe) linear = exact->displacement(*o.probe, step.factor).y();
+      // Relative L2 difference from the small-strain solution at this load (independent
+      // quadrature): the discretisation error at small loads, the nonlinearity at large ones.
+      relative = (*sampler)(d, zero, step.factor, *exact).displacement / (*sampler)(zero, zero, step.factor, *exact).displacement;
+    }
+    std::cout << fmt::format("    converged: load factor {:.6g} in {} iteration(s){}{}{}\n", step.factor, iterations,
+                             step.cutbacks ? fmt::format(" after {} cut-back(s)", step.cutbacks) : "",
+                             o.probe ? fmt::format(", probe u = ({:.6g}, {:.6g})", probe.x(), probe.y()) : "",
+                             exact ? fmt::format(", L2 difference from small strain {:.3e}", relative) : "");
+    csv += fmt::format("{:.9g},{},{},{:.9e},{:.9e},{:.9e},{:.6e}\n", step.factor, iterations, step.cutbacks, probe.x(),
+                       probe.y(), linear, relative);
+    if (frames) timer.time("output", [&] { frames->write(step.factor, d, nullptr); });
+  };
+  const StaticSolution sol = solve_static(model, ns, timer, on_step);
+  std::cout << fmt::format("  {} load steps, {} Newton iterations, solver {}\n", sol.steps.size(),
+                           [&] {
+                             int n = 0;
+                             for (const auto& s : sol.steps) n += static_cast<int>(s.history.size()) - 1;
+                             return n;
+                           }(),
+                           to_string(sol.solver));
+  const std::filesystem::path csv_path = o.folder / "load_steps.csv";
+  write_file_atomically(csv_path, csv);
+  std::cout << fmt::format("  wrote {}\n", csv_path.string());
+  if (frames) std::cout << fmt::format("  wrote {} frames, {}\n", frames->frames(), frames->series().string());
+  if (o.probe) plot("plot_load_deflection.py", csv_path, o.folder);
+  std::cout << "stages:\n";
+  print_stages(timer);
+  return 0;
+}
+
+DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose) {
+  DynamicRun run;
+  StageTimer& timer = run.timer;
+  if (verbose) timer.report_to(&std::cout);
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                              disc.boundary, disc.at_boundary);
+  timer.report_to(nullptr);
+  run.nodes = disc.node_count();
+  run.spacing = scene.settings.nodes.spacing;
+
+  const std::optional<ExactMotion> exact = vibration_motion(scene);
+  std::optional<MotionErrorSampler> sampler;
+  if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
+  const Eigen::VectorXd v0 = timer.time("initial velocity", [&] {
+    return exact ? project_velocity(model, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); })
+                 : Eigen::VectorXd(Eigen::VectorXd::Zero(model.dofs()));
+  });
+
+  const DynamicsScene& dyn = *scene.dynamics;
+  const OutputSettings& o = scene.output;
+  std::optional<SolidFrames> frames;
+  if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0) frames.emplace(scene, disc, exact ? &*exact : nullptr);
+  std::size_t next_error = 0;
+  double next_frame = 0.0;
+  const double end = settings.end_time;
+  const auto on_step = [&](const DynamicState& s) {
+    // The first step at or past each requested time; the exact motion is taken at the
+    // step's own time.
+    while (sampler && next_error < dyn.error_times.size() && s.time >= dyn.error_times[next_error] * end * (1 - 1e-12)) {
+      run.errors.push_back(timer.time("errors", [&] { return (*sampler)(s.d, s.v, s.time, *exact); }));
+      ++next_error;
+    }
+    if (frames && s.time >= next_frame * (1 - 1e-12)) {
+      timer.time("output", [&] { frames->write(s.time, s.d, &s.v); });
+      next_frame += end / dyn.frames;
+    }
+    if (o.probe) run.probe.emplace_back(s.time, disc.displacement({*o.probe}, s.d)[0]);
+  };
+  DynamicsSettings ds = settings;
+  if (verbose) ds.progress = &std::cout;
+  const Eigen::VectorXd d0 = Eigen::VectorXd::Zero(model.dofs());
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step);
+  return run;
+}
+
+namespace {
+
+std::string energy_csv(const std::vector<EnergyRecord>& energy) {
+  std::string csv = "time,kinetic,strain,external_work,total\n";
+  for (const EnergyRecord& e : energy)
+    csv += fmt::format("{:.9e},{:.12e},{:.12e},{:.12e},{:.12e}\n", e.time, e.kinetic, e.strain, e.external_work, e.total());
+  return csv;
+}
+
+}  // namespace
+
+double energy_drift(const std::vector<EnergyRecord>& energy) {
+  double scale = 0.0, drift = 0.0;
+  for (const EnergyRecord& e : energy) {
+    scale = std::max(scale, e.kinetic + e.strain);
+    drift = std::max(drift, std::abs(e.total() - energy.front().total()));
+  }
+  return scale > 0.0 ? drift / scale : drift;
+}
+
+int run_dynamics(const ElasticityScene& scene) {
+  const DynamicsSettings& s = scene.dynamics->settings;
+  std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {} material, {} thread(s))\n",
+                           scene.file.string(), to_string(s.scheme), name(scene.material), thread_count());
+  const DynamicRun run = simulate(scene, s, true);
+  const DynamicsResult& r = run.result;
+  std::cout << fmt::format("  {} nodes ({} DOFs), {} steps of dt = {:.4e} s{}{}\n", run.nodes, 2 * run.nodes, r.steps,
+                           r.time_step,
+                           r.stability_limit ? fmt::format(" (stability limit {:.4e} s by power iteration)", *r.stability_limit) : "",
+                           s.scheme == TimeScheme::newmark ? fmt::format(", {} Newton iterations, {} factorisations", r.newton_iterations, r.factorisations) : "");
+  if (!run.errors.empty()) {
+    std::cout << fmt::format("  {:>10} {:>12} {:>12} {:>12}   (RMS over the body, independent Gauss cells)\n", "t [s]",
+                             "displacement", "velocity", "stress");
+    for (const MotionErrors& e : run.errors)
+      std::cout << fmt::format("  {:10.6f} {:12.4e} {:12.4e} {:12.4e}\n", e.time, e.displacement, e.velocity, e.stress);
+  }
+  std::cout << fmt::format("  energy: total {:.6e} at t = 0, {:.6e} at the end; largest drift {:.3e} of the largest "
+                           "kinetic + strain energy\n",
+                           r.energy.front().total(), r.energy.back().total(), energy_drift(r.energy));
+  const std::filesystem::path folder = scene.output.folder;
+  write_file_atomically(folder / "energy.csv", energy_csv(r.energy));
+  std::cout << fmt::format("  wrote {}\n", (folder / "energy.csv").string());
+  if (!run.probe.empty()) {
+    std::string csv = "time,probe_ux,probe_uy\n";
+    for (const auto& [t, u] : run.probe) csv += fmt::format("{:.9e},{:.9e},{:.9e}\n", t, u.x(), u.y());
+    write_file_atomically(folder / "probe.csv", csv);
+    std::cout << fmt::format("  wrote {}\n", (folder / "probe.csv").string());
+  }
+  if (scene.dynamics->frames > 0 && scene.output.vtk && !scene.output.fields.empty())
+    std::cout << fmt::format("  wrote {} (open in ParaView)\n", (folder / "series.pvd").string());
+  std::cout << "stages:\n";
+  print_stages(run.timer);
+  return 0;
+}
+
+int converge_dynamics(const ElasticityScene& scene) {
+  const StudySettings& st = *scene.study;
+  if (!scene.vibration()) throw InputError(fmt::format("{}: a dynamics study needs [exact] solution = \"vibration\"", scene.file.string()));
+  const std::size_t runs = st.time_schemes.size() * st.spacings.size();
+  std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
+  std::string csv = "time_scheme,spacing,nodes,dofs,time_step,steps,seconds,time,displacement,velocity,stress,energy_drift\n";
+  std::string table;
+  std::size_t done = 0;
+  std::string checks;
+  for (std::size_t m = 0; m < st.time_schemes.size(); ++m) {
+    const TimeScheme scheme = st.time_schemes[m];
+    DynamicsSettings ds = scene.dynamics->settings;
+    ds.scheme = scheme;
+    ds.time_step = st.time_steps[m] > 0.0 ? std::optional<double>(st.time_steps[m]) : std::nullopt;
+    const auto level = [&](double h) {
+      ElasticityScene l = scene;
+      l.settings.nodes.spacing = h;
+      return l;
+    };
+    std::vector<DynamicRun> series;
+    for (double h : st.spacings) {
+      DynamicRun run = simulate(level(h), ds, false);
+      double seconds = run.timer.total();  // the solve; measuring errors is not part of it
+      for (const auto& [name, t] : run.timer.stages())
+        if (name == "errors") seconds -= t;
+      const double drift = energy_drift(run.result.energy);
+      for (std::size_t k = 0; k < run.errors.size(); ++k) {
+        const MotionErrors& e = run.errors[k];
+        std::string rates;
+        if (!series.empty()) {
+          const MotionErrors& p = series.back().errors[k];
+          const double lr = std::log(series.back().spacing / h);
+          rates = fmt::format("{:5.2f} {:5.2f} {:5.2f}", std::log(p.displacement / e.displacement) / lr,
+                              std::log(p.velocity / e.velocity) / lr, std::log(p.stress / e.stress) / lr);
+        }
+        const std::string line =
+            fmt::format("{:<18} {:8.5f} {:7d} {:10.3e} {:8.5f} {:10.3e} {:10.3e} {:10.3e} {:17} {:8.2f} {:9.2e}",
+                        to_string(scheme), h, 2 * run.nodes, run.result.time_step, e.time, e.displacement, e.velocity,
+                        e.stress, rates, seconds, drift);
+        table += line + "\n";
+        if (k + 1 == run.errors.size()) std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+        csv += fmt::format("{},{},{},{},{:.6e},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.3e}\n", to_string(scheme), h,
+                           run.nodes, 2 * run.nodes, run.result.time_step, run.result.steps, seconds, e.time,
+                           e.displacement, e.velocity, e.stress, drift);
+      }
+      series.push_back(std::move(run));
+    }
+    if (st.time_step_check) {
+      // Space dominates when halving dt at the finest level leaves the errors nearly as they are.
+      const DynamicRun& fine = series.back();
+      DynamicsSettings half = ds;
+      half.time_step = 0.5 * fine.result.time_step;
+      const DynamicRun again = simulate(level(st.spacings.back()), half, false);
+      double change = 0.0;
+      for (std::size_t k = 0; k < fine.errors.size(); ++k) {
+        const MotionErrors &a = fine.errors[k], &b = again.errors[k];
+        change = std::max({change, std::abs(a.displacement - b.displacement) / a.displacement,
+                           std::abs(a.velocity - b.velocity) / a.velocity, std::abs(a.stress - b.stress) / a.stress});
+      }
+      const std::string line = fmt::format("time-step check, {} at h = {}: dt {:.3e} -> {:.3e} changes the errors by at most {:.2f} %\n",
+                            to_string(scheme), st.spacings.back(), fine.result.time_step, again.result.time_step,
+                            100.0 * change);
+      checks += line;
+      std::cout << "  " << line << std::flush;
+    }
+  }
+  const std::filesystem::path csv_path = scene.output.folder / "convergence.csv";
+  write_file_atomically(csv_path, csv);
+  std::cout << fmt::format("\n{:<18} {:>8} {:>7} {:>10} {:>8} {:>10} {:>10} {:>10} {:>17} {:>8} {:>9}\n", "scheme", "h",
+                           "DOFs", "dt", "t", "RMS u", "RMS v", "RMS stress", "rates (u v s)", "time [s]", "drift")
+            << table << checks;
+  std::cout << fmt::format("wrote {}\n", csv_path.string());
+  plot("plot_dynamics.py", csv_path, scene.output.folder);
+  return 0;
+}
+
+}  // namespace mfree

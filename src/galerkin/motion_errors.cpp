@@ -1,0 +1,42 @@
+#include "mfree/galerkin/motion_errors.hpp"
+
+#include <cmath>
+
+#include "mfree/core/parallel.hpp"
+
+namespace mfree {
+
+MotionErrorSampler::MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, Material material)
+    : at_(sample_shape_functions(trial, rule.points, true)), material_(std::move(material)) {
+  at_.weights = rule.weights;
+  for (double w : rule.weights) volume_ += w;
+}
+
+MotionErrors MotionErrorSampler::operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
+                                            const ExactMotion& exact) const {
+  std::vector<Eigen::Vector3d> partial(thread_count(), Eigen::Vector3d::Zero());
+  parallel_ranges(at_.size(), [&](int thread, Index begin, Index end) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (Index k = begin; k < end; ++k) {
+      Vec2 u = Vec2::Zero(), vel = Vec2::Zero();
+      Mat2 f = Mat2::Identity();
+      for (Index s = at_.row_begin(k); s < at_.row_end(k); ++s) {
+        const Index i = at_.nodes[s];
+        u += at_.phi[s] * d.segment<2>(2 * i);
+        vel += at_.phi[s] * v.segment<2>(2 * i);
+        f += d.segment<2>(2 * i) * at_.grad[s].transpose();
+      }
+      const Vec2& x = at_.points[k];
+      const double w = at_.weights[k];
+      sum[0] += w * (u - exact.displacement(x, time)).squaredNorm();
+      sum[1] += w * (vel - exact.velocity(x, time)).squaredNorm();
+      sum[2] += w * (cauchy_stress(material_, f) - exact.cauchy_stress(x, time)).squaredNorm();
+    }
+    partial[thread] = sum;
+  });
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (const auto& p : partial) total += p;
+  return {time, std::sqrt(total[0] / volume_), std::sqrt(total[1] / volume_), std::sqrt(total[2] / volume_)};
+}
+
+}  // namespace mfree

@@ -1,0 +1,148 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mfree/core/error.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
+#include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/quadrature/gauss_cells.hpp"
+#include "../test_support.hpp"
+
+using namespace mfree;
+
+namespace {
+
+/// The vibration problem of SPEC section 6 on the unit square, lattice nodes of spacing h,
+/// slip walls by Nitsche's method (walls = false: a free body).
+struct VibrationCase {
+  AxisAlignedVibration exact;
+  Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(1.0, 1.0));
+  Discretisation disc;
+  std::unique_ptr<TotalLagrangian> model;
+
+  VibrationCase(double amplitude, double h, bool walls, bool body_force) : exact{amplitude} {
+    ElasticitySettings s;
+    s.nodes.spacing = h;
+    StageTimer timer;
+    disc = discretise(domain, s, timer);
+    SolidProblem p;
+    p.material = exact.material();
+    p.penalty_modulus = exact.youngs_modulus;
+    p.spacing = h;
+    if (walls) {
+      const auto zero = [](const Vec2&, const Vec2&) { return Vec2(0.0, 0.0); };
+      p.conditions = {{BoundaryCondition::Type::slip, Box{Vec2(-0.1, -0.1), Vec2(1.1, 0.001)}, zero, "bottom"},
+                      {BoundaryCondition::Type::slip, Box{Vec2(-0.1, 0.999), Vec2(1.1, 1.1)}, zero, "top"},
+                      {BoundaryCondition::Type::slip, Box{Vec2(-0.1, -0.1), Vec2(0.001, 1.1)}, zero, "left"},
+                      {BoundaryCondition::Type::slip, Box{Vec2(0.999, -0.1), Vec2(1.1, 1.1)}, zero, "right"}};
+    }
+    if (body_force)
+      p.body_force = [e = exact](const Vec2& x, double t) { return e.density * e.body_force(x, t); };
+    model = std::make_unique<TotalLagrangian>(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                                              disc.at_boundary);
+  }
+
+  [[nodiscard]] Eigen::VectorXd initial_velocity() const {
+    return project_velocity(*model, exact.density, [&](const Vec2& x) { return exact.velocity(x, 0.0); });
+  }
+
+  /// RMS errors at the times given as fractions of the period.
+  std::vector<MotionErrors> errors_at(const std::vector<double>& fractions, DynamicsSettings s) const {
+    const MotionErrorSampler sampler(*disc.trial, gauss_cell_rule(domain, 0.5 * disc.nodes[1].x(), 5), exact.material());
+    const ExactMotion motion{[&](const Vec2& x, double t) { return exact.displacement(x, t); },
+                             [&](const Vec2& x, double t) { return exact.velocity(x, t); },
+                             [&](const Vec2& x, double t) { return exact.cauchy_stress(x, t); }};
+    std::vector<MotionErrors> out;
+    std::size_t next = 0;
+    s.density = exact.density;
+    s.end_time = fractions.back() * exact.period();
+    StageTimer timer;
+    (void)integrate_dynamics(*model, disc.nodes, Eigen::VectorXd::Zero(model->dofs()), initial_velocity(), s, timer,
+                             [&](const DynamicState& st) {
+                               if (next < fractions.size() && st.time >= fractions[next] * exact.period() * (1 - 1e-12)) {
+                                 out.push_back(sampler(st.d, st.v, st.time, motion));
+                                 ++next;
+                               }
+                             });
+    return out;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("vibration, central differences: displacement converges at rate >= 1.8 (A = 0.05)", "[galerkin][dynamics]") {
+  DynamicsSettings s;
+  s.scheme = TimeScheme::central_difference;
+  s.time_step = 2.5e-5;  // below the stability limit of both levels; space dominates (README)
+  std::vector<std::vector<MotionErrors>> levels;
+  for (double h : {1.0 / 16, 1.0 / 32}) levels.push_back(VibrationCase(0.05, h, true, true).errors_at({0.25, 0.75}, s));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double rate = std::log(levels[0][k].displacement / levels[1][k].displacement) / std::log(2.0);
+    INFO("t = " << levels[1][k].time << ": RMS displacement errors " << levels[0][k].displacement << " -> "
+                << levels[1][k].displacement << ", rate " << rate);
+    CHECK(rate >= 1.8);
+  }
+}
+
+TEST_CASE("free vibration, Newmark: energy error falls with dt^2, below 5e-3 over 10 periods",
+          "[galerkin][dynamics]") {
+  // A free Neo-Hookean body (no walls, no body force) set moving by the vibration's initial
+  // velocity: nothing does work on it, so kinetic + strain energy must stay constant. The
+  // average-acceleration rule conserves it exactly for linear problems only; for this large
+  // motion its energy error must fall with dt^2.
+  const VibrationCase c(0.05, 1.0 / 8, false, false);
+  std::vector<double> drifts;
+  for (int steps_per_period : {50, 100}) {
+    DynamicsSettings s;
+    s.scheme = TimeScheme::newmark;
+    s.density = c.exact.density;
+    s.end_time = 10 * c.exact.period();
+    s.time_step = c.exact.period() / steps_per_period;
+    s.newton.tolerance = 1e-12;
+    StageTimer timer;
+    const DynamicsResult r =
+        integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(), s, timer);
+    double scale = 0.0, drift = 0.0, most_strain = 0.0;
+    for (const EnergyRecord& e : r.energy) {
+      scale = std::max(scale, e.kinetic + e.strain);
+      drift = std::max(drift, std::abs(e.total() - r.energy.front().total()));
+      CHECK(e.external_work == 0.0);
+    }
+    for (const EnergyRecord& e : r.energy) most_strain = std::max(most_strain, e.strain / scale);
+    CHECK(most_strain > 0.5);  // a large motion: strain energy takes most of the total at times
+    drifts.push_back(drift / scale);
+  }
+  INFO("largest energy drift over 10 periods: " << drifts[0] << " (T/50), " << drifts[1] << " (T/100)");
+  CHECK(drifts[1] <= 5e-3);
+  CHECK(std::log2(drifts[0] / drifts[1]) >= 1.6);
+}
+
+TEST_CASE("central differences refuse a time step above the stability limit", "[galerkin][dynamics]") {
+  const VibrationCase c(0.05, 1.0 / 8, true, true);
+  DynamicsSettings s;
+  s.scheme = TimeScheme::central_difference;
+  s.density = c.exact.density;
+  s.end_time = 1e-3;
+  const Eigen::VectorXd lumped = c.model->lumped_mass(s.density, c.disc.nodes);
+  CHECK((lumped.array() > 0.0).all());
+  const double limit = critical_time_step(*c.model, lumped, Eigen::VectorXd::Zero(c.model->dofs()));
+  // The limit is that of the dilatational wave on about the nodal spacing: h / c_d up to a
+  // factor of order one (RK supports reach 2 h; the walls' penalty stiffens the edges).
+  const double hc = (1.0 / 8) / wave_speed(c.exact.material(), c.exact.density);
+  INFO("stability limit " << limit << " s, h / c_d = " << hc << " s");
+  CHECK(limit > 0.1 * hc);
+  CHECK(limit < 2.0 * hc);
+  s.time_step = 1.01 * limit;
+  StageTimer timer;
+  const std::string m = testing::message_of<InputError>([&] {
+    (void)integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(), s, timer);
+  });
+  CHECK_THAT(m, Catch::Contains("above the stability limit"));
+  // Just below it the run is stable: the energy stays bounded.
+  s.time_step = 0.99 * limit;
+  s.end_time = 200 * limit;
+  const DynamicsResult r =
+      integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(), s, timer);
+  CHECK(std::abs(r.energy.back().total() - r.energy.front().total()) <= 1e-3 * r.energy.front().kinetic);
+}

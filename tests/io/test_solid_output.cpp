@@ -1,0 +1,78 @@
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "mfree/io/solid_output.hpp"
+#include "mfree/io/vtk_output.hpp"
+
+using namespace mfree;
+
+namespace {
+
+/// The vibration scene on a coarse cloud, writing into `dir` the fields listed.
+ElasticityScene vibration_scene(const std::filesystem::path& dir, const std::string& fields) {
+  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/vibration/vibration.toml");
+  std::string text{std::istreambuf_iterator<char>(in), {}};
+  text = std::regex_replace(text, std::regex("spacing = 0.0625"), "spacing = 0.25");
+  text = std::regex_replace(text, std::regex("folder = \"results/vibration\""), "folder = \"" + dir.string() + "\"");
+  text = std::regex_replace(text, std::regex("fields = \\[.*\\]"), "fields = [" + fields + "]");
+  const auto path = std::filesystem::temp_directory_path() / "mfree-frames.toml";
+  std::ofstream(path) << text;
+  return read_elasticity_scene(path, false);
+}
+
+}  // namespace
+
+TEST_CASE("VTK frames: a .pvd series of .vtu files holding the fields asked for and no others", "[io]") {
+  const auto dir = std::filesystem::temp_directory_path() / "mfree-frames";
+  std::filesystem::remove_all(dir);
+  const ElasticityScene scene = vibration_scene(dir, "\"displacement\", \"velocity\"");
+  StageTimer timer;
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  SolidFrames frames(scene, disc, nullptr);
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(2 * disc.node_count()), v = d;
+  for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = Vec2(0.01, -0.02);  // a translation
+  frames.write(0.0, Eigen::VectorXd::Zero(d.size()), &v);
+  frames.write(0.001, d, &v);
+  REQUIRE(frames.frames() == 2);
+  const VtuContents f = read_vtu(dir / "field_0001.vtu");
+  CHECK(f.arrays.count("displacement") == 1);
+  CHECK(f.arrays.count("velocity") == 1);
+  CHECK(f.arrays.count("cauchy_stress_xx_yy_xy") == 0);
+  CHECK(f.arrays.count("von_mises") == 0);
+  // u^h = sum phi_I d_I reproduces the translation (partition of unity) at every point.
+  const auto& u = f.arrays.at("displacement");
+  const int c = f.components.at("displacement");
+  for (std::size_t k = 0; k < f.points.size(); ++k) {
+    CHECK(std::abs(u[c * k] - 0.01) <= 1e-13);
+    CHECK(std::abs(u[c * k + 1] + 0.02) <= 1e-13);
+  }
+  std::ifstream pvd(dir / "series.pvd");
+  const std::string text{std::istreambuf_iterator<char>(pvd), {}};
+  CHECK(text.find("field_0000.vtu") != std::string::npos);
+  CHECK(text.find("field_0001.vtu") != std::string::npos);
+  CHECK(text.find("timestep=\"0.001\"") != std::string::npos);
+}
+
+TEST_CASE("VTK frames: stress is the Cauchy stress of F = I + grad u^h, zero for a rigid motion", "[io]") {
+  const auto dir = std::filesystem::temp_directory_path() / "mfree-frames-stress";
+  std::filesystem::remove_all(dir);
+  const ElasticityScene scene = vibration_scene(dir, "\"stress\", \"von_mises\"");
+  StageTimer timer;
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  SolidFrames frames(scene, disc, nullptr);
+  // A rigid rotation by 0.7 rad about the origin: u = (R - I) X, stress free for Neo-Hookean.
+  Mat2 r;
+  r << std::cos(0.7), -std::sin(0.7), std::sin(0.7), std::cos(0.7);
+  Eigen::VectorXd d(2 * disc.node_count());
+  for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = (r - Mat2::Identity()) * disc.nodes[i];
+  frames.write(0.0, d, nullptr);
+  const VtuContents f = read_vtu(dir / "field_0000.vtu");
+  REQUIRE(f.arrays.count("cauchy_stress_xx_yy_xy") == 1);
+  CHECK(f.arrays.count("displacement") == 0);
+  double worst = 0.0;
+  for (double s : f.arrays.at("cauchy_stress_xx_yy_xy")) worst = std::max(worst, std::abs(s));
+  for (double s : f.arrays.at("von_mises")) worst = std::max(worst, std::abs(s));
+  CHECK(worst <= 1e-6);  // Pa, against E = 1e7: round-off of a rotation reproduced by linear RK
+}
