@@ -22,14 +22,25 @@ ElasticityScene vibration_scene(const std::filesystem::path& dir, const std::str
   return read_elasticity_scene(path, false);
 }
 
+/// A fresh output folder, the coarse vibration scene writing the fields into it, and its
+/// discretisation.
+struct FramesCase {
+  std::filesystem::path dir;
+  ElasticityScene scene;
+  Discretisation disc;
+  FramesCase(const std::string& folder, const std::string& fields)
+      : dir(std::filesystem::temp_directory_path() / folder), scene(vibration_scene(dir, fields)) {
+    std::filesystem::remove_all(dir);
+    StageTimer timer;
+    disc = discretise(scene.domain, scene.settings, timer);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("VTK frames: a .pvd series of .vtu files holding the fields asked for and no others", "[io]") {
-  const auto dir = std::filesystem::temp_directory_path() / "mfree-frames";
-  std::filesystem::remove_all(dir);
-  const ElasticityScene scene = vibration_scene(dir, "\"displacement\", \"velocity\"");
-  StageTimer timer;
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const FramesCase fc("mfree-frames", "\"displacement\", \"velocity\"");
+  const auto& [dir, scene, disc] = fc;
   SolidFrames frames(scene, disc, nullptr);
   Eigen::VectorXd d = Eigen::VectorXd::Zero(2 * disc.node_count()), v = d;
   for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = Vec2(0.01, -0.02);  // a translation
@@ -56,11 +67,8 @@ TEST_CASE("VTK frames: a .pvd series of .vtu files holding the fields asked for 
 }
 
 TEST_CASE("VTK frames: stress is the Cauchy stress of F = I + grad u^h, zero for a rigid motion", "[io]") {
-  const auto dir = std::filesystem::temp_directory_path() / "mfree-frames-stress";
-  std::filesystem::remove_all(dir);
-  const ElasticityScene scene = vibration_scene(dir, "\"stress\", \"von_mises\"");
-  StageTimer timer;
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const FramesCase fc("mfree-frames-stress", "\"stress\", \"von_mises\"");
+  const auto& [dir, scene, disc] = fc;
   SolidFrames frames(scene, disc, nullptr);
   // A rigid rotation by 0.7 rad about the origin: u = (R - I) X, stress free for Neo-Hookean.
   Mat2 r;
