@@ -3,27 +3,18 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <map>
 
+#include "mfree/apps/report.hpp"
+#include "mfree/apps/solid_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
-#include "mfree/apps/solid_app.hpp"
 
 namespace mfree {
-
-namespace {
-
-void print_stages(const StageTimer& t) {
-  for (const auto& [name, s] : t.stages()) std::cout << fmt::format("  {:<24} {:9.4f} s\n", name, s);
-  std::cout << fmt::format("  {:<24} {:9.4f} s\n", "total", t.total());
-}
-
-}  // namespace
 
 int run_elasticity(const std::filesystem::path& path) {
   const ElasticityScene scene = read_elasticity_scene(path, false);
@@ -148,13 +139,8 @@ int converge_elasticity(const std::filesystem::path& path) {
             << table;
   if (st.reference) std::cout << fmt::format("reference probe u_y: {:.7f}\n", *st.reference);
   std::cout << fmt::format("wrote {}\n", csv_path.string());
-  // Plots: error against spacing and against run time (matplotlib, the system python3).
-  std::cout.flush();
-  const std::string plot = fmt::format("/usr/bin/python3 '{}/verification/plot_convergence.py' '{}' '{}'",
-                                       MFREE_SOURCE_DIR, csv_path.string(), scene.output.folder.string());
-  if (std::system(plot.c_str()) != 0)
-    std::cerr
-        << "mfree converge: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
+  // Plots: error against spacing and against run time.
+  plot("plot_convergence.py", csv_path, scene.output.folder);
   return 0;
 }
 

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 
+#include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
@@ -18,19 +18,6 @@
 namespace mfree {
 
 namespace {
-
-void print_stages(const StageTimer& t) {
-  for (const auto& [name, s] : t.stages()) std::cout << fmt::format("  {:<24} {:9.4f} s\n", name, s);
-  std::cout << fmt::format("  {:<24} {:9.4f} s\n", "total", t.total());
-}
-
-void plot(const std::string& script, const std::filesystem::path& csv, const std::filesystem::path& folder) {
-  std::cout.flush();
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}/verification/{}' '{}' '{}'", MFREE_SOURCE_DIR, script,
-                                      csv.string(), folder.string());
-  if (std::system(cmd.c_str()) != 0)
-    std::cerr << "mfree: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
-}
 
 /// The static exact solution scaled by the load factor (small-strain theory), as a motion
 /// whose "time" is the load factor.
@@ -53,6 +40,12 @@ std::optional<ExactMotion> vibration_motion(const ElasticityScene& scene) {
   return ExactMotion{[v = *v](const Vec2& x, double t) { return v.displacement(x, t); },
                      [v = *v](const Vec2& x, double t) { return v.velocity(x, t); },
                      [v = *v](const Vec2& x, double t) { return v.cauchy_stress(x, t); }};
+}
+
+/// The trial functions at the scene's probe, sampled once for the whole run.
+std::optional<GalerkinQuadrature> probe_functions(const ElasticityScene& scene, const Discretisation& disc) {
+  if (!scene.output.probe) return std::nullopt;
+  return sample_shape_functions(*disc.trial, {*scene.output.probe}, false);
 }
 
 QuadratureRule error_rule(const ElasticityScene& scene) {
@@ -81,6 +74,7 @@ int run_static(const ElasticityScene& scene) {
   std::optional<SolidFrames> frames;
   if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr);
 
+  const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
   NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
   ns.log = &std::cout;
   std::string csv = "load_factor,iterations,cutbacks,probe_ux,probe_uy,linear_probe_uy,l2_displacement_vs_linear\n";
@@ -89,7 +83,7 @@ int run_static(const ElasticityScene& scene) {
     const int iterations = static_cast<int>(step.history.size()) - 1;
     Vec2 probe(std::nan(""), std::nan(""));
     double linear = std::nan(""), relative = std::nan("");
-    if (o.probe) probe = disc.displacement({*o.probe}, d)[0];
+    if (probe_at) probe = displacement_at(*probe_at, 0, d);
     if (exact) {
       if (o.probe) linear = exact->displacement(*o.probe, step.factor).y();
       // Relative L2 difference from the small-strain solution at this load (independent
@@ -145,6 +139,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
   if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0) frames.emplace(scene, disc, exact ? &*exact : nullptr);
+  const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
   std::size_t next_error = 0;
   double next_frame = 0.0;
   const double end = settings.end_time;
@@ -159,7 +154,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
       timer.time("output", [&] { frames->write(s.time, s.d, &s.v); });
       next_frame += end / dyn.frames;
     }
-    if (o.probe) run.probe.emplace_back(s.time, disc.displacement({*o.probe}, s.d)[0]);
+    if (probe_at) run.probe.emplace_back(s.time, displacement_at(*probe_at, 0, s.d));
   };
   DynamicsSettings ds = settings;
   if (verbose) ds.progress = &std::cout;

@@ -126,9 +126,11 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
   for (int n = 1; n <= out.steps; ++n) {
     const double t = n * dt;
     const Eigen::VectorXd d_old = d;
+    Eigen::VectorXd g_new;  // f_ext - f_c at the new state
     if (explicit_scheme) {
       d += dt * v_half;
-      a = (applied(d, t) - internal(d)).cwiseQuotient(lumped);
+      g_new = applied(d, t);
+      a = (g_new - internal(d)).cwiseQuotient(lumped);
       v = v_half + 0.5 * dt * a;
       v_half = v + 0.5 * dt * a;
       if (!std::isfinite(d.squaredNorm()))
@@ -161,8 +163,8 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       v += 0.5 * dt * (a + a_new);
       a = a_new;
       d = std::move(x);
+      g_new = f_ext - timer.time("residual", [&] { return model.constraint_force(d, {1.0, t}); });
     }
-    const Eigen::VectorXd g_new = applied(d, t);
     work += 0.5 * (g + g_new).dot(d - d_old);
     g = g_new;
     record(n, t);

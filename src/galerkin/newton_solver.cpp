@@ -88,7 +88,7 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
       trial = d + alpha * delta;
       n_trial = timer.time("residual", [&] { return residual_norm(system, trial, r_trial, why); });
       if (!s.line_search) break;
-      const bool last = search == s.max_halvings;
+      const bool last = search == s.max_line_search_steps;
       if (!n_trial) {
         if (last) {
           out.failure = fmt::format("every line-search step is inadmissible at iteration {}: {}", it, why);

@@ -20,10 +20,7 @@ Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd
   return u;
 }
 
-ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
-                                     const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
-                                     const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary) {
-  problem.material.validate();
+SolidProblem solid_problem(const ElasticityProblem& problem) {
   SolidProblem solid;
   solid.material = problem.material;
   if (problem.body_force) solid.body_force = [b = problem.body_force](const Vec2& x, double) { return b(x); };
@@ -31,7 +28,14 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
   solid.nitsche_beta = problem.nitsche_beta;
   solid.penalty_modulus = problem.material.youngs_modulus;
   solid.spacing = problem.spacing;
-  const TotalLagrangian model(std::move(solid), domain, nodes, q, test_gradients, bq, at_boundary);
+  return solid;
+}
+
+ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
+                                     const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
+                                     const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary) {
+  problem.material.validate();
+  const TotalLagrangian model(solid_problem(problem), domain, nodes, q, test_gradients, bq, at_boundary);
   // The residual is affine in d: K = its tangent anywhere, f = -residual(0).
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
   ElasticitySystem sys;

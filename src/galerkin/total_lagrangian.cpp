@@ -128,8 +128,10 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
       boundary_rows_(boundary_offsets_, boundary_nodes_, nodes) {
   if (!(problem_.nitsche_beta > 0.0))
     throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
+  reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
   const std::vector<const BoundaryCondition*> condition = segment_conditions(problem_, domain);
   traction_of_point_.assign(bq.size(), nullptr);
+  reference_traction_.resize(at_boundary.nodes.size());
   for (Index p = 0; p < bq.size(); ++p) {
     const BoundaryCondition* c = condition[bq.segment[p]];
     if (!c) continue;
@@ -139,6 +141,8 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     }
     const Vec2& n = bq.normals[p];
     nitsche_.push_back({p, c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(), c});
+    for (Index s = at_boundary.row_begin(p); s < at_boundary.row_end(p); ++s)
+      reference_traction_[s] = traction_operator(reference_tangent_, at_boundary.grad[s], n);
     // Nitsche's terms couple the nodes of a boundary point's row (outside the domain pattern
     // when quadrature rows are narrower than the supports, as with Gauss cells).
     boundary_nodes_.insert(boundary_nodes_.end(), at_boundary.nodes.begin() + at_boundary.row_begin(p),
@@ -148,7 +152,6 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   boundary_rows_ = RowIncidence(boundary_offsets_, boundary_nodes_, nodes);
   const RowIncidence* const sets[] = {&domain_rows_, &boundary_rows_};
   pattern_ = node_pattern(sets);
-  reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
   domain_symmetric_ = test_gradients == nullptr;
   symmetric_ = domain_symmetric_ && (nitsche_.empty() || is_linear(problem_.material));
 }
@@ -167,13 +170,6 @@ Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const 
   return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
 }
 
-std::vector<Mat2> TotalLagrangian::reference_tractions(const NitschePoint& p) const {
-  std::vector<Mat2> t;
-  for (Index s = at_boundary_.row_begin(p.point); s < at_boundary_.row_end(p.point); ++s)
-    t.push_back(traction_operator(reference_tangent_, at_boundary_.grad[s], bq_.normals[p.point]));
-  return t;
-}
-
 Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, const LoadState& load) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
@@ -190,10 +186,10 @@ Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, cons
     const double w = bq_.weights[p.point];
     const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n));
     const Vec2 traction = p.projection * (stress(problem_.material, f_at) * n);
-    const std::vector<Mat2> t0 = reference_tractions(p);
     for (Index s = begin; s < end; ++s) {
       const double phi = at_boundary_.phi[s];
-      f.segment<2>(2 * at_boundary_.nodes[s]) += w * (-phi * traction - t0[s - begin].transpose() * gap + penalty * phi * gap);
+      f.segment<2>(2 * at_boundary_.nodes[s]) +=
+          w * (-phi * traction - reference_traction_[s].transpose() * gap + penalty * phi * gap);
     }
   }
   return f;
@@ -244,6 +240,7 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
 
   // Nitsche: K_IJ = w [ -phi_I Pi T_J(F) - T0_I^T Pi phi_J + penalty phi_I phi_J Pi ].
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
+  std::vector<Mat2> t;  // Pi T_J(F) for the functions of the row
   for (const NitschePoint& p : nitsche_) {
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
     Mat2 f_at = Mat2::Identity();
@@ -251,13 +248,12 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
     const Tangent a = linear ? reference_tangent_ : mfree::tangent(problem_.material, f_at);
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
-    const std::vector<Mat2> t0 = reference_tractions(p);
-    std::vector<Mat2> t(m);
+    t.resize(m);
     for (Index b = 0; b < m; ++b) t[b] = p.projection * traction_operator(a, at_boundary_.grad[begin + b], n);
     for (Index ai = 0; ai < m; ++ai) {
       const Index i = at_boundary_.nodes[begin + ai];
       const double phi_i = at_boundary_.phi[begin + ai];
-      const Mat2 t0p = t0[ai].transpose() * p.projection;
+      const Mat2 t0p = reference_traction_[begin + ai].transpose() * p.projection;
       for (Index bj = 0; bj < m; ++bj) {
         const Index j = at_boundary_.nodes[begin + bj];
         const double phi_j = at_boundary_.phi[begin + bj];

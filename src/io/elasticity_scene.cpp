@@ -214,15 +214,18 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     st.clouds = {s.nodes.kind};
     st.orders = {s.order};
     st.schemes = {s.scheme};
-    if (t.has("clouds")) st.clouds.clear();
-    if (t.has("orders")) st.orders.clear();
-    if (t.has("schemes")) st.schemes.clear();
-    if (t.has("clouds"))
+    if (t.has("clouds")) {
+      st.clouds.clear();
       for (const auto& c : t.choices("clouds", cloud_names)) st.clouds.push_back(cloud_kind(c));
-    if (t.has("orders"))
+    }
+    if (t.has("orders")) {
+      st.orders.clear();
       for (const auto& o : t.choices("orders", order_names)) st.orders.push_back(rk_order(o));
-    if (t.has("schemes"))
+    }
+    if (t.has("schemes")) {
+      st.schemes.clear();
       for (const auto& q : t.choices("schemes", scheme_names)) st.schemes.push_back(scheme(q));
+    }
     if (t.has("time_schemes")) {
       if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
       for (const auto& q : t.choices("time_schemes", {"central_difference", "newmark"}))
@@ -236,10 +239,8 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       if (!out.dynamics->settings.time_step &&
           std::find(st.time_schemes.begin(), st.time_schemes.end(), TimeScheme::newmark) != st.time_schemes.end())
         t.error("time_schemes", "newmark needs a time step: give [dynamics] time_step or [study] time_steps");
-      for (TimeScheme scheme : st.time_schemes) {
-        (void)scheme;
-        st.time_steps.push_back(out.dynamics->settings.time_step.value_or(0.0));  // 0: from the stability limit
-      }
+      // 0: the explicit scheme's step from its stability limit.
+      st.time_steps.assign(st.time_schemes.size(), out.dynamics->settings.time_step.value_or(0.0));
     }
     st.time_step_check = t.boolean_or("time_step_check", false);
     st.betas = t.has("betas") ? t.numbers("betas", 0, 1e-6, 1e12) : std::vector<double>{s.problem.nitsche_beta};
@@ -267,16 +268,12 @@ std::optional<AxisAlignedVibration> ElasticityScene::vibration() const {
 }
 
 SolidProblem ElasticityScene::solid_problem() const {
-  SolidProblem p;
+  ElasticityProblem linear = settings.problem;
+  linear.spacing = settings.nodes.spacing;
+  SolidProblem p = mfree::solid_problem(linear);
   p.material = material;
-  p.conditions = settings.problem.conditions;
-  p.nitsche_beta = settings.problem.nitsche_beta;
-  p.penalty_modulus = settings.problem.material.youngs_modulus;
-  p.spacing = settings.nodes.spacing;
   if (const auto v = vibration())
     p.body_force = [v = *v](const Vec2& x, double t) { return v.density * v.body_force(x, t); };
-  else if (settings.problem.body_force)
-    p.body_force = [b = settings.problem.body_force](const Vec2& x, double) { return b(x); };
   return p;
 }
 

@@ -18,24 +18,24 @@ SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& dis
 
 void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v) {
   const bool want_error = output_.wants("error") && exact_;
+  const bool want_u = output_.wants("displacement") || want_error;
+  const bool want_v = v && output_.wants("velocity");
   const bool want_stress = output_.wants("stress") || output_.wants("von_mises") || want_error;
-  const std::size_t n = points_.size();
-  std::vector<double> u(2 * n), vel, sigma, vm, ue, se;
+  std::vector<double> u, vel, sigma, vm, ue, se;
   for (Index k = 0; k < at_.size(); ++k) {
     Vec2 uk = Vec2::Zero(), vk = Vec2::Zero();
     Mat2 f = Mat2::Identity();
     for (Index s = at_.row_begin(k); s < at_.row_end(k); ++s) {
       const auto di = d.segment<2>(2 * at_.nodes[s]);
-      uk += at_.phi[s] * di;
-      if (v) vk += at_.phi[s] * v->segment<2>(2 * at_.nodes[s]);
+      if (want_u) uk += at_.phi[s] * di;
+      if (want_v) vk += at_.phi[s] * v->segment<2>(2 * at_.nodes[s]);
       if (want_stress) f += di * at_.grad[s].transpose();
     }
-    u[2 * k] = uk.x();
-    u[2 * k + 1] = uk.y();
-    if (v && output_.wants("velocity")) vel.insert(vel.end(), {vk.x(), vk.y()});
+    if (output_.wants("displacement")) u.insert(u.end(), {uk.x(), uk.y()});
+    if (want_v) vel.insert(vel.end(), {vk.x(), vk.y()});
     if (want_stress) {
       const Mat2 s = cauchy_stress(material_, f);
-      sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
+      if (output_.wants("stress")) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
       if (output_.wants("von_mises")) vm.push_back(von_mises(s, out_of_plane_stress(material_, f)));
       if (want_error) {
         const Vec2 eu = uk - exact_->displacement(points_[k], time);
@@ -47,9 +47,9 @@ void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::Vect
   }
   std::vector<PointField> fields;
   if (output_.wants("displacement")) fields.push_back({"displacement", 2, std::move(u)});
-  if (!vel.empty()) fields.push_back({"velocity", 2, std::move(vel)});
+  if (want_v) fields.push_back({"velocity", 2, std::move(vel)});
   if (output_.wants("stress")) fields.push_back({"cauchy_stress_xx_yy_xy", 3, std::move(sigma)});
-  if (!vm.empty()) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (output_.wants("von_mises")) fields.push_back({"von_mises", 1, std::move(vm)});
   if (want_error) {
     fields.push_back({"displacement_error", 2, std::move(ue)});
     fields.push_back({"stress_error_xx_yy_xy", 3, std::move(se)});

@@ -15,21 +15,14 @@ Mat2 cauchy_stress(const Material& m, const Mat2& f) {
 
 double out_of_plane_stress(const Material& m, const Mat2& f) {
   if (const auto* l = std::get_if<LinearElastic>(&m)) {
-    if (l->model == PlaneModel::stress) return 0.0;
     const Mat2 s = l->stress(f);
-    return l->poisson_ratio * (s(0, 0) + s(1, 1));
+    return l->out_of_plane_stress({s(0, 0), s(1, 1), s(0, 1)});
   }
   const double j = f.determinant();
   if (const auto* n = std::get_if<NeoHookean>(&m)) return n->lame.lambda * std::log(j) / j;  // P_zz = lambda ln J
   const auto& s = std::get<StVenantKirchhoff>(m);
   const double tr_e = 0.5 * ((f.transpose() * f).trace() - 2.0);
   return s.lame.lambda * tr_e / j;  // S_zz = lambda tr E, sigma_zz = S_zz / J
-}
-
-double von_mises(const Mat2& s, double szz) {
-  const double a = s(0, 0) - s(1, 1), b = s(1, 1) - szz, c = szz - s(0, 0);
-  const double shear = 0.5 * (s(0, 1) + s(1, 0));
-  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * shear * shear);
 }
 
 std::string_view name(const Material& m) {

@@ -34,7 +34,7 @@ struct NewtonSettings {
   double absolute_tolerance = 0.0;     ///< on |R|, for steps that start at equilibrium
   int max_iterations = 25;
   bool line_search = true;
-  int max_halvings = 8;                ///< line search: trials after the full step
+  int max_line_search_steps = 8;       ///< line search: trials after the full step
   /// Modified Newton: keep the last factorised tangent (from earlier solves too) while each
   /// iteration cuts |R| at least tenfold; refactorise when one does not. Converges linearly,
   /// and pays where the tangent hardly changes (Newmark steps, dominated by 4 M / dt^2).

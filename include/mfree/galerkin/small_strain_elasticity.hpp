@@ -34,6 +34,10 @@ struct ElasticityProblem {
   double nitsche_beta = 100.0;  ///< penalty beta E / h (dimensionless beta)
   double spacing = 1.0;         ///< h in the penalty: nodal spacing
 };
+/// The same problem as the total-Lagrangian solver takes it, with the small-strain law (a
+/// caller may swap in another Material) and the penalty modulus E of that law.
+SolidProblem solid_problem(const ElasticityProblem& problem);
+
 struct ElasticitySystem {
   SparseMatrix stiffness;  ///< 2N x 2N
   Eigen::VectorXd load;

@@ -115,8 +115,6 @@ class TotalLagrangian {
     Mat2 projection;        ///< Pi
     const BoundaryCondition* condition;
   };
-  /// (C : grad(phi_I e_i)) N as the columns i of a 2 x 2 matrix, for each function of a row.
-  std::vector<Mat2> reference_tractions(const NitschePoint& p) const;
 
   SolidProblem problem_;
   Index nodes_;
@@ -131,6 +129,9 @@ class TotalLagrangian {
   RowIncidence boundary_rows_;
   NodePattern pattern_;
   Tangent reference_tangent_;
+  /// Per slot of a Nitsche point's row in at_boundary: (C : grad(phi_I e_i)) N as the columns
+  /// i of a 2 x 2 matrix, the traction of a test function in the symmetrising term.
+  std::vector<Mat2> reference_traction_;
   bool domain_symmetric_ = true;  ///< test = trial gradients
   bool symmetric_ = true;
 };

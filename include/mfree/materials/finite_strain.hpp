@@ -31,6 +31,13 @@ inline Lame lame_constants(double youngs_modulus, double poisson_ratio) {
   return {e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))};
 }
 
+/// Von Mises stress of a plane state: in-plane Cauchy stress sigma (symmetric) and sigma_zz.
+inline double von_mises(const Mat2& s, double szz) {
+  const double a = s(0, 0) - s(1, 1), b = s(1, 1) - szz, c = szz - s(0, 0);
+  const double shear = 0.5 * (s(0, 1) + s(1, 0));
+  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * shear * shear);
+}
+
 /// J = det F, throwing NumericalError ("J = ... <= 0 at <where>") when the material is
 /// inverted or collapsed.
 double checked_jacobian(const Mat2& f, const char* model);

@@ -65,11 +65,16 @@ struct LinearElastic {
     return {f(0, 0) - 1.0, f(1, 1) - 1.0, f(0, 1) + f(1, 0)};
   }
 
-  /// Von Mises stress of a Voigt stress (with sigma_zz = nu (sigma_xx + sigma_yy) in plane strain).
+  /// sigma_zz of an in-plane Voigt stress: nu (sigma_xx + sigma_yy) in plane strain, 0 in
+  /// plane stress.
+  [[nodiscard]] double out_of_plane_stress(const Eigen::Vector3d& s) const {
+    return model == PlaneModel::strain ? poisson_ratio * (s[0] + s[1]) : 0.0;
+  }
+  /// Von Mises stress of a Voigt stress, with its sigma_zz.
   [[nodiscard]] double von_mises(const Eigen::Vector3d& s) const {
-    const double szz = model == PlaneModel::strain ? poisson_ratio * (s[0] + s[1]) : 0.0;
-    const double a = s[0] - s[1], b = s[1] - szz, c = szz - s[0];
-    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * s[2] * s[2]);
+    Mat2 m;
+    m << s[0], s[2], s[2], s[1];
+    return mfree::von_mises(m, out_of_plane_stress(s));
   }
 };
 

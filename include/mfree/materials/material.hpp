@@ -33,8 +33,6 @@ inline Tangent tangent(const Material& m, const Mat2& f) {
 Mat2 cauchy_stress(const Material& m, const Mat2& f);
 /// The out-of-plane Cauchy stress sigma_zz (plane strain: F_zz = 1; plane stress: 0).
 double out_of_plane_stress(const Material& m, const Mat2& f);
-/// Von Mises stress of the in-plane Cauchy stress sigma with sigma_zz.
-double von_mises(const Mat2& sigma, double sigma_zz);
 /// True for the small-strain law, whose tangent is the same at every F.
 inline bool is_linear(const Material& m) { return std::holds_alternative<LinearElastic>(m); }
 std::string_view name(const Material& m);

@@ -1,0 +1,22 @@
+#include "mfree/apps/report.hpp"
+
+#include <cstdlib>
+#include <fmt/format.h>
+#include <iostream>
+
+namespace mfree {
+
+void print_stages(const StageTimer& t) {
+  for (const auto& [name, s] : t.stages()) std::cout << fmt::format("  {:<24} {:9.4f} s\n", name, s);
+  std::cout << fmt::format("  {:<24} {:9.4f} s\n", "total", t.total());
+}
+
+void plot(const std::string& script, const std::filesystem::path& csv, const std::filesystem::path& folder) {
+  std::cout.flush();
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}/verification/{}' '{}' '{}'", MFREE_SOURCE_DIR, script,
+                                      csv.string(), folder.string());
+  if (std::system(cmd.c_str()) != 0)
+    std::cerr << "mfree: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
+}
+
+}  // namespace mfree
