@@ -271,3 +271,106 @@ TEST_CASE("pvd: a valid XML collection listing the steps", "[io]") {
   CHECK_THROWS_AS(mfree::write_pvd(path, {{std::nan(""), "x.vtu"}}), mfree::NumericalError);
   CHECK_THROWS_AS(mfree::write_pvd(path, {{0.0, ""}}), mfree::InputError);
 }
+
+TEST_CASE("vti image: vector and tensor fields read back bit for bit", "[io][vtk]") {
+  ScratchFolder folder("vti_image");
+  std::mt19937_64 rng(11);
+  // Different sizes along x and y, so a transposed point order would show.
+  const int nx = 7, ny = 5;
+  const auto n = static_cast<std::size_t>(nx * ny);
+  const Vec2 origin(-0.125, 2.0 / 3.0);
+  const double spacing = 0.1;
+  const std::vector<PointField> fields = {
+      {"velocity", 2, awkward_values(2 * n, rng)},
+      {"stress", 3, awkward_values(3 * n, rng)},
+  };
+  const fs::path path = folder.path / "grid.vti";
+  mfree::write_image_vti(path, origin, spacing, nx, ny, fields);
+  CHECK(folder.entries() == std::vector<std::string>{"grid.vti"});  // no temporary file left
+
+  const mfree::VtiContents read = mfree::read_vti(path);
+  CHECK(read.nx == nx);
+  CHECK(read.ny == ny);
+  CHECK(same_bits(read.origin.x(), origin.x()));
+  CHECK(same_bits(read.origin.y(), origin.y()));
+  CHECK(same_bits(read.spacing, spacing));
+  CHECK(read.array_names == std::vector<std::string>{"velocity", "stress"});
+  CHECK(read.components.at("velocity") == 3);  // 2D vector padded with z = 0
+  CHECK(read.components.at("stress") == 3);
+
+  const std::vector<double>& v = read.arrays.at("velocity");
+  const std::vector<double>& s = read.arrays.at("stress");
+  REQUIRE(v.size() == 3 * n);
+  REQUIRE(s.size() == 3 * n);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!same_bits(v[3 * i], fields[0].values[2 * i])) ++mismatches;
+    if (!same_bits(v[3 * i + 1], fields[0].values[2 * i + 1])) ++mismatches;
+    if (!same_bits(v[3 * i + 2], 0.0)) ++mismatches;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (!same_bits(s[3 * i + c], fields[1].values[3 * i + c])) ++mismatches;
+  }
+  CHECK(mismatches == 0);
+}
+
+TEST_CASE("vti image: points are in grid order, x fastest", "[io][vtk]") {
+  ScratchFolder folder("vti_order");
+  const int nx = 3, ny = 2;
+  // The field is each point's own index i + nx j.
+  std::vector<double> index;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) index.push_back(i + nx * j);
+  const fs::path path = folder.path / "order.vti";
+  mfree::write_image_vti(path, Vec2(1.0, 2.0), 0.5, nx, ny, {{"index", 1, index}});
+
+  // VTK's own view of the file: point k sits at origin + h (k % nx, k / nx).
+  vtkSmartPointer<vtkXMLDataElement> root;
+  root.TakeReference(vtkXMLUtilities::ReadElementFromFile(path.c_str()));
+  REQUIRE(root != nullptr);
+  CHECK(std::string(root->GetAttribute("type")) == "ImageData");
+  vtkXMLDataElement* image = root->FindNestedElementWithName("ImageData");
+  REQUIRE(image != nullptr);
+  CHECK(std::string(image->GetAttribute("WholeExtent")) == "0 2 0 1 0 0");
+  CHECK(std::string(image->GetAttribute("Origin")) == "1 2 0");
+  CHECK(mfree::read_vti(path).arrays.at("index") == index);
+}
+
+TEST_CASE("vti image: bad fields and grids are refused and leave no file behind", "[io][vtk]") {
+  ScratchFolder folder("vti_errors");
+  const fs::path path = folder.path / "bad.vti";
+  const int nx = 3, ny = 2;
+  std::vector<PointField> fields = {{"v", 2, std::vector<double>(2 * nx * ny, 1.0)}};
+  const auto write = [&] { mfree::write_image_vti(path, Vec2(0, 0), 1.0, nx, ny, fields); };
+
+  fields[0].values[7] = std::nan("");
+  CHECK_THROWS_AS(write(), mfree::NumericalError);
+  const std::string message = message_of(write);
+  CHECK_THAT(message, Catch::Contains("bad.vti") && Catch::Contains("field 'v'") &&
+                          Catch::Contains("point 3"));
+  CHECK(folder.entries().empty());
+
+  // Wrong size: a 2-component field of 3 x 2 points needs 12 values.
+  fields[0].values.assign(11, 1.0);
+  CHECK_THROWS_AS(write(), mfree::InputError);
+  CHECK_THAT(message_of(write), Catch::Contains("bad.vti") && Catch::Contains("'v' has 11 values") &&
+                                    Catch::Contains("need 12"));
+  CHECK(folder.entries().empty());
+
+  // Empty grids, a spacing that is not positive and a non-finite origin.
+  fields.clear();
+  CHECK_THROWS_AS(mfree::write_image_vti(path, Vec2(0, 0), 1.0, 0, 2, fields), mfree::InputError);
+  CHECK_THROWS_AS(mfree::write_image_vti(path, Vec2(0, 0), 0.0, 2, 2, fields), mfree::InputError);
+  CHECK_THROWS_AS(mfree::write_image_vti(path, Vec2(0, 0), std::nan(""), 2, 2, fields),
+                  mfree::InputError);
+  CHECK_THROWS_AS(mfree::write_image_vti(path, Vec2(INFINITY, 0), 1.0, 2, 2, fields),
+                  mfree::NumericalError);
+  CHECK(folder.entries().empty());
+
+  // read_vti: missing files and files of another kind are input errors naming them.
+  CHECK_THAT(message_of<mfree::InputError>([&] { mfree::read_vti(path); }),
+             Catch::Contains("bad.vti"));
+  const fs::path cloud = folder.path / "cloud.vtu";
+  mfree::write_point_cloud_vtu(cloud, points_of({{0, 0}}), {});
+  CHECK_THAT(message_of<mfree::InputError>([&] { mfree::read_vti(cloud); }),
+             Catch::Contains("cloud.vtu"));
+}

@@ -1,7 +1,8 @@
 #pragma once
 // Output for ParaView: point clouds and triangulations with fields at their points, as VTK
-// XML unstructured grids (.vtu, binary appended data, LZ4-compressed), and ParaView
-// collections (.pvd) that string .vtu files into a time series.
+// XML unstructured grids (.vtu, binary appended data, LZ4-compressed), fields on uniform 2D
+// grids as VTK XML image data (.vti, likewise), and ParaView collections (.pvd) that string
+// such files into a time series.
 //
 // Points are 2D; the files hold them with z = 0. Values are written as 64-bit floats, so a
 // file read back gives every value bit for bit. NaN and infinity are never written: a field
@@ -57,6 +58,31 @@ void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Ve
 /// an empty file name, Error when the file cannot be written.
 void write_pvd(const std::filesystem::path& path,
                const std::vector<std::pair<double, std::string>>& steps);
+
+/// Writes fields on a uniform 2D grid of nx x ny points, the first at `origin`, `spacing`
+/// apart in both directions, as VTK XML image data (.vti): binary appended, LZ4, like the
+/// .vtu files. Point fields follow the PointField conventions above, with the points in
+/// grid order, x fastest: point (i, j) has index i + nx j.
+/// Errors as write_point_cloud_vtu (fields of the wrong size, non-finite values, failed
+/// writes), plus InputError for nx or ny below 1 or a spacing that is not positive and finite,
+/// and NumericalError for a non-finite origin. Written atomically.
+void write_image_vti(const std::filesystem::path& path, const Vec2& origin, double spacing,
+                     int nx, int ny, const std::vector<PointField>& fields);
+
+/// What read_vti finds in a .vti file.
+struct VtiContents {
+  Vec2 origin = Vec2::Zero();                       ///< position of the first point
+  double spacing = 0.0;                             ///< distance between neighbouring points
+  int nx = 0, ny = 0;                               ///< points along x and y
+  std::vector<std::string> array_names;             ///< point-data arrays in file order
+  std::map<std::string, std::vector<double>> arrays;  ///< values point after point, x fastest
+  std::map<std::string, int> components;            ///< components per point of each array
+};
+
+/// Reads a 2D .vti file (one layer of points, square cells) for tests and tools. A missing,
+/// unreadable or invalid file, or one that is not such an image, is an InputError naming
+/// the path.
+VtiContents read_vti(const std::filesystem::path& path);
 
 /// What read_vtu finds in a .vtu file.
 struct VtuContents {

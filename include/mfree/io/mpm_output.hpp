@@ -1,0 +1,75 @@
+#pragma once
+// VTK frames of an MPM run, for ParaView: particles_NNNN.vtu with one vertex per particle at
+// its current position x_p and, when asked, grid_NNNN.vti with fields of the background grid
+// on a uniform image. series.pvd lists the particle frames and grid.pvd the grid frames, each
+// with the solver's time; both are rewritten after every frame, so a run stopped early
+// leaves valid series of the frames written so far. Only the fields asked for are computed:
+//
+// At the particles
+//   displacement        x_p - X_p
+//   velocity            v_p
+//   stress              Cauchy stress sigma_p (xx, yy, xy)
+//   von_mises           of sigma_p with the law's sigma_zz at F_p
+//   displacement_error  (x_p - X_p) - u(X_p, t)    } against the exact motion ("error";
+//   stress_error        sigma_p - sigma(X_p, t)     } needs one)
+//
+// On the grid ("grid"), at the (cells + 1)^2 corners of the cells of the grid's extent
+// (padding included), spacing h:
+//   velocity  the grid velocity field v^h(x) = sum_i N_i(x) v_i, not the nodal coefficients
+//             (which sit at Greville points, not at the corners; the two differ for B-splines)
+//   mass      sum_i N_i(x) m_i / h^2: an indication of the mass density, not the density
+//             itself. Away from the body's edges it is close to rho; it falls towards the
+//             edges (the boundary functions of open knot vectors have smaller integrals) and
+//             is zero where no particle reaches.
+// The grid holds values only once the solver has stepped: a frame written before the first
+// step has no grid file (its number is skipped in grid.pvd), so grid_NNNN and
+// particles_NNNN with the same NNNN are always the same instant.
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mfree/materials/material.hpp"
+#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/mpm/mpm_solver.hpp"
+
+namespace mfree {
+
+/// Which fields MPMFrames writes (see above).
+struct MPMFrameFields {
+  bool displacement = false;
+  bool velocity = false;
+  bool stress = false;
+  bool von_mises = false;
+  bool error = false;  ///< displacement_error and stress_error
+  bool grid = false;   ///< grid_NNNN.vti with velocity and mass
+};
+
+class MPMFrames {
+ public:
+  /// Frames into `folder`, created if missing (Error when it cannot be). exact: the motion
+  /// errors are measured against; may be null, but then fields.error is an InputError.
+  /// material: the solver's law, for sigma_zz in von_mises.
+  MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
+            Material material);
+
+  /// Writes frame number frames() at solver.time() and rewrites the series. Errors as the
+  /// writers of vtk_output.hpp (NumericalError for a non-finite value, naming the field).
+  void write(const MPMSolver& solver);
+
+  [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
+  [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
+  [[nodiscard]] std::filesystem::path grid_series() const { return folder_ / "grid.pvd"; }
+
+ private:
+  void write_grid(const MPMSolver& solver, const std::string& name);
+
+  std::filesystem::path folder_;
+  MPMFrameFields fields_;
+  const AxisAlignedVibration* exact_;
+  Material material_;
+  std::vector<std::pair<double, std::string>> steps_, grid_steps_;
+};
+
+}  // namespace mfree

@@ -1,0 +1,65 @@
+#pragma once
+// Moving-least-squares reconstruction of particle fields at Gauss points (seed 000 eqs.
+// 6-21): with the particles at x_p as the data points,
+//
+//   f_g = sum_p phi_gp f_p,   phi_gp = phi_p(x_g),
+//
+// phi the linear MLS functions (basis [1, x, y], eq. 15) with the quadratic spline kernel
+// on a square support (eqs. 16-17) of half width a = support x h (seed 000: a = 3 l_x, where
+// its r_x = (x - x_p) / (2 l_x) reaches 3/2). These are the RK functions of kernels/ with the
+// particles as nodes: the same code serves the Galerkin solver.
+//
+// The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
+// particle (all cells while the body fills the domain), each with weight h^2 / 4 (omega_g),
+// and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces 1, x and y but does not conserve
+// mass (SPEC section 7); the solver reports the grid mass against the particles'.
+
+#include <utility>
+#include <vector>
+
+#include "mfree/kernels/rk_shape_functions.hpp"
+#include "mfree/mpm/grid_transfer.hpp"
+
+namespace mfree {
+
+class MLSReconstruction {
+ public:
+  /// support: kernel half width in cells (seed 000: 3).
+  MLSReconstruction(const Grid& grid, const ParticleBasis& basis, double support);
+
+  [[nodiscard]] Index points() const { return static_cast<Index>(points_.size()); }
+  [[nodiscard]] const std::vector<Vec2>& gauss_points() const { return points_; }
+  [[nodiscard]] double gauss_weight() const { return omega_; }
+  /// N_i and grad N_i at the Gauss points.
+  [[nodiscard]] const WeightTable& grid_weights() const { return weights_; }
+
+  /// Gauss points of the cells holding particles and phi_gp for the particles at
+  /// `positions` (once per step, reused by every field). Throws NumericalError naming the
+  /// Gauss point when too few particles surround it.
+  void update(const std::vector<Vec2>& positions);
+
+  /// at_gauss[g] = sum_p phi_gp value(p) (eqs. 18-21).
+  template <class T, class Value>
+  void reconstruct(std::vector<T>& at_gauss, Value&& value) const {
+    at_gauss.resize(points_.size());
+    parallel_blocks(points(), 256, [&](Index begin, Index end) {
+      for (Index g = begin; g < end; ++g) {
+        T sum = zero_of<T>();
+        for (const auto& [p, phi] : rows_[g]) sum += phi * value(p);
+        at_gauss[g] = sum;
+      }
+    });
+  }
+
+ private:
+  const Grid& grid_;
+  const ParticleBasis& basis_;
+  std::vector<unsigned char> active_;  ///< per domain cell: holds a particle
+  std::vector<Vec2> points_;
+  double omega_ = 0.0;
+  WeightTable weights_;
+  RKSettings settings_;
+  std::vector<std::vector<std::pair<Index, double>>> rows_;
+};
+
+}  // namespace mfree

@@ -1,0 +1,139 @@
+#pragma once
+// Explicit MPM time stepping (SPEC section 7; seed 002; seed 000 eqs. 18-37).
+//
+// One step from t to t + dt, in the stages the papers name:
+//
+//   1. weights S_ip, G_ip at the particles (and, for bspline_mls, the MLS functions phi_gp)
+//   2. particles to grid: m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p
+//        (bspline_mls: m_i = sum_g N_i(x_g) rho_g omega_g, eqs. 18-23)
+//   3. USF, USAVG: stress update from v_i = (mv)_i / m_i (USAVG over dt / 2)
+//   4. grid forces f_i = -sum sigma_p V_p G_ip + sum S_ip m_p b_p (eqs. 24-26 for MLS, which
+//        reconstructs rho b, SPEC section 7)
+//   5. grid momentum (mv)_i += dt f_i (eq. 28); slip walls zero the normal components
+//   6. grid to particles: v_p += dt sum S_ip f_i / m_i, x_p += dt sum S_ip (mv)_i / m_i
+//        (eqs. 29-30)
+//   7. USL: stress update from the updated grid velocities;
+//      SZS (MUSL), USAVG: the updated particle momenta extrapolated again (eqs. 31-33), then
+//      the stress update from them (USAVG over dt / 2)
+//
+// The stress update (eqs. 34-37): L_p = sum_i (v_i - v_p) G_ip^T (the same as sum v_i G_ip^T,
+// since sum_i G_ip = 0, but exactly zero for a uniform velocity), the incremental deformation
+// gradient dF = sum_{k=0..kmax} (dt L_p)^k / k! (seed 002), F_p <- dF F_p, V_p = J V_p0 and
+// sigma_p from the material (materials/, the laws the Galerkin solver uses). J <= 0 stops
+// the run with a NumericalError naming the particle, where it is and the time.
+//
+// Time step: dt = min(time_step, courant h / c), c the material's dilatational wave speed in
+// the reference state, then shortened so that a whole number of steps reaches end_time. A
+// Courant number above 1 (a time_step or courant beyond h / c) is refused unless the settings
+// allow it (stability studies).
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "mfree/core/stage_timer.hpp"
+#include "mfree/materials/material.hpp"
+#include "mfree/mpm/grid_transfer.hpp"
+#include "mfree/mpm/mls_reconstruction.hpp"
+#include "mfree/mpm/particles.hpp"
+
+namespace mfree {
+
+enum class UpdateScheme { usf, usl, szs, usavg };
+std::string_view to_string(UpdateScheme s);
+
+struct MPMSettings {
+  MPMMethod method = MPMMethod::bspline;
+  int degree = 2;  ///< B-spline degree (2 or 3); the other methods use hats
+  UpdateScheme update = UpdateScheme::usf;
+  int cells = 16;                      ///< cells across the domain's width
+  int particles_per_side = 3;          ///< per cell side: 9 particles per cell
+  double mls_support = 3.0;            ///< bspline_mls: kernel half width in cells
+  int deformation_terms = 2;           ///< kmax of the dF series
+  double end_time = 0.0;
+  double courant = 0.5;
+  std::optional<double> time_step;     ///< fixed step; dt = min(time_step, courant h / c)
+  bool allow_unstable_time_step = false;
+  std::vector<Wall> walls;             ///< slip walls on the domain's edges
+};
+
+struct MPMProblem {
+  Box domain;
+  Material material;
+  double density = 0.0;                                ///< rho0 [kg/m^3]
+  std::function<Vec2(const Vec2& X, double t)> body_force;  ///< per unit mass, at reference positions; may be empty
+  std::function<Vec2(const Vec2& X)> initial_velocity;      ///< may be empty (at rest)
+};
+
+struct MPMEnergy {
+  double time = 0.0;
+  double kinetic = 0.0;   ///< sum 1/2 m_p |v_p|^2
+  double strain = 0.0;    ///< sum V_p0 W(F_p)
+  double external = 0.0;  ///< work of the body forces, sum over steps of m_p b_p . dx_p
+};
+
+class MPMSolver {
+ public:
+  /// Builds grid, particles (filling the domain) and weights; throws InputError for bad
+  /// settings, among them a time step over the Courant limit.
+  MPMSolver(MPMProblem problem, MPMSettings settings);
+  /// Tests: start from the given particles instead of filling the domain.
+  MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles);
+  ~MPMSolver();
+
+  void step();
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] double time_step() const { return dt_; }
+  [[nodiscard]] int steps() const { return steps_; }  ///< steps to end_time
+  [[nodiscard]] double courant_limit() const { return h_over_c_; }  ///< h / c
+  [[nodiscard]] const Particles& particles() const { return particles_; }
+  [[nodiscard]] const Grid& grid() const { return grid_; }
+  [[nodiscard]] const MPMSettings& settings() const { return settings_; }
+  [[nodiscard]] const std::vector<double>& grid_mass() const { return mass_; }
+  /// Grid velocities of the last stress update (after the step: the updated ones).
+  [[nodiscard]] const std::vector<Vec2>& grid_velocity() const { return velocity_; }
+  /// sum_i S_ip(x) v_i at the particles' current positions (the grid velocity seen by them).
+  [[nodiscard]] std::vector<Vec2> interpolated_grid_velocity() const;
+  /// |sum_i m_i - sum_p m_p| / sum_p m_p of the last step (0 to round-off unless MLS).
+  [[nodiscard]] double mass_defect() const { return mass_defect_; }
+  [[nodiscard]] MPMEnergy energy() const;
+  [[nodiscard]] StageTimer& timer() { return timer_; }
+
+ private:
+  void compute_weights();
+  void particles_to_grid();
+  void update_stress(double dt);
+  void compute_grid_forces();
+  void update_grid_momentum();
+  void grid_to_particles();
+  void extrapolate_updated_momenta();
+  void grid_velocities(const std::vector<Vec2>& momentum);
+  const WeightTable& source_weights() const;
+  /// Nodes with less mass than this have no velocity (1e-12 of a particle's mass).
+  [[nodiscard]] double mass_floor() const { return 1e-12 * particles_.mass.front(); }
+
+  MPMProblem problem_;
+  MPMSettings settings_;
+  Grid grid_;
+  ParticleBasis basis_;
+  Particles particles_;
+  std::unique_ptr<MLSReconstruction> mls_;
+  std::vector<unsigned char> walls_;
+  WeightTable weights_;  ///< at the particles
+  std::vector<double> mass_;
+  std::vector<Vec2> momentum_, force_, velocity_;
+  // Per source point (particle or Gauss point) of the grid integrals.
+  std::vector<double> source_mass_;
+  std::vector<Vec2> source_momentum_, source_body_;
+  std::vector<Mat2> source_stress_;  ///< sigma times volume
+  std::vector<Vec2> body_;           ///< b_p at the start of the step
+  std::vector<double> density_;      ///< MLS: rho_p omega_g at the start of the step
+  double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, external_work_ = 0.0;
+  int steps_ = 0;
+  StageTimer timer_;
+};
+
+}  // namespace mfree

@@ -1,0 +1,36 @@
+#pragma once
+// Material points, stored field by field (one array per quantity, index p): the loops of a
+// time step each touch a few fields of every particle.
+//
+// Units: mass [kg per unit thickness], volume [m^2 per unit thickness], positions [m],
+// velocity [m/s], F dimensionless, Cauchy stress [Pa] (tension positive).
+
+#include <vector>
+
+#include "mfree/core/types.hpp"
+
+namespace mfree {
+
+struct Particles {
+  std::vector<double> mass;
+  std::vector<double> volume0;     ///< reference volume V_p0
+  std::vector<double> volume;      ///< current volume J V_p0
+  std::vector<Vec2> reference;     ///< X_p, where the particle started
+  std::vector<Vec2> position;      ///< x_p
+  std::vector<Vec2> velocity;      ///< v_p, updated from grid accelerations (FLIP)
+  std::vector<Mat2> deformation;   ///< F_p
+  std::vector<Mat2> stress;        ///< Cauchy stress sigma_p
+  /// Reference half sizes (l_x, l_y) of the particle domain: only for uGIMP and CPDI, whose
+  /// weights need the domain (empty otherwise).
+  std::vector<Vec2> half_size;
+
+  [[nodiscard]] Index size() const { return static_cast<Index>(mass.size()); }
+};
+
+/// per_side^2 particles in every cell of size h of the box, at the centres of a regular
+/// per_side x per_side subdivision of the cell; mass density * volume, F = I, zero velocity
+/// and stress. with_domains fills half_size = (h / (2 per_side), h / (2 per_side)).
+/// Throws InputError for per_side outside [1, 5] or a box that is not a whole number of cells.
+Particles fill_box(const Box& box, double h, int per_side, double density, bool with_domains);
+
+}  // namespace mfree

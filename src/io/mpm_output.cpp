@@ -1,0 +1,117 @@
+#include "mfree/io/mpm_output.hpp"
+
+#include <fmt/format.h>
+
+#include <system_error>
+#include <utility>
+
+#include "mfree/core/error.hpp"
+#include "mfree/io/vtk_output.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// The basis functions of an axis at its cell corners lo + k h, k = 0 .. cells. The far
+/// corner is lo + cells h, the same expression as hi(), so it lies on the axis exactly.
+std::vector<BSplineAxis::Values> at_corners(const BSplineAxis& axis) {
+  std::vector<BSplineAxis::Values> values;
+  values.reserve(static_cast<std::size_t>(axis.cells()) + 1);
+  for (int k = 0; k <= axis.cells(); ++k) values.push_back(axis.evaluate(axis.lo() + k * axis.spacing()));
+  return values;
+}
+
+/// Appends (time, file) to a series and rewrites its .pvd. The list changes only once the
+/// file is written, so after a failure it still matches the .pvd on disk.
+void append_step(const std::filesystem::path& pvd, std::vector<std::pair<double, std::string>>& steps, double time,
+                 const std::string& file) {
+  std::vector<std::pair<double, std::string>> next = steps;
+  next.emplace_back(time, file);
+  write_pvd(pvd, next);
+  steps = std::move(next);
+}
+
+}  // namespace
+
+MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
+                     Material material)
+    : folder_(std::move(folder)), fields_(fields), exact_(exact), material_(std::move(material)) {
+  if (fields_.error && exact_ == nullptr)
+    throw InputError(fmt::format("MPM output to {}: the error fields need an exact solution, and this problem has none",
+                                 folder_.string()));
+  std::error_code ec;
+  std::filesystem::create_directories(folder_, ec);
+  if (ec) throw Error(fmt::format("cannot create the output folder {}: {}", folder_.string(), ec.message()));
+}
+
+void MPMFrames::write(const MPMSolver& solver) {
+  const Particles& P = solver.particles();
+  const double t = solver.time();
+  std::vector<double> u, v, sigma, vm, ue, se;
+  for (Index p = 0; p < P.size(); ++p) {
+    const Vec2 up = P.position[p] - P.reference[p];
+    const Mat2& s = P.stress[p];
+    if (fields_.displacement) u.insert(u.end(), {up.x(), up.y()});
+    if (fields_.velocity) v.insert(v.end(), {P.velocity[p].x(), P.velocity[p].y()});
+    if (fields_.stress) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
+    if (fields_.von_mises) vm.push_back(von_mises(s, out_of_plane_stress(material_, P.deformation[p])));
+    if (fields_.error) {
+      // Errors at the particle's reference position: the exact motion is Lagrangian.
+      const Vec2 eu = up - exact_->displacement(P.reference[p], t);
+      const Mat2 es = s - exact_->cauchy_stress(P.reference[p], t);
+      ue.insert(ue.end(), {eu.x(), eu.y()});
+      se.insert(se.end(), {es(0, 0), es(1, 1), es(0, 1)});
+    }
+  }
+  std::vector<PointField> fields;
+  if (fields_.displacement) fields.push_back({"displacement", 2, std::move(u)});
+  if (fields_.velocity) fields.push_back({"velocity", 2, std::move(v)});
+  if (fields_.stress) fields.push_back({"stress", 3, std::move(sigma)});
+  if (fields_.von_mises) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (fields_.error) {
+    fields.push_back({"displacement_error", 2, std::move(ue)});
+    fields.push_back({"stress_error", 3, std::move(se)});
+  }
+  const int frame = frames();
+  const std::string name = fmt::format("particles_{:04d}.vtu", frame);
+  write_point_cloud_vtu(folder_ / name, P.position, fields);
+  // Both data files before either series: a failure in one leaves both series as they were.
+  const bool grid_frame = fields_.grid && !solver.grid_mass().empty();
+  const std::string grid_name = fmt::format("grid_{:04d}.vti", frame);
+  if (grid_frame) write_grid(solver, grid_name);
+  append_step(series(), steps_, t, name);
+  if (grid_frame) append_step(grid_series(), grid_steps_, t, grid_name);
+}
+
+void MPMFrames::write_grid(const MPMSolver& solver, const std::string& name) {
+  const Grid& grid = solver.grid();
+  const std::vector<BSplineAxis::Values> wx = at_corners(grid.x_axis()), wy = at_corners(grid.y_axis());
+  const int terms_x = grid.x_axis().degree() + 1, terms_y = grid.y_axis().degree() + 1;
+  const std::vector<Vec2>& nodal_velocity = solver.grid_velocity();
+  const std::vector<double>& nodal_mass = solver.grid_mass();
+  const double h = grid.spacing();
+  std::vector<double> velocity, mass;
+  velocity.reserve(2 * wx.size() * wy.size());
+  mass.reserve(wx.size() * wy.size());
+  // x fastest, as write_image_vti orders the points.
+  for (const BSplineAxis::Values& y : wy) {
+    for (const BSplineAxis::Values& x : wx) {
+      Vec2 vh = Vec2::Zero();
+      double mh = 0.0;
+      for (int l = 0; l < terms_y; ++l) {
+        for (int k = 0; k < terms_x; ++k) {
+          const double n = x.value[k] * y.value[l];
+          const auto i = static_cast<std::size_t>(grid.index(x.first + k, y.first + l));
+          vh += n * nodal_velocity[i];
+          mh += n * nodal_mass[i];
+        }
+      }
+      velocity.insert(velocity.end(), {vh.x(), vh.y()});
+      mass.push_back(mh / (h * h));
+    }
+  }
+  write_image_vti(folder_ / name, grid.extent().lo, h, static_cast<int>(wx.size()), static_cast<int>(wy.size()),
+                  {{"velocity", 2, std::move(velocity)}, {"mass", 1, std::move(mass)}});
+}
+
+}  // namespace mfree

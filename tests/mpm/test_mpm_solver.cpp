@@ -1,0 +1,166 @@
+// The MPM stepper: exact rigid translation, uniform-strain motion under every update scheme,
+// convergence on the vibration problem, and the Courant limit.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "../test_support.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/mpm/particle_errors.hpp"
+
+using namespace mfree;
+
+namespace {
+
+struct Method {
+  MPMMethod method;
+  int degree;
+};
+const Method methods[] = {{MPMMethod::classic, 1}, {MPMMethod::ugimp, 1}, {MPMMethod::cpdi, 1},
+                          {MPMMethod::bspline, 2}, {MPMMethod::bspline, 3}, {MPMMethod::bspline_mls, 2}};
+const UpdateScheme schemes[] = {UpdateScheme::usf, UpdateScheme::usl, UpdateScheme::szs, UpdateScheme::usavg};
+
+const Box unit{Vec2(0.0, 0.0), Vec2(1.0, 1.0)};
+
+MPMProblem block_problem() { return {unit, make_material("neo_hookean", 1e7, 0.3), 1000.0, {}, {}}; }
+
+MPMSettings settings_for(const Method& m, UpdateScheme s, int cells) {
+  MPMSettings st;
+  st.method = m.method;
+  st.degree = m.degree == 1 ? 2 : m.degree;
+  st.update = s;
+  st.cells = cells;
+  st.end_time = 1.0;
+  return st;
+}
+
+bool uses_domains(MPMMethod m) { return m == MPMMethod::ugimp || m == MPMMethod::cpdi; }
+
+}  // namespace
+
+TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell edges included", "[mpm]") {
+  // 2 x 2 particles per cell on a box shifted by a quarter cell: every other particle row and
+  // column lies exactly on a cell edge at the start. The velocity is a power of two, so the
+  // grid velocities equal it exactly and the velocity gradient is exactly zero.
+  const double h = 0.125;
+  const Box block{Vec2(7.0 / 32.0, 7.0 / 32.0), Vec2(7.0 / 32.0 + 0.5, 7.0 / 32.0 + 0.5)};
+  const Vec2 v(8.0, -4.0);
+  for (const Method& m : methods)
+    for (UpdateScheme s : schemes) {
+      Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
+      CHECK(particles.position[0].x() == 0.25);  // on an edge
+      particles.velocity.assign(particles.mass.size(), v);
+      MPMSolver solver(block_problem(), settings_for(m, s, 8), std::move(particles));
+      const int steps = 40;  // about 0.17 m: across a cell edge
+      for (int n = 0; n < steps; ++n) solver.step();
+      const Particles& P = solver.particles();
+      double stress = 0.0, strain = 0.0, velocity = 0.0, position = 0.0;
+      for (Index p = 0; p < P.size(); ++p) {
+        stress = std::max(stress, P.stress[p].cwiseAbs().maxCoeff());
+        strain = std::max(strain, (P.deformation[p] - Mat2::Identity()).cwiseAbs().maxCoeff());
+        velocity = std::max(velocity, (P.velocity[p] - v).norm());
+        position = std::max(position, (P.position[p] - P.reference[p] - solver.time() * v).norm());
+      }
+      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s));
+      CHECK(stress == 0.0);
+      CHECK(strain == 0.0);
+      CHECK(velocity == 0.0);
+      CHECK(position <= 1e-13);
+      CHECK(solver.mass_defect() <= (m.method == MPMMethod::bspline_mls ? 0.1 : 1e-14));
+    }
+}
+
+TEST_CASE("USF, USL, SZS and USAVG each reproduce a uniform-strain motion", "[mpm]") {
+  // v = v0 + L x on a free block; particles whose every grid node is surrounded by the
+  // symmetric particle layout must see the velocity gradient L exactly, so
+  // F = dF(dt L) = I + dt L + (dt L)^2 / 2 (USAVG: dF(dt L / 2)^2), their velocities stay and
+  // x moves by dt (v0 + L x).
+  const double h = 1.0 / 64.0;
+  const Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
+  // Far enough from the free edges that nothing of their disturbance reaches the particle in
+  // one step: free-edge stress -> grid forces -> particle velocities -> second extrapolation
+  // -> velocity gradient, each a node support (2 h) or, for MLS, a kernel (3 h) further in.
+  const double margin = 18.0 * h;
+  Mat2 L;
+  L << 0.3, 0.2, -0.1, 0.25;
+  const Vec2 v0(0.05, -0.02);
+  for (const Method& m : methods)
+    for (UpdateScheme s : schemes) {
+      Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
+      for (Index p = 0; p < particles.size(); ++p) particles.velocity[p] = v0 + L * particles.position[p];
+      const Particles start = particles;
+      MPMSolver solver(block_problem(), settings_for(m, s, 64), std::move(particles));
+      solver.step();
+      const double dt = solver.time_step();
+      auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
+      const Mat2 F = s == UpdateScheme::usavg ? Mat2(series(0.5 * dt * L) * series(0.5 * dt * L)) : series(dt * L);
+      const Particles& P = solver.particles();
+      double worst_F = 0.0, worst_v = 0.0, worst_x = 0.0;
+      int interior = 0;
+      for (Index p = 0; p < P.size(); ++p) {
+        const Vec2 X = start.position[p];
+        if ((X - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() > 30 * h - margin) continue;
+        ++interior;
+        worst_F = std::max(worst_F, (P.deformation[p] - F).cwiseAbs().maxCoeff());
+        worst_v = std::max(worst_v, (P.velocity[p] - start.velocity[p]).norm());
+        worst_x = std::max(worst_x, (P.position[p] - X - dt * start.velocity[p]).norm());
+      }
+      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s));
+      CHECK(interior == 2304);
+      CHECK(worst_F <= 1e-13);
+      CHECK(worst_v <= 1e-12);
+      CHECK(worst_x <= 1e-14);
+    }
+}
+
+namespace {
+
+/// RMS displacement error at t = T/4, where u peaks, of the vibration problem (SPEC section 6).
+ParticleErrors quarter_period_errors(const Method& m, int cells) {
+  const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
+  MPMProblem problem{unit, v.material(), v.density, [v](const Vec2& X, double t) { return v.body_force(X, t); },
+                     [v](const Vec2& X) { return v.velocity(X, 0.0); }};
+  MPMSettings s = settings_for(m, UpdateScheme::usf, cells);
+  s.particles_per_side = 3;
+  s.end_time = 0.25 * v.period();
+  s.time_step = 1e-5;  // seed 000's step: the time error stays well below the space error
+  s.walls = {Wall::left, Wall::right, Wall::bottom, Wall::top};
+  MPMSolver solver(problem, s);
+  for (int n = 0; n < solver.steps(); ++n) solver.step();
+  return particle_errors(solver, v);
+}
+
+}  // namespace
+
+TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration problem", "[mpm]") {
+  // A = 0.05, 9 particles per cell, USF, grids of 16 and 32 cells (from 8 cells the MLS
+  // reconstruction with the seed's kernel, 3 cells wide, is pre-asymptotic).
+  for (const Method& m : {Method{MPMMethod::bspline, 2}, Method{MPMMethod::bspline_mls, 2}}) {
+    const ParticleErrors coarse = quarter_period_errors(m, 16), fine = quarter_period_errors(m, 32);
+    const double rate = std::log2(coarse.displacement / fine.displacement);
+    std::cout << fmt::format("{} at T/4: u error {:.3e} -> {:.3e} (rate {:.2f})\n", to_string(m.method),
+                             coarse.displacement, fine.displacement, rate);
+    INFO(to_string(m.method));
+    CHECK(rate >= 1.5);
+  }
+}
+
+TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]") {
+  MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 16);
+  const double limit = (1.0 / 16.0) / wave_speed(block_problem().material, 1000.0);
+  s.time_step = 1.2 * limit;
+  const std::string what = testing::message_of<InputError>([&] { MPMSolver(block_problem(), s); });
+  CHECK_THAT(what, Catch::Contains("above the Courant limit h / c"));
+  CHECK_THAT(what, Catch::Contains("allow_unstable_time_step"));
+  s.courant = 1.5;
+  s.time_step.reset();
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(block_problem(), s); }), Catch::Contains("Courant factor 1.5"));
+  s.allow_unstable_time_step = true;
+  const MPMSolver allowed(block_problem(), s);
+  CHECK(allowed.time_step() == Approx(1.5 * limit).epsilon(1e-3));
+  s.courant = 0.5;
+  s.time_step = 1e-5;
+  CHECK(MPMSolver(block_problem(), s).time_step() <= 1e-5);
+}
