@@ -1,8 +1,8 @@
 // mfree: meshfree Galerkin solid mechanics and the Material Point Method.
 //
 // Usage:
-//   mfree run SCENE.toml                        one elasticity solve
-//   mfree converge SCENE.toml                   refinement study of an elasticity scene
+//   mfree run SCENE.toml                        one elasticity solve or MPM run
+//   mfree converge SCENE.toml                   refinement study of an elasticity or MPM scene
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
 //
@@ -16,6 +16,7 @@
 
 #include "mfree/apps/elasticity_app.hpp"
 #include "mfree/apps/integration_study.hpp"
+#include "mfree/apps/mpm_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/atomic_file.hpp"
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   integration->add_option("scene", scene, "Study description (TOML)")->required();
   integration->add_option("--out", out, "Folder for integration.csv")->capture_default_str();
 
-  CLI::App* run = app.add_subcommand("run", "One solve of a scene: summary, errors, VTK fields");
+  CLI::App* run = app.add_subcommand("run", "One solve or MPM run of a scene: summary, errors, VTK fields");
   run->add_option("scene", scene, "Scene file (TOML)")->required();
   CLI::App* converge = app.add_subcommand("converge", "Refinement study of a scene: CSV, PNG plots, rates");
   converge->add_option("scene", scene, "Scene file (TOML) with a [study] section")->required();
@@ -57,6 +58,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (*integration) return run_integration(scene, out);
+    // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
+    if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
+      const mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge));
+      return *run ? mfree::run_mpm(mpm) : mfree::converge_mpm(mpm);
+    }
     if (*run) return mfree::run_elasticity(scene);
     if (*converge) return mfree::converge_elasticity(scene);
   } catch (const mfree::Error& e) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/io/scene_sections.hpp"
 
 namespace mfree {
 
@@ -21,13 +22,6 @@ const std::vector<std::string> cloud_names{"lattice", "perturbed", "random"};
 const std::vector<std::string> order_names{"linear", "quadratic"};
 const std::vector<std::string> scheme_names{"projected", "gauss_cells", "nodal"};
 
-Box region_box(const SceneTable& t, const std::string& key) {
-  const auto p = t.pairs(key, 2);
-  const Box b{Vec2(std::min(p[0][0], p[1][0]), std::min(p[0][1], p[1][1])),
-              Vec2(std::max(p[0][0], p[1][0]), std::max(p[0][1], p[1][1]))};
-  return b;
-}
-
 }  // namespace
 
 ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study) {
@@ -40,7 +34,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("domain");
     if (t.has("rectangle") == t.has("mesh")) t.error("rectangle", "give exactly one of 'rectangle' and 'mesh'");
     if (t.has("rectangle")) {
-      const Box b = region_box(t, "rectangle");
+      const Box b = read_box(t, "rectangle");
       if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
       out.domain = Domain::rectangle(b.lo, b.hi);
     } else {
@@ -81,21 +75,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
   }
   {
-    const SceneTable t = root.table("material");
-    const std::string model = t.choice("model", {"plane_stress", "plane_strain", "neo_hookean", "st_venant_kirchhoff"});
-    LinearElastic& lin = s.problem.material;
-    lin.model = model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;
-    lin.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
-    lin.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
-    if (!(lin.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
-    if (!(lin.poisson_ratio > -1.0 && lin.poisson_ratio < 0.5))
-      t.error("poisson_ratio", "must lie strictly between -1 and 1/2");
-    out.material = make_material(model, lin.youngs_modulus, lin.poisson_ratio);
-    if (t.has("density")) {
-      out.density = t.number("density", 0.0, 1e300);
-      if (!(out.density > 0.0)) t.error("density", "must be positive");
-    }
-    t.finish();
+    const MaterialSection m = read_material(root);
+    s.problem.material = m.linear;
+    out.material = m.material;
+    out.density = m.density;
   }
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
@@ -124,7 +107,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     c.type = type == "displacement" ? BoundaryCondition::Type::displacement
              : type == "slip"       ? BoundaryCondition::Type::slip
                                     : BoundaryCondition::Type::traction;
-    c.region = region_box(t, "region");
+    c.region = read_box(t, "region");
     if (t.is_string("value")) {
       (void)t.choice("value", {"exact"});
       if (!exact) t.error("value", "'exact' needs a static [exact] solution (timoshenko_beam or linear)");

@@ -1,0 +1,37 @@
+#pragma once
+// `mfree run` and `mfree converge` for MPM scenes (io/mpm_scene.hpp).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mfree/io/mpm_scene.hpp"
+#include "mfree/mpm/particle_errors.hpp"
+
+namespace mfree {
+
+/// One run: progress, errors at the error times, energy.csv, VTK frames, stage table.
+int run_mpm(const MPMScene& scene);
+
+/// Refinement study over [study] cells x methods x updates x particles per cell: errors at
+/// every error time, observed rates, run times, mpm_convergence.csv (and mpm_energy.csv when
+/// energy_every > 0), PNG plots. A run that fails (J <= 0, a particle leaving the grid) is
+/// recorded with its message and the study goes on.
+int converge_mpm(const MPMScene& scene);
+
+struct MPMRun {
+  Index particles = 0;
+  int steps = 0;
+  double time_step = 0.0;
+  double seconds = 0.0;                ///< wall time of the whole run, set-up included
+  std::vector<ParticleErrors> errors;  ///< at the scene's error times reached
+  std::vector<MPMEnergy> energy;       ///< every energy_every steps (and t = 0)
+  double max_mass_defect = 0.0;
+  std::optional<std::string> failure;  ///< what stopped the run early
+  StageTimer timer;
+};
+
+/// The run behind run_mpm and converge_mpm (verbose: progress and VTK frames).
+MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose);
+
+}  // namespace mfree

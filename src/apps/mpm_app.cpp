@@ -1,0 +1,221 @@
+#include "mfree/apps/mpm_app.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+#include "mfree/apps/report.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/io/atomic_file.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// Step numbers of the scene's error times (fractions of end_time).
+std::vector<int> error_steps(const MPMScene& scene, int steps) {
+  std::vector<int> out;
+  for (double f : scene.error_times) out.push_back(static_cast<int>(std::lround(f * steps)));
+  return out;
+}
+
+/// A NaN or infinite particle velocity is a NumericalError naming the particle, never output.
+void check_finite(const MPMSolver& solver) {
+  const Particles& P = solver.particles();
+  for (Index p = 0; p < P.size(); ++p)
+    if (!P.velocity[p].allFinite() || !P.position[p].allFinite())
+      throw NumericalError(fmt::format("MPM: particle {} (started at ({:.6g}, {:.6g})) has a non-finite velocity or "
+                                       "position at t = {:.6g} s: the run is unstable; use a smaller time step",
+                                       p, P.reference[p].x(), P.reference[p].y(), solver.time()));
+}
+
+double energy_drift(const std::vector<MPMEnergy>& energy) {
+  if (energy.empty()) return 0.0;
+  const auto total = [](const MPMEnergy& e) { return e.kinetic + e.strain - e.external; };
+  double drift = 0.0, scale = 0.0;
+  for (const MPMEnergy& e : energy) {
+    drift = std::max(drift, std::abs(total(e) - total(energy.front())));
+    scale = std::max(scale, e.kinetic + e.strain);
+  }
+  return drift / scale;
+}
+
+std::string energy_csv_rows(const std::string& prefix, const std::vector<MPMEnergy>& energy) {
+  std::string out;
+  for (const MPMEnergy& e : energy)
+    out += fmt::format("{}{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", prefix, e.time, e.kinetic, e.strain, e.external,
+                       e.kinetic + e.strain - e.external);
+  return out;
+}
+
+}  // namespace
+
+MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose) {
+  const auto t0 = std::chrono::steady_clock::now();
+  MPMRun run;
+  MPMSolver solver(scene.problem, settings);
+  run.particles = solver.particles().size();
+  run.steps = solver.steps();
+  run.time_step = solver.time_step();
+  if (verbose)
+    std::cout << fmt::format("  {} particles, grid {} x {} nodes (h = {:.5g}), {} steps of dt = {:.4e} s "
+                             "(Courant number {:.3f})\n",
+                             run.particles, solver.grid().nx(), solver.grid().ny(), solver.grid().spacing(), run.steps,
+                             run.time_step, run.time_step / solver.courant_limit());
+  std::optional<MPMFrames> frames;
+  const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
+                         scene.fields.von_mises || scene.fields.error || scene.fields.grid;
+  if (verbose && scene.vtk && any_field && scene.frames > 0) {
+    frames.emplace(scene.folder, scene.fields, scene.vibration ? &*scene.vibration : nullptr, scene.problem.material);
+    frames->write(solver);
+  }
+  const std::vector<int> at = error_steps(scene, run.steps);
+  if (scene.energy_every > 0) run.energy.push_back(solver.energy());
+  const int report_every = std::max(1, run.steps / 10);
+  try {
+    for (int n = 1; n <= run.steps; ++n) {
+      solver.step();
+      run.max_mass_defect = std::max(run.max_mass_defect, solver.mass_defect());
+      if (scene.vibration)
+        for (int s : at)
+          if (s == n) run.errors.push_back(particle_errors(solver, *scene.vibration));
+      if (scene.energy_every > 0 && (n % scene.energy_every == 0 || n == run.steps)) run.energy.push_back(solver.energy());
+      if (n % report_every == 0 || n == run.steps) {
+        check_finite(solver);
+        if (verbose)
+          std::cout << fmt::format("  step {:>7}/{}  t = {:.6f} s  ({:.1f} s)\n", n, run.steps, solver.time(),
+                                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count())
+                    << std::flush;
+      }
+      if (frames && (static_cast<long long>(n) * scene.frames) % run.steps < scene.frames) {
+        check_finite(solver);
+        frames->write(solver);
+      }
+    }
+  } catch (const NumericalError& e) {
+    if (verbose) throw;
+    run.failure = e.what();
+  }
+  run.timer = solver.timer();
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (verbose && frames) std::cout << fmt::format("  wrote {} frames, {} (open in ParaView)\n", frames->frames(), frames->series().string());
+  return run;
+}
+
+int run_mpm(const MPMScene& scene) {
+  const MPMSettings& s = scene.settings;
+  std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} thread(s))\n", scene.file.string(),
+                           method_name({s.method, is_bspline(s.method) ? s.degree : 1}), to_string(s.update),
+                           thread_count());
+  const MPMRun run = simulate_mpm(scene, s, true);
+  if (!run.errors.empty()) {
+    std::cout << fmt::format("  {:>10} {:>12} {:>12} {:>12} {:>12}   (RMS over the particles, seed 000 eq. 43)\n",
+                             "t [s]", "u [m]", "v_p [m/s]", "v_grid [m/s]", "stress [Pa]");
+    std::string csv = "time,displacement,velocity,grid_velocity,stress\n";
+    for (const ParticleErrors& e : run.errors) {
+      std::cout << fmt::format("  {:10.6f} {:12.4e} {:12.4e} {:12.4e} {:12.4e}\n", e.time, e.displacement, e.velocity,
+                               e.grid_velocity, e.stress);
+      csv += fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", e.time, e.displacement, e.velocity, e.grid_velocity, e.stress);
+    }
+    std::cout << "  v_p: the particles' own (FLIP) velocities; v_grid: sum_i S_ip v_i at the particles\n";
+    write_file_atomically(scene.folder / "errors.csv", csv);
+    std::cout << fmt::format("  wrote {}\n", (scene.folder / "errors.csv").string());
+  }
+  if (s.method == MPMMethod::bspline_mls)
+    std::cout << fmt::format("  MLS reconstruction: grid mass differs from the particles' by up to {:.3e} (relative)\n",
+                             run.max_mass_defect);
+  if (!run.energy.empty()) {
+    std::cout << fmt::format("  energy: kinetic + strain - work of body forces drifts by {:.3e} of the largest "
+                             "kinetic + strain\n", energy_drift(run.energy));
+    write_file_atomically(scene.folder / "energy.csv", "time,kinetic,strain,external_work,total\n" + energy_csv_rows("", run.energy));
+    std::cout << fmt::format("  wrote {}\n", (scene.folder / "energy.csv").string());
+  }
+  std::cout << fmt::format("  {:.3e} particle-steps per second\n", run.particles * static_cast<double>(run.steps) / run.timer.total());
+  print_stages(run.timer);
+  return 0;
+}
+
+int converge_mpm(const MPMScene& scene) {
+  const MPMStudy& st = *scene.study;
+  const std::size_t runs = st.cells.size() * st.methods.size() * st.updates.size() * st.particles_per_side.size();
+  std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
+  std::string csv =
+      "method,update,particles_per_cell,cells,spacing,particles,steps,time_step,seconds,time_fraction,time,"
+      "displacement,velocity,grid_velocity,stress,mass_defect,energy_drift,status\n";
+  std::string energy_csv = "method,update,particles_per_cell,cells,time,kinetic,strain,external_work,total\n";
+  // (series, error time index) -> (h, errors) over the grids, for the rate table.
+  std::map<std::string, std::vector<std::pair<double, std::vector<ParticleErrors>>>> series;
+  std::size_t done = 0;
+  for (int side : st.particles_per_side)
+    for (const MPMMethodChoice& m : st.methods)
+      for (UpdateScheme u : st.updates)
+        for (int cells : st.cells) {
+          MPMSettings s = scene.settings;
+          s.method = m.method;
+          s.degree = m.degree == 1 ? 2 : m.degree;
+          s.update = u;
+          s.cells = cells;
+          s.particles_per_side = side;
+          const MPMRun run = simulate_mpm(scene, s, false);
+          const double h = scene.problem.domain.size().x() / cells;
+          const std::string name = fmt::format("{},{},{}", method_name(m), to_string(u), side * side);
+          const std::string status = run.failure ? "failed: " + *run.failure : "ok";
+          const double drift = energy_drift(run.energy);
+          for (std::size_t k = 0; k < run.errors.size(); ++k) {
+            const ParticleErrors& e = run.errors[k];
+            std::string quoted = status;
+            for (char& c : quoted)
+              if (c == '"' || c == ',') c = ';';
+            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{}\n",
+                               name, cells, h, run.particles, run.steps, run.time_step, run.seconds,
+                               scene.error_times[k], e.time, e.displacement, e.velocity, e.grid_velocity, e.stress,
+                               run.max_mass_defect, drift, quoted);
+          }
+          energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
+          if (!run.failure) series[name].emplace_back(h, run.errors);
+          std::string line = fmt::format("{:<14} {:<5} {:>2} ppc {:>4} cells: {:8.2f} s", method_name(m), to_string(u),
+                                         side * side, cells, run.seconds);
+          if (!run.errors.empty()) {
+            const ParticleErrors& e = run.errors.front();
+            line += fmt::format("  at t = {:.4f}: u {:.3e} v_p {:.3e} v_grid {:.3e} stress {:.3e}", e.time,
+                                e.displacement, e.velocity, e.grid_velocity, e.stress);
+          }
+          if (scene.energy_every > 0) line += fmt::format("  energy drift {:.2e}", drift);
+          if (run.failure) line += "  FAILED: " + *run.failure;
+          std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+        }
+  // Observed rates log2(e(h) / e(h/2)) between successive grids, at every error time.
+  std::cout << fmt::format("\n{:<28} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
+                           "method,update,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
+  for (const auto& [name, levels] : series)
+    for (std::size_t k = 0; k < scene.error_times.size(); ++k)
+      for (std::size_t l = 0; l < levels.size(); ++l) {
+        if (levels[l].second.size() <= k) continue;
+        const ParticleErrors& e = levels[l].second[k];
+        auto rate = [&](double ParticleErrors::*f) -> std::string {
+          if (l == 0 || levels[l - 1].second.size() <= k) return "-";
+          const double r = std::log(levels[l - 1].second[k].*f / e.*f) / std::log(levels[l - 1].first / levels[l].first);
+          return fmt::format("{:.2f}", r);
+        };
+        std::cout << fmt::format("{:<28} {:>6.3f} {:>8.5f}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}\n",
+                                 name, scene.error_times[k], levels[l].first, e.displacement,
+                                 rate(&ParticleErrors::displacement), e.velocity, rate(&ParticleErrors::velocity),
+                                 e.grid_velocity, rate(&ParticleErrors::grid_velocity), e.stress,
+                                 rate(&ParticleErrors::stress));
+      }
+  const std::filesystem::path csv_path = scene.folder / "mpm_convergence.csv";
+  write_file_atomically(csv_path, csv);
+  std::cout << fmt::format("wrote {}\n", csv_path.string());
+  if (scene.energy_every > 0) {
+    write_file_atomically(scene.folder / "mpm_energy.csv", energy_csv);
+    std::cout << fmt::format("wrote {}\n", (scene.folder / "mpm_energy.csv").string());
+  }
+  plot("plot_mpm.py", csv_path, scene.folder);
+  return 0;
+}
+
+}  // namespace mfree

@@ -1,0 +1,32 @@
+#include "mfree/io/scene_sections.hpp"
+
+#include <algorithm>
+
+namespace mfree {
+
+MaterialSection read_material(const SceneTable& root) {
+  const SceneTable t = root.table("material");
+  MaterialSection m;
+  m.model = t.choice("model", {"plane_stress", "plane_strain", "neo_hookean", "st_venant_kirchhoff"});
+  m.linear.model = m.model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;
+  m.linear.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
+  m.linear.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
+  if (!(m.linear.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
+  if (!(m.linear.poisson_ratio > -1.0 && m.linear.poisson_ratio < 0.5))
+    t.error("poisson_ratio", "must lie strictly between -1 and 1/2");
+  m.material = make_material(m.model, m.linear.youngs_modulus, m.linear.poisson_ratio);
+  if (t.has("density")) {
+    m.density = t.number("density", 0.0, 1e300);
+    if (!(m.density > 0.0)) t.error("density", "must be positive");
+  }
+  t.finish();
+  return m;
+}
+
+Box read_box(const SceneTable& t, const std::string& key) {
+  const auto p = t.pairs(key, 2);
+  return {Vec2(std::min(p[0][0], p[1][0]), std::min(p[0][1], p[1][1])),
+          Vec2(std::max(p[0][0], p[1][0]), std::max(p[0][1], p[1][1]))};
+}
+
+}  // namespace mfree
