@@ -8,7 +8,8 @@
 
 namespace mfree {
 
-BSplineAxis::BSplineAxis(double x0, double h, int cells, int degree) : x0_(x0), h_(h), cells_(cells), p_(degree) {
+BSplineAxis::BSplineAxis(double x0, double h, int cells, int degree)
+    : x0_(x0), h_(h), inv_h_(1.0 / h), cells_(cells), p_(degree) {
   if (!(h > 0.0)) throw InputError(fmt::format("B-spline axis: the cell size must be positive (got {})", h));
   if (cells < 1) throw InputError(fmt::format("B-spline axis: needs at least one cell (got {})", cells));
   if (degree < 1 || degree > max_degree)
@@ -23,7 +24,7 @@ double BSplineAxis::node(int i) const {
   return s / p_;
 }
 
-BSplineAxis::Values BSplineAxis::evaluate(double x) const {
+BSplineAxis::Values BSplineAxis::cox_de_boor(double x) const {
   // Knot span k with xi_k <= x < xi_{k+1}; the functions non-zero there are N_{k-p} .. N_k.
   const int cell = std::clamp(static_cast<int>(std::floor((x - x0_) / h_)), 0, cells_ - 1);
   const int k = cell + p_;

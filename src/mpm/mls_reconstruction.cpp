@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mfree {
 
@@ -35,17 +36,16 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
         for (const double sy : {-offset, offset})
           for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
       }
-    weights_.resize(points(), basis_.stride());
+    basis_.resize(weights_, points());
     parallel_blocks(points(), 1024, [&](Index begin, Index end) {
-      for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_.slot(g));
+      for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
     });
     rows_.resize(points_.size());
   }
   const RKShapeFunctions mls(positions, settings_);
   mls.for_each(points_, false, [&](Index g, const ShapeValues& v) {
-    auto& row = rows_[g];
-    row.clear();
-    for (std::size_t k = 0; k < v.size(); ++k) row.emplace_back(v.nodes[k], v.phi[k]);
+    rows_[g].particle.assign(v.nodes.begin(), v.nodes.end());  // the rows keep their storage from step to step
+    rows_[g].phi.assign(v.phi.begin(), v.phi.end());
   });
 }
 

@@ -34,7 +34,26 @@ const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
   return s;
 }
 
-Mat2 outer(const Vec2& a, const Vec2& b) { return a * b.transpose(); }
+/// dF = exp(dt L) by its series to kmax terms, sum_{k <= kmax} (dt L)^k / k! (seed 002,
+/// "Incremental Deformation Gradient"). Column by column: Eigen adds whole 2 x 2 matrices as
+/// one 32-byte packet but forms products by 16-byte columns, and each such mix stalls a
+/// store-to-load forward (two 16-byte stores read back as one 32-byte load).
+Mat2 exp_series(const Mat2& L, double dt, int kmax) {
+  const Vec2 a0 = dt * L.col(0), a1 = dt * L.col(1);
+  Vec2 t0(1.0, 0.0), t1(0.0, 1.0);  // the term (dt L)^k / k!
+  Vec2 s0 = t0, s1 = t1;             // the sum
+  for (int k = 1; k <= kmax; ++k) {
+    const double r = 1.0 / k;  // off the chain of dependent products
+    const Vec2 n0 = (t0 * a0.x() + t1 * a0.y()) * r, n1 = (t0 * a1.x() + t1 * a1.y()) * r;
+    t0 = n0;
+    t1 = n1;
+    s0 += t0;
+    s1 += t1;
+  }
+  Mat2 dF;
+  dF << s0, s1;
+  return dF;
+}
 
 }  // namespace
 
@@ -60,6 +79,8 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   for (Index p = 0; p < particles_.size(); ++p)
     particles_.stress[p] = cauchy_stress(problem_.material, particles_.deformation[p]);
   walls_ = grid_.wall_mask(settings_.walls);
+  for (double m : particles_.mass) particle_mass_ += m;
+  body_.assign(particles_.mass.size(), Vec2::Zero());
   if (settings_.method == MPMMethod::bspline_mls)
     mls_ = std::make_unique<MLSReconstruction>(grid_, basis_, settings_.mls_support);
 
@@ -85,8 +106,6 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
 
 MPMSolver::~MPMSolver() = default;
 
-const WeightTable& MPMSolver::source_weights() const { return mls_ ? mls_->grid_weights() : weights_; }
-
 void MPMSolver::step() {
   const bool first = settings_.update == UpdateScheme::usf || settings_.update == UpdateScheme::usavg;
   const bool again = settings_.update == UpdateScheme::szs || settings_.update == UpdateScheme::usavg;
@@ -107,11 +126,11 @@ void MPMSolver::step() {
 
 void MPMSolver::compute_weights() {
   Particles& P = particles_;
-  weights_.resize(P.size(), basis_.stride());
+  basis_.resize(weights_, P.size());
   const bool domains = !P.half_size.empty();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
-      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_.slot(p));
+      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_, p);
   });
   if (mls_) mls_->update(P.position);
 }
@@ -123,27 +142,29 @@ void MPMSolver::particles_to_grid() {
     const double w = mls_->gauss_weight();
     density_.resize(P.mass.size());
     for (Index p = 0; p < P.size(); ++p) density_[p] = w * P.mass[p] / P.volume[p];
-    mls_->reconstruct<double>(source_mass_, [&](Index p) { return density_[p]; });
-    mls_->reconstruct<Vec2>(source_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
+    mls_->reconstruct<Eigen::Vector3d>(gauss_mass_momentum_, [&](Index p) {
+      return Eigen::Vector3d(density_[p], density_[p] * P.velocity[p].x(), density_[p] * P.velocity[p].y());
+    });
+    scatter<Eigen::Vector3d>(mls_->grid_weights(), grid_.size(), mass_momentum_, partial3_, [&](Index g) {
+      const Eigen::Vector3d& at = gauss_mass_momentum_[g];
+      return [&at](double S, const Vec2&) { return Eigen::Vector3d(S * at); };
+    });
   } else {
-    source_mass_ = P.mass;
-    source_momentum_.resize(P.mass.size());
-    for (Index p = 0; p < P.size(); ++p) source_momentum_[p] = P.mass[p] * P.velocity[p];
+    scatter<Eigen::Vector3d>(weights_, grid_.size(), mass_momentum_, partial3_, [&](Index p) {
+      const double m = P.mass[p];
+      const Eigen::Vector3d at(m, m * P.velocity[p].x(), m * P.velocity[p].y());
+      return [at](double S, const Vec2&) { return Eigen::Vector3d(S * at); };
+    });
   }
-  std::vector<Eigen::Vector3d> grid;
-  scatter<Eigen::Vector3d>(source_weights(), grid_.size(), grid, [&](Index q, double S, const Vec2&) {
-    return Eigen::Vector3d(S * source_mass_[q], S * source_momentum_[q].x(), S * source_momentum_[q].y());
-  });
-  mass_.resize(grid.size());
-  momentum_.resize(grid.size());
-  double grid_total = 0.0, particle_total = 0.0;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    mass_[i] = grid[i][0];
-    momentum_[i] = grid[i].tail<2>();
+  mass_.resize(mass_momentum_.size());
+  momentum_.resize(mass_momentum_.size());
+  double grid_total = 0.0;
+  for (std::size_t i = 0; i < mass_momentum_.size(); ++i) {
+    mass_[i] = mass_momentum_[i][0];
+    momentum_[i] = mass_momentum_[i].tail<2>();
     grid_total += mass_[i];
   }
-  for (double m : P.mass) particle_total += m;
-  mass_defect_ = std::abs(grid_total - particle_total) / particle_total;
+  mass_defect_ = std::abs(grid_total - particle_mass_) / particle_mass_;
   grid_velocities(momentum_);
 }
 
@@ -162,30 +183,34 @@ void MPMSolver::update_stress(double dt) {
   Particles& P = particles_;
   const int kmax = settings_.deformation_terms;
   const double floor = mass_floor();
+  // Raw pointers: Eigen's vector stores may alias anything, so what the loop read through
+  // the members would be loaded again after every store.
+  const double* mass = mass_.data();
+  const Vec2* velocity = velocity_.data();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p) {
-      const std::size_t o = static_cast<std::size_t>(p) * weights_.stride;
+      const Vec2 vp = P.velocity[p];
       // eq. (34), relative to v_p; nodes without mass carry no velocity and are left out.
+      // Column by column, as in exp_series().
       Mat2 L = Mat2::Zero();
-      for (int k = 0; k < weights_.stride; ++k) {
-        const Index i = weights_.node[o + k];
-        if (mass_[i] > floor) L += outer(velocity_[i] - P.velocity[p], weights_.G[o + k]);
-      }
-      // dF = exp(dt L) by its series to kmax terms (seed 002, "Incremental Deformation Gradient").
-      const Mat2 A = dt * L;
-      Mat2 dF = Mat2::Identity(), term = Mat2::Identity();
-      for (int k = 1; k <= kmax; ++k) {
-        term = term * A / k;
-        dF += term;
-      }
-      const Mat2 F = dF * P.deformation[p];  // eq. (35)
-      const double J = F.determinant();
+      weights_.for_each(p, [&](Index i, double, const Vec2& G) {
+        if (!(mass[i] > floor)) return;
+        const Vec2 dv = velocity[i] - vp;
+        L.col(0) += dv * G.x();
+        L.col(1) += dv * G.y();
+      });
+      // eq. (35), by columns as well.
+      const Mat2 dF = exp_series(L, dt, kmax);
+      const Vec2 f0 = dF * P.deformation[p].col(0), f1 = dF * P.deformation[p].col(1);
+      const double J = f0.x() * f1.y() - f0.y() * f1.x();
       if (!(J > 0.0))
         throw NumericalError(fmt::format(
             "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has J = det F = {:.4g} <= 0 at t = {:.6g} s: "
             "the material is inverted; use a smaller time step, a finer grid or another method",
             p, P.position[p].x(), P.position[p].y(), P.reference[p].x(), P.reference[p].y(), J, time_));
-      P.deformation[p] = F;
+      Mat2& F = P.deformation[p];
+      F.col(0) = f0;
+      F.col(1) = f1;
       P.volume[p] = J * P.volume0[p];                      // eq. (36)
       P.stress[p] = cauchy_stress(problem_.material, F);  // eqs. (37) and (41)
     }
@@ -199,26 +224,32 @@ void MPMSolver::compute_grid_forces() {
   const double tb = time_ + (settings_.update == UpdateScheme::usf     ? dt_
                              : settings_.update == UpdateScheme::usavg ? 0.5 * dt_
                                                                        : 0.0);
-  body_.assign(P.mass.size(), Vec2::Zero());
-  if (problem_.body_force)
-    parallel_blocks(P.size(), 1024, [&](Index begin, Index end) {
-      for (Index p = begin; p < end; ++p) body_[p] = problem_.body_force(P.reference[p], tb);
-    });
+  const auto& body_force = problem_.body_force;  // empty: body_ stays zero
   if (mls_) {  // eqs. (20), (21), (24), (25), reconstructing rho b (SPEC section 7)
+    if (body_force)
+      parallel_blocks(P.size(), 1024, [&](Index begin, Index end) {
+        for (Index p = begin; p < end; ++p) body_[p] = body_force(P.reference[p], tb);
+      });
     const double w = mls_->gauss_weight();
-    mls_->reconstruct<Vec2>(source_body_, [&](Index p) { return Vec2(density_[p] * body_[p]); });
-    mls_->reconstruct<Mat2>(source_stress_, [&](Index p) { return Mat2(w * P.stress[p]); });
+    // Both fields in one pass over the MLS functions.
+    mls_->reconstruct<Eigen::Matrix<double, 2, 3>>(gauss_forces_, [&](Index p) {
+      Eigen::Matrix<double, 2, 3> at;
+      at << density_[p] * body_[p], w * P.stress[p];
+      return at;
+    });
+    scatter<Vec2>(mls_->grid_weights(), grid_.size(), force_, partial2_, [&](Index g) {
+      const Eigen::Matrix<double, 2, 3>& at = gauss_forces_[g];
+      return [&at](double S, const Vec2& G) { return Vec2(S * at.col(0) - at.rightCols<2>() * G); };
+    });
   } else {
-    source_body_.resize(P.mass.size());
-    source_stress_.resize(P.mass.size());
-    for (Index p = 0; p < P.size(); ++p) {
-      source_body_[p] = P.mass[p] * body_[p];
-      source_stress_[p] = P.volume[p] * P.stress[p];
-    }
+    scatter<Vec2>(weights_, grid_.size(), force_, partial2_, [&](Index p) {
+      // b_p by the thread that scatters p, at the particle's reference position.
+      if (body_force) body_[p] = body_force(P.reference[p], tb);
+      const Vec2 mb = P.mass[p] * body_[p];
+      const Mat2 sv = P.volume[p] * P.stress[p];
+      return [mb, sv](double S, const Vec2& G) { return Vec2(S * mb - sv * G); };  // eq. (26): f_b + f_int
+    });
   }
-  scatter<Vec2>(source_weights(), grid_.size(), force_, [&](Index q, double S, const Vec2& G) {
-    return Vec2(S * source_body_[q] - source_stress_[q] * G);  // eq. (26): f_b + f_int
-  });
 }
 
 void MPMSolver::update_grid_momentum() {
@@ -232,21 +263,21 @@ void MPMSolver::update_grid_momentum() {
 void MPMSolver::grid_to_particles() {
   Particles& P = particles_;
   const double floor = mass_floor();
-  std::vector<Vec2> acceleration(mass_.size());
+  acceleration_.resize(mass_.size());
   for (std::size_t i = 0; i < mass_.size(); ++i)
-    acceleration[i] = mass_[i] > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
+    acceleration_[i] = mass_[i] > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
   grid_velocities(momentum_);
   std::vector<double> work(static_cast<std::size_t>(thread_count()), 0.0);
+  const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
+  const Vec2* velocity = velocity_.data();
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
     double w = 0.0;
     for (Index p = begin; p < end; ++p) {
-      const std::size_t o = static_cast<std::size_t>(p) * weights_.stride;
       Vec2 a = Vec2::Zero(), v = Vec2::Zero();
-      for (int k = 0; k < weights_.stride; ++k) {
-        const Index i = weights_.node[o + k];
-        a += weights_.S[o + k] * acceleration[i];
-        v += weights_.S[o + k] * velocity_[i];
-      }
+      weights_.for_each(p, [&](Index i, double S, const Vec2&) {
+        a += S * acceleration[i];
+        v += S * velocity[i];
+      });
       P.velocity[p] += dt_ * a;  // eq. (29)
       const Vec2 dx = dt_ * v;   // eq. (30)
       P.position[p] += dx;
@@ -260,14 +291,18 @@ void MPMSolver::grid_to_particles() {
 void MPMSolver::extrapolate_updated_momenta() {
   const Particles& P = particles_;
   if (mls_) {  // eqs. (31)-(33)
-    mls_->reconstruct<Vec2>(source_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
+    mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
+    scatter<Vec2>(mls_->grid_weights(), grid_.size(), updated_momentum_, partial2_, [&](Index g) {
+      const Vec2& at = gauss_momentum_[g];
+      return [&at](double S, const Vec2&) { return Vec2(S * at); };
+    });
   } else {
-    for (Index p = 0; p < P.size(); ++p) source_momentum_[p] = P.mass[p] * P.velocity[p];
+    scatter<Vec2>(weights_, grid_.size(), updated_momentum_, partial2_, [&](Index p) {
+      const Vec2 at = P.mass[p] * P.velocity[p];
+      return [at](double S, const Vec2&) { return Vec2(S * at); };
+    });
   }
-  std::vector<Vec2> momentum;
-  scatter<Vec2>(source_weights(), grid_.size(), momentum,
-                [&](Index q, double S, const Vec2&) { return Vec2(S * source_momentum_[q]); });
-  grid_velocities(momentum);
+  grid_velocities(updated_momentum_);
 }
 
 std::vector<Vec2> MPMSolver::interpolated_grid_velocity() const {
@@ -276,11 +311,11 @@ std::vector<Vec2> MPMSolver::interpolated_grid_velocity() const {
   const bool domains = !P.half_size.empty();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     WeightTable w;
-    w.resize(1, basis_.stride());
+    basis_.resize(w, 1);
     for (Index p = begin; p < end; ++p) {
-      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), w.slot(0));
+      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), w, 0);
       Vec2 v = Vec2::Zero();
-      for (int k = 0; k < w.stride; ++k) v += w.S[k] * velocity_[w.node[k]];
+      w.for_each(0, [&](Index i, double S, const Vec2&) { v += S * velocity_[i]; });
       out[p] = v;
     }
   });

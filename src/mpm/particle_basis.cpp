@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/mpm/grid_transfer.hpp"
 
 namespace mfree {
 
@@ -42,13 +43,18 @@ struct GimpAxis {
 };
 GimpAxis gimp_axis(const BSplineAxis& a, double x, double l) {
   const double h = a.spacing();
-  GimpAxis g;
-  g.first = std::max(0, static_cast<int>(std::floor((x - l - a.lo()) / h)));
+  const int touched = std::max(0, static_cast<int>(std::floor((x - l - a.lo()) / h)));
   const int last = std::min(a.size() - 1, static_cast<int>(std::floor((x + l - a.lo()) / h)) + 1);
-  if (last - g.first >= 3)
+  if (last - touched >= 3)
     throw NumericalError(fmt::format("uGIMP: a particle domain of half size {} is wider than a cell of size {}", l, h));
-  for (int i = g.first; i <= last; ++i) {
-    const double sa = (x - l - a.node(i)) / h, sb = (x + l - a.node(i)) / h;
+  GimpAxis g;
+  // A slot of three hats, all on the axis: at its far end the slot starts one hat before the
+  // first the domain touches, and that extra hat keeps zero weight (a padded axis has at least
+  // 4 hats).
+  g.first = std::min(touched, a.size() - 3);
+  for (int i = touched; i <= last; ++i) {
+    const double node = a.lo() + i * h;  // = a.node(i): a hat's Greville node is its peak, a knot
+    const double sa = (x - l - node) / h, sb = (x + l - node) / h;
     g.value[i - g.first] = h / (2.0 * l) * (hat_integral(sb) - hat_integral(sa));
     g.derivative[i - g.first] = (hat(sb) - hat(sa)) / (2.0 * l);
   }
@@ -65,8 +71,11 @@ ParticleBasis::ParticleBasis(MPMMethod method, const Grid& grid) : method_(metho
     throw InputError(fmt::format("MPM: method {} does not use degree-{} functions", to_string(method), p));
   if (grid_padding(method) > 0 && grid.extent().lo.x() >= grid.domain().lo.x())
     throw InputError(fmt::format("MPM: method {} needs a grid padded by one cell", to_string(method)));
-  stride_ = method == MPMMethod::ugimp ? 9 : method == MPMMethod::cpdi ? 16 : (p + 1) * (p + 1);
+  axis_ = method == MPMMethod::ugimp ? 3 : method == MPMMethod::cpdi ? 0 : p + 1;
+  stride_ = method == MPMMethod::cpdi ? 16 : axis_ * axis_;
 }
+
+void ParticleBasis::resize(WeightTable& table, Index points) const { table.resize(points, stride_, axis_, grid_.nx()); }
 
 void ParticleBasis::check_on_grid(const Vec2& x, const char* what) const {
   const Box e = grid_.extent();
@@ -75,35 +84,23 @@ void ParticleBasis::check_on_grid(const Vec2& x, const char* what) const {
                                      what, x.x(), x.y(), e.lo.x(), e.hi.x(), e.lo.y(), e.hi.y()));
 }
 
-void ParticleBasis::point_weights(const Vec2& x, WeightSlot out) const {
-  const BSplineAxis::Values vx = grid_.x_axis().evaluate(x.x());
-  const BSplineAxis::Values vy = grid_.y_axis().evaluate(x.y());
-  const int n = grid_.x_axis().degree() + 1;
-  int k = 0;
-  for (int b = 0; b < n; ++b)
-    for (int a = 0; a < n; ++a, ++k) {
-      out.node[k] = grid_.index(vx.first + a, vy.first + b);
-      out.S[k] = vx.value[a] * vy.value[b];                                             // eq. (4)
-      out.G[k] = Vec2(vx.derivative[a] * vy.value[b], vx.value[a] * vy.derivative[b]);  // eq. (5)
-    }
+template <int p>
+void ParticleBasis::point_weights(const Vec2& x, WeightTable& table, Index q) const {
+  const BSplineAxis::Values vx = grid_.x_axis().evaluate_as<p>(x.x());
+  const BSplineAxis::Values vy = grid_.y_axis().evaluate_as<p>(x.y());
+  table.set_tensor<p + 1>(q, grid_.index(vx.first, vy.first), vx, vy);  // N_ij = N_i N_j, eqs. (4)-(5)
 }
 
-void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, WeightSlot out) const {
+void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const {
   check_on_grid(x - half, "a uGIMP particle domain");
   check_on_grid(x + half, "a uGIMP particle domain");
   const GimpAxis gx = gimp_axis(grid_.x_axis(), x.x(), half.x());
   const GimpAxis gy = gimp_axis(grid_.y_axis(), x.y(), half.y());
-  int k = 0;
-  for (int b = 0; b < 3; ++b)
-    for (int a = 0; a < 3; ++a, ++k) {
-      const int i = std::min(gx.first + a, grid_.nx() - 1), j = std::min(gy.first + b, grid_.ny() - 1);
-      out.node[k] = grid_.index(i, j);  // entries past the axis end carry zero weight
-      out.S[k] = gx.value[a] * gy.value[b];
-      out.G[k] = Vec2(gx.derivative[a] * gy.value[b], gx.value[a] * gy.derivative[b]);
-    }
+  table.set_tensor<3>(q, grid_.index(gx.first, gy.first), gx, gy);  // the averages factor by axis
 }
 
-void ParticleBasis::cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightSlot out) const {
+void ParticleBasis::cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const {
+  const WeightSlot out = table.slot(q);
   const Vec2 r1 = F.col(0) * half.x(), r2 = F.col(1) * half.y();
   const std::array<Vec2, 4> c{x - r1 - r2, x + r1 - r2, x + r1 + r2, x - r1 + r2};  // counter-clockwise
   const double volume = 4.0 * (r1.x() * r2.y() - r1.y() * r2.x());
@@ -132,13 +129,17 @@ void ParticleBasis::cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half,
   }
 }
 
-void ParticleBasis::evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightSlot out) const {
+void ParticleBasis::evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const {
   switch (method_) {
-    case MPMMethod::ugimp: return gimp_weights(x, half, out);
-    case MPMMethod::cpdi: return cpdi_weights(x, F, half, out);
+    case MPMMethod::ugimp: return gimp_weights(x, half, table, q);
+    case MPMMethod::cpdi: return cpdi_weights(x, F, half, table, q);
     default:
       check_on_grid(x, "a particle");
-      return point_weights(x, out);
+      switch (axis_) {  // once per particle, not per axis
+        case 2: return point_weights<1>(x, table, q);
+        case 3: return point_weights<2>(x, table, q);
+        default: return point_weights<3>(x, table, q);
+      }
   }
 }
 

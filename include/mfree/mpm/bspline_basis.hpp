@@ -15,7 +15,9 @@
 //
 // Lengths in the problem's unit; derivatives per unit length.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "mfree/core/types.hpp"
 
@@ -45,14 +47,62 @@ class BSplineAxis {
     std::array<double, max_degree + 1> value{};
     std::array<double, max_degree + 1> derivative{};
   };
-  [[nodiscard]] Values evaluate(double x) const;
+  /// By the closed form of the uniform B-spline on cells whose functions see no repeated
+  /// knot (p - 1 <= cell <= cells - p), by cox_de_boor() on the others.
+  [[nodiscard]] Values evaluate(double x) const {
+    switch (p_) {
+      case 1: return evaluate_as<1>(x);
+      case 2: return evaluate_as<2>(x);
+      default: return evaluate_as<3>(x);
+    }
+  }
+  /// evaluate() for the degree p == degree() known at compile time: inline, so that the
+  /// closed form unrolls into the particle loops (twice per particle and step).
+  template <int p>
+  [[nodiscard]] Values evaluate_as(double x) const {
+    const double t = (x - x0_) / h_;
+    const int cell = std::clamp(static_cast<int>(std::floor(t)), 0, cells_ - 1);
+    // The recursion and eq. (3) read the knots xi_{k-p+1} .. xi_{k+p} of span k = cell + p,
+    // that is x0 + (cell - p + 1) h .. x0 + (cell + p) h clamped to the ends: equally spaced
+    // unless the clamp acts, which it does for cell < p - 1 or cell > cells - p.
+    if (cell < p - 1 || cell > cells_ - p) return cox_de_boor(x);
+    // s from the cell's own left knot, as the recursion measures: t - cell would carry the
+    // rounding of t, up to cells ulps of 1.
+    return uniform<p>(cell, (x - (x0_ + h_ * cell)) * inv_h_);
+  }
+  /// The same values by the Cox–de Boor recursion on the open knot vector, on every cell.
+  [[nodiscard]] Values cox_de_boor(double x) const;
 
   /// Knot xi_j of the open knot vector, j in [0, cells + 2p].
   [[nodiscard]] double knot(int j) const;
 
  private:
+  /// Equal knots: eqs. (2) and (3) reduce to the pieces of the uniform B-spline in the local
+  /// coordinate s in [0, 1] of the cell (u = 1 - s), N_{cell} first; every derivative carries
+  /// the chain-rule factor ds/dx = 1 / h.
+  template <int p>
+  [[nodiscard]] Values uniform(int cell, double s) const {
+    const double u = 1.0 - s, d = inv_h_;
+    Values out;
+    out.first = cell;
+    if constexpr (p == 1) {
+      out.value = {u, s};
+      out.derivative = {-d, d};
+    } else if constexpr (p == 2) {
+      out.value = {0.5 * u * u, 0.5 + s * u, 0.5 * s * s};
+      out.derivative = {-u * d, (u - s) * d, s * d};
+    } else {
+      static_assert(p == 3);
+      out.value = {u * u * u / 6.0, 2.0 / 3.0 - s * s * (1.0 - 0.5 * s), 2.0 / 3.0 - u * u * (1.0 - 0.5 * u),
+                   s * s * s / 6.0};
+      out.derivative = {-0.5 * u * u * d, s * (1.5 * s - 2.0) * d, u * (2.0 - 1.5 * u) * d, 0.5 * s * s * d};
+    }
+    return out;
+  }
+
   double x0_;
   double h_;
+  double inv_h_;
   int cells_;
   int p_;
 };

@@ -14,11 +14,11 @@
 // and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces 1, x and y but does not conserve
 // mass (SPEC section 7); the solver reports the grid mass against the particles'.
 
-#include <utility>
 #include <vector>
 
 #include "mfree/kernels/rk_shape_functions.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
+#include "mfree/mpm/particle_basis.hpp"
 
 namespace mfree {
 
@@ -38,14 +38,16 @@ class MLSReconstruction {
   /// Gauss point when too few particles surround it.
   void update(const std::vector<Vec2>& positions);
 
-  /// at_gauss[g] = sum_p phi_gp value(p) (eqs. 18-21).
+  /// at_gauss[g] = sum_p phi_gp value(p) (eqs. 18-21). Fields needed at the same time are
+  /// best reconstructed together (T stacking them): every call streams all phi_gp.
   template <class T, class Value>
   void reconstruct(std::vector<T>& at_gauss, Value&& value) const {
     at_gauss.resize(points_.size());
     parallel_blocks(points(), 256, [&](Index begin, Index end) {
       for (Index g = begin; g < end; ++g) {
+        const Row& row = rows_[g];
         T sum = zero_of<T>();
-        for (const auto& [p, phi] : rows_[g]) sum += phi * value(p);
+        for (std::size_t k = 0; k < row.particle.size(); ++k) sum += row.phi[k] * value(row.particle[k]);
         at_gauss[g] = sum;
       }
     });
@@ -59,7 +61,12 @@ class MLSReconstruction {
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;
-  std::vector<std::vector<std::pair<Index, double>>> rows_;
+  /// phi_gp of one Gauss point: the particles p its functions reach, and the values.
+  struct Row {
+    std::vector<Index> particle;
+    std::vector<double> phi;
+  };
+  std::vector<Row> rows_;
 };
 
 }  // namespace mfree

@@ -37,6 +37,7 @@
 #include "mfree/materials/material.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
 #include "mfree/mpm/mls_reconstruction.hpp"
+#include "mfree/mpm/particle_basis.hpp"
 #include "mfree/mpm/particles.hpp"
 
 namespace mfree {
@@ -111,7 +112,6 @@ class MPMSolver {
   void grid_to_particles();
   void extrapolate_updated_momenta();
   void grid_velocities(const std::vector<Vec2>& momentum);
-  const WeightTable& source_weights() const;
   /// Nodes with less mass than this have no velocity (1e-12 of a particle's mass).
   [[nodiscard]] double mass_floor() const { return 1e-12 * particles_.mass.front(); }
 
@@ -125,12 +125,18 @@ class MPMSolver {
   WeightTable weights_;  ///< at the particles
   std::vector<double> mass_;
   std::vector<Vec2> momentum_, force_, velocity_;
-  // Per source point (particle or Gauss point) of the grid integrals.
-  std::vector<double> source_mass_;
-  std::vector<Vec2> source_momentum_, source_body_;
-  std::vector<Mat2> source_stress_;  ///< sigma times volume
-  std::vector<Vec2> body_;           ///< b_p at the start of the step
-  std::vector<double> density_;      ///< MLS: rho_p omega_g at the start of the step
+  std::vector<Eigen::Vector3d> mass_momentum_;  ///< (m_i, (mv)_i) as scattered
+  std::vector<Vec2> acceleration_;              ///< f_i / m_i
+  std::vector<Vec2> updated_momentum_;          ///< the second extrapolation's (mv)_i
+  ScatterBuffers<Eigen::Vector3d> partial3_;
+  ScatterBuffers<Vec2> partial2_;
+  std::vector<Vec2> body_;       ///< b_p of the step (zero without a body force)
+  std::vector<double> density_;  ///< MLS: rho_p omega_g at the start of the step
+  // MLS: the fields the grid integrals need, reconstructed at the Gauss points.
+  std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) omega_g
+  std::vector<Vec2> gauss_momentum_;                     ///< rho v omega_g of the updated velocities
+  std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b omega_g | sigma omega_g]
+  double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, external_work_ = 0.0;
   int steps_ = 0;
   StageTimer timer_;

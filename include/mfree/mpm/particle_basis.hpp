@@ -17,8 +17,10 @@
 // Every variant is a partition of unity (sum_i S_ip = 1, sum_i G_ip = 0) and linearly
 // complete (sum_i x_i S_ip = x_p, sum_i x_i G_ip^T = I) wherever its functions all exist.
 //
-// A particle's weights fill a fixed-size slot of stride() entries; unused entries hold node
-// 0 with S = 0 and G = 0, so loops over a slot need no branch.
+// A particle's weights fill a fixed-size slot of a WeightTable (grid_transfer.hpp) of stride()
+// entries: the two axes' functions for the tensor-product bases (all but CPDI), the entries
+// for CPDI. Unused entries have S = 0 and G = 0 (CPDI's at node 0, uGIMP's at hats beside
+// those its domain touches), so loops over a slot need no branch.
 
 #include <string_view>
 
@@ -34,12 +36,7 @@ std::string_view to_string(MPMMethod m);
 int grid_padding(MPMMethod m);
 bool is_bspline(MPMMethod m);
 
-/// Where a particle's weights go: stride() consecutive entries.
-struct WeightSlot {
-  Index* node;
-  double* S;
-  Vec2* G;
-};
+struct WeightTable;
 
 class ParticleBasis {
  public:
@@ -47,20 +44,25 @@ class ParticleBasis {
 
   [[nodiscard]] MPMMethod method() const { return method_; }
   [[nodiscard]] int stride() const { return stride_; }
+  /// Sizes `table` for `points` points in this basis' layout.
+  void resize(WeightTable& table, Index points) const;
   /// Weights of a particle at x with deformation gradient F and reference domain half sizes
-  /// (l_x, l_y) (F and half are read by ugimp and cpdi only). Throws NumericalError naming
-  /// the position when the particle (or its domain) is not on the grid.
-  void evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightSlot out) const;
+  /// (l_x, l_y) (F and half are read by ugimp and cpdi only), into point q of `table` (sized
+  /// by resize()). Throws NumericalError naming the position when the particle (or its
+  /// domain) is not on the grid.
+  void evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const;
 
  private:
-  void point_weights(const Vec2& x, WeightSlot out) const;
-  void gimp_weights(const Vec2& x, const Vec2& half, WeightSlot out) const;
-  void cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightSlot out) const;
+  template <int p>
+  void point_weights(const Vec2& x, WeightTable& table, Index q) const;
+  void gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const;
+  void cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const;
   void check_on_grid(const Vec2& x, const char* what) const;
 
   MPMMethod method_;
   const Grid& grid_;
   int stride_;
+  int axis_;  ///< functions per axis of the tensor layout; 0 for CPDI's explicit entries
 };
 
 }  // namespace mfree
