@@ -128,11 +128,15 @@ void MPMSolver::compute_weights() {
   Particles& P = particles_;
   basis_.resize(weights_, P.size());
   const bool domains = !P.half_size.empty();
-  parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
-    for (Index p = begin; p < end; ++p)
-      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_, p);
-  });
-  if (mls_) mls_->update(P.position);
+  try {
+    parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
+      for (Index p = begin; p < end; ++p)
+        basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_, p);
+    });
+    if (mls_) mls_->update(P.position);
+  } catch (const NumericalError& e) {  // the weights know where, the solver knows when
+    throw NumericalError(fmt::format("{} at t = {:.6g} s", e.what(), time_));
+  }
 }
 
 void MPMSolver::particles_to_grid() {
