@@ -1,8 +1,14 @@
 #pragma once
 // Helpers shared by the test files.
 
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <string>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
 
 namespace mfree::testing {
 
@@ -17,5 +23,29 @@ std::string message_of(F&& f) {
   }
   return "<nothing thrown>";
 }
+
+/// A fresh folder path for one test case, removed when the case ends; created when `create`
+/// (writers that make their own folder get the path only).
+struct ScratchFolder {
+  std::filesystem::path path;
+  explicit ScratchFolder(const std::string& name, bool create = true)
+      : path(std::filesystem::temp_directory_path() / ("mfree_test_" + name + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path);
+    if (create) std::filesystem::create_directories(path);
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  /// Names of the files in the folder.
+  [[nodiscard]] std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(path)) names.push_back(e.path().filename().string());
+    return names;
+  }
+};
+
+/// True when two doubles are the same bit pattern (a value written and read back unchanged).
+inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 }  // namespace mfree::testing

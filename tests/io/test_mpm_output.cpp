@@ -21,24 +21,11 @@
 
 namespace fs = std::filesystem;
 using namespace mfree;
+using mfree::testing::same_bits;
+using mfree::testing::ScratchFolder;
 
 namespace {
 
-/// A fresh folder path for one test case (not created: MPMFrames creates it), removed when
-/// the case ends.
-struct ScratchFolder {
-  fs::path path;
-  explicit ScratchFolder(const std::string& name)
-      : path(fs::temp_directory_path() / ("mfree_test_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 const AxisAlignedVibration vibration{0.05, 1.0, 1e7, 0.3, 1000.0};
 
@@ -88,7 +75,7 @@ std::size_t mismatches(const std::vector<double>& read, const std::vector<double
 
 TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lists the frames",
           "[io][mpm_output]") {
-  ScratchFolder folder("mpm_frames");
+  ScratchFolder folder("mpm_frames", false);
   MPMSolver solver = small_solver(MPMMethod::bspline, 2, {});
   const Material material = make_material("neo_hookean", 1e7, 0.3);
   MPMFrameFields fields;
@@ -147,7 +134,7 @@ TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lis
 }
 
 TEST_CASE("MPM frames: only the fields asked for; errors need an exact solution", "[io][mpm_output]") {
-  ScratchFolder folder("mpm_frames_some");
+  ScratchFolder folder("mpm_frames_some", false);
   MPMSolver solver = small_solver(MPMMethod::bspline, 2, {});
   const Material material = make_material("neo_hookean", 1e7, 0.3);
   MPMFrameFields fields;
@@ -173,7 +160,7 @@ TEST_CASE("MPM frames: only the fields asked for; errors need an exact solution"
 }
 
 TEST_CASE("MPM frames: grid velocity field and mass at the cell corners", "[io][mpm_output]") {
-  ScratchFolder folder("mpm_frames_grid");
+  ScratchFolder folder("mpm_frames_grid", false);
   MPMSolver solver = small_solver(MPMMethod::bspline, 2, {Wall::left, Wall::bottom});
   MPMFrameFields fields;
   fields.grid = true;
@@ -230,7 +217,7 @@ TEST_CASE("MPM frames: grid velocity field and mass at the cell corners", "[io][
 }
 
 TEST_CASE("MPM frames: the grid image spans the padding of hat-function grids", "[io][mpm_output]") {
-  ScratchFolder folder("mpm_frames_padded");
+  ScratchFolder folder("mpm_frames_padded", false);
   MPMSolver solver = small_solver(MPMMethod::ugimp, 1, {});
   solver.step();
   MPMFrameFields fields;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <regex>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/mpm_scene.hpp"
 
@@ -28,12 +29,8 @@ std::filesystem::path write_scene(const std::string& text) {
 
 /// The error message for a scene text, "" when it parses.
 std::string scene_error(const std::string& text, bool study = false) {
-  try {
-    (void)read_mpm_scene(write_scene(text), study);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  const std::string what = testing::message_of<InputError>([&] { (void)read_mpm_scene(write_scene(text), study); });
+  return what == "<nothing thrown>" ? "" : what;
 }
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {

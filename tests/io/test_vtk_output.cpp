@@ -24,27 +24,11 @@ namespace fs = std::filesystem;
 using mfree::Index;
 using mfree::PointField;
 using mfree::Vec2;
+using mfree::testing::same_bits;
+using mfree::testing::ScratchFolder;
 
 namespace {
 
-/// A fresh empty folder for one test case, removed when the case ends.
-struct ScratchFolder {
-  fs::path path;
-  explicit ScratchFolder(const std::string& name)
-      : path(fs::temp_directory_path() / ("mfree_test_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  [[nodiscard]] std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    return names;
-  }
-};
 
 /// Points built one by one: GCC 12 at -O2 with -march=native on AVX-512 processors copies
 /// the elements of a std::vector<Vec2> initializer list wrongly.
@@ -53,8 +37,6 @@ std::vector<Vec2> points_of(std::initializer_list<std::array<double, 2>> xy) {
   for (const auto& p : xy) points.emplace_back(p[0], p[1]);
   return points;
 }
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 /// Values that exercise every bit of a double: random mantissas over many decades, both
 /// signs, negative zero, subnormals and the extremes.
