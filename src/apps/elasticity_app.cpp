@@ -13,11 +13,13 @@
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
+#include "mfree/io/run_summary.hpp"
+#include "mfree/galerkin/stiffness_spectrum.hpp"
 
 namespace mfree {
 
-int run_elasticity(const std::filesystem::path& path) {
-  const ElasticityScene scene = read_elasticity_scene(path, false);
+int run_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  const ElasticityScene scene = read_elasticity_scene(path, false, overrides);
   if (scene.dynamics) return run_dynamics(scene);
   if (scene.nonlinear()) return run_static(scene);
   const std::optional<ExactElasticity> exact = scene.exact();
@@ -39,7 +41,42 @@ int run_elasticity(const std::filesystem::path& path) {
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
+  RunSummary summary("linear_statics", path);
+  summary.number("nodes", static_cast<double>(r.nodes.size()));
+  summary.number("dofs", 2.0 * static_cast<double>(r.nodes.size()));
+  summary.number("quadrature_points", static_cast<double>(r.quadrature.size()));
+  summary.number("consistency_before", r.consistency_before);
+  summary.number("consistency_after", r.consistency_after);
+  {
+    // Negative quadrature weights (quadratic RK on irregular quadrature clouds, SPEC 3).
+    double negative = 0.0, most_negative = 0.0, largest = 0.0;
+    for (double w : r.quadrature.weights) {
+      negative += w < 0.0;
+      most_negative = std::min(most_negative, w);
+      largest = std::max(largest, w);
+    }
+    summary.number("negative_weights", negative);
+    summary.number("most_negative_weight_relative", most_negative / largest);
+  }
+  if (r.errors) {
+    summary.number("l2_displacement", r.errors->l2_displacement);
+    summary.number("energy", r.errors->energy);
+    summary.number("l2_stress", r.errors->l2_stress);
+  }
   const OutputSettings& o = scene.output;
+  if (o.eigenvalues > 0) {
+    const StiffnessSpectrum sp = r.timer.time("stiffness eigenvalues", [&] {
+      return stiffness_spectrum(s.problem, scene.domain, r, o.eigenvalues);
+    });
+    std::cout << fmt::format("  free stiffness: {} zero-energy modes (3 are rigid-body motions); smallest eigenvalues / "
+                             "largest ({:.4e}):\n   ",
+                             sp.zero_modes, sp.largest);
+    for (double l : sp.smallest) std::cout << fmt::format(" {:.3e}", l);
+    std::cout << '\n';
+    summary.numbers("smallest_eigenvalues", sp.smallest);
+    summary.number("largest_eigenvalue", sp.largest);
+    summary.number("zero_modes", sp.zero_modes);
+  }
   if (!o.fields.empty() && o.vtk) {
     const auto files = r.timer.time("output", [&] { return write_elasticity_fields(scene, r); });
     for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.string());
@@ -49,11 +86,13 @@ int run_elasticity(const std::filesystem::path& path) {
   }
   std::cout << "stages:\n";
   print_stages(r.timer);
+  summary.stages(r.timer);
+  summary.write(o.folder);
   return 0;
 }
 
-int converge_elasticity(const std::filesystem::path& path) {
-  const ElasticityScene scene = read_elasticity_scene(path, true);
+int converge_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  const ElasticityScene scene = read_elasticity_scene(path, true, overrides);
   if (scene.dynamics) return converge_dynamics(scene);
   if (scene.nonlinear())
     throw InputError(fmt::format("{}: mfree converge runs linear statics and dynamics; run a Newton scene with mfree run",

@@ -1,8 +1,8 @@
 // mfree: meshfree Galerkin solid mechanics and the Material Point Method.
 //
 // Usage:
-//   mfree run SCENE.toml                        one elasticity solve or MPM run
-//   mfree converge SCENE.toml                   refinement study of an elasticity or MPM scene
+//   mfree run SCENE.toml [--set KEY=VALUE]...   one elasticity solve or MPM run
+//   mfree converge SCENE.toml [--set ...]       refinement study of an elasticity or MPM scene
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
 //
@@ -50,21 +50,25 @@ int main(int argc, char** argv) {
   integration->add_option("scene", scene, "Study description (TOML)")->required();
   integration->add_option("--out", out, "Folder for integration.csv")->capture_default_str();
 
+  std::vector<std::string> overrides;
+  const std::string set_help = "Replace or add a scene key: section.key=value (TOML value; repeatable)";
   CLI::App* run = app.add_subcommand("run", "One solve or MPM run of a scene: summary, errors, VTK fields");
   run->add_option("scene", scene, "Scene file (TOML)")->required();
+  run->add_option("--set", overrides, set_help);
   CLI::App* converge = app.add_subcommand("converge", "Refinement study of a scene: CSV, PNG plots, rates");
   converge->add_option("scene", scene, "Scene file (TOML) with a [study] section")->required();
+  converge->add_option("--set", overrides, set_help);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*integration) return run_integration(scene, out);
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
-      const mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge));
+      const mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);
       return *run ? mfree::run_mpm(mpm) : mfree::converge_mpm(mpm);
     }
-    if (*run) return mfree::run_elasticity(scene);
-    if (*converge) return mfree::converge_elasticity(scene);
+    if (*run) return mfree::run_elasticity(scene, overrides);
+    if (*converge) return mfree::converge_elasticity(scene, overrides);
   } catch (const mfree::Error& e) {
     std::cerr << "mfree: error: " << e.what() << '\n';
     return 1;

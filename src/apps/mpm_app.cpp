@@ -11,6 +11,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/run_summary.hpp"
 
 namespace mfree {
 
@@ -134,8 +135,25 @@ int run_mpm(const MPMScene& scene) {
     write_file_atomically(scene.folder / "energy.csv", "time,kinetic,strain,external_work,total\n" + energy_csv_rows("", run.energy));
     std::cout << fmt::format("  wrote {}\n", (scene.folder / "energy.csv").string());
   }
-  std::cout << fmt::format("  {:.3e} particle-steps per second\n", run.particles * static_cast<double>(run.steps) / run.timer.total());
+  const double throughput = run.particles * static_cast<double>(run.steps) / run.timer.total();
+  std::cout << fmt::format("  {:.3e} particle-steps per second\n", throughput);
   print_stages(run.timer);
+  RunSummary summary("mpm", scene.file);
+  summary.text("method", method_name({s.method, is_bspline(s.method) ? s.degree : 1}));
+  summary.text("update", std::string(to_string(s.update)));
+  summary.number("particles", static_cast<double>(run.particles));
+  summary.number("steps", run.steps);
+  summary.number("time_step", run.time_step);
+  summary.number("particle_steps_per_second", throughput);
+  summary.number("mass_defect", run.max_mass_defect);
+  if (!run.energy.empty()) summary.number("energy_drift", energy_drift(run.energy));
+  std::vector<RunSummary::Record> errors;
+  for (const ParticleErrors& e : run.errors)
+    errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity},
+                      {"grid_velocity", e.grid_velocity}, {"stress", e.stress}});
+  summary.records("errors", errors);
+  summary.stages(run.timer);
+  summary.write(scene.folder);
   return 0;
 }
 

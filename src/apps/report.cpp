@@ -7,7 +7,9 @@
 namespace mfree {
 
 void print_stages(const StageTimer& t) {
-  for (const auto& [name, s] : t.stages()) std::cout << fmt::format("  {:<24} {:9.4f} s\n", name, s);
+  for (std::size_t i = 0; i < t.stages().size(); ++i)
+    std::cout << fmt::format("  {:<24} {:9.4f} s  {:>8} call(s)\n", t.stages()[i].first, t.stages()[i].second,
+                             t.calls()[i]);
   std::cout << fmt::format("  {:<24} {:9.4f} s\n", "total", t.total());
 }
 

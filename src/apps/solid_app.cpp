@@ -12,6 +12,7 @@
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_output.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 
@@ -113,6 +114,16 @@ int run_static(const ElasticityScene& scene) {
   if (o.probe) plot("plot_load_deflection.py", csv_path, o.folder);
   std::cout << "stages:\n";
   print_stages(timer);
+  RunSummary summary("newton", scene.file);
+  summary.number("dofs", static_cast<double>(model.dofs()));
+  std::vector<RunSummary::Record> steps;
+  for (const LoadStepRecord& step : sol.steps)
+    steps.push_back({{"load_factor", step.factor},
+                     {"iterations", static_cast<double>(step.history.size()) - 1},
+                     {"cutbacks", static_cast<double>(step.cutbacks)}});
+  summary.records("load_steps", steps);
+  summary.stages(timer);
+  summary.write(o.folder);
   return 0;
 }
 
@@ -215,6 +226,19 @@ int run_dynamics(const ElasticityScene& scene) {
     std::cout << fmt::format("  wrote {} (open in ParaView)\n", (folder / "series.pvd").string());
   std::cout << "stages:\n";
   print_stages(run.timer);
+  RunSummary summary("dynamics", scene.file);
+  summary.text("time_scheme", std::string(to_string(s.scheme)));
+  summary.number("nodes", static_cast<double>(run.nodes));
+  summary.number("steps", r.steps);
+  summary.number("time_step", r.time_step);
+  if (r.stability_limit) summary.number("stability_limit", *r.stability_limit);
+  summary.number("energy_drift", energy_drift(r.energy));
+  std::vector<RunSummary::Record> errors;
+  for (const MotionErrors& e : run.errors)
+    errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity}, {"stress", e.stress}});
+  summary.records("errors", errors);
+  summary.stages(run.timer);
+  summary.write(folder);
   return 0;
 }
 

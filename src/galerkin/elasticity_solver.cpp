@@ -73,7 +73,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
   res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3);
-  res.at_boundary = timer.time("shape functions", [&] {
+  res.at_boundary = timer.time("boundary functions", [&] {
     return sample_shape_functions(*res.trial, res.boundary.points, true);
   });
   const std::vector<Vec2> b = boundary_sums(res.at_boundary, res.boundary.normals, res.boundary.weights, res.node_count());

@@ -24,8 +24,9 @@ const std::vector<std::string> scheme_names{"projected", "gauss_cells", "nodal"}
 
 }  // namespace
 
-ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study) {
-  const Scene scene = Scene::load(file);
+ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study,
+                                      const std::vector<std::string>& overrides) {
+  const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
   ElasticityScene out{file, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
@@ -187,6 +188,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       out.output.probe = Vec2(p[0], p[1]);
     }
     if (out.output.wants("error") && !exact && !out.vibration()) t.error("fields", "'error' needs an [exact] section");
+    out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
+    if (out.output.eigenvalues > 0 && out.nonlinear())
+      t.error("eigenvalues", "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
     t.finish();
   }
   if (want_study || root.has("study")) {

@@ -44,8 +44,8 @@ std::string method_name(const MPMMethodChoice& m) {
 
 bool is_mpm_scene(const std::filesystem::path& file) { return Scene::load(file).root().has("mpm"); }
 
-MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study) {
-  const Scene scene = Scene::load(file);
+MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, const std::vector<std::string>& overrides) {
+  const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
   MPMScene out;
   out.file = file;

@@ -50,12 +50,45 @@ Scene Scene::parse(std::string_view text, const std::string& name) {
   return scene;
 }
 
-Scene Scene::load(const std::filesystem::path& path) {
+namespace {
+
+/// Replaces (or adds) the key of one override "a.b.c=value" in `root`.
+void apply_override(toml::table& root, const std::string& setting) {
+  const std::string origin = "--set " + setting;
+  const std::size_t eq = setting.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(fmt::format("{}: expected section.key=value", origin));
+  const std::string path = setting.substr(0, eq), value = setting.substr(eq + 1);
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + value, origin);
+  } catch (const toml::parse_error&) {
+    // A bare word (--set mpm.method=cpdi) is the string it spells.
+    parsed = toml::parse(fmt::format("value = \"{}\"", value), origin);
+  }
+  toml::table* at = &root;
+  std::size_t begin = 0;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', begin)) {
+    const std::string section = path.substr(begin, dot - begin);
+    auto [it, inserted] = at->emplace(section, toml::table{});
+    if (!it->second.is_table())
+      throw InputError(fmt::format("{}: '{}' is not a section of the scene", origin, path.substr(0, dot)));
+    at = it->second.as_table();
+    begin = dot + 1;
+  }
+  at->insert_or_assign(path.substr(begin), std::move(*parsed.get("value")));
+}
+
+}  // namespace
+
+Scene Scene::load(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot open the scene file", path.string()));
   std::stringstream text;
   text << in.rdbuf();
-  return parse(text.str(), path.string());
+  Scene scene = parse(text.str(), path.string());
+  for (const std::string& o : overrides) apply_override(scene.impl_->table, o);
+  return scene;
 }
 
 SceneTable Scene::root() const {
@@ -69,9 +102,11 @@ SceneTable::SceneTable(const toml::table* t, std::string prefix,
       used_(std::make_shared<std::set<std::string>>()) {}
 
 void SceneTable::fail(const toml::node* at, std::string_view key, const std::string& what) const {
-  const auto& src = (at ? at->source() : table_->source()).begin;
-  throw InputError(fmt::format("{}:{}:{}: key '{}{}': {}", *file_, src.line, src.column, prefix_,
-                               key, what));
+  const toml::source_region& region = at ? at->source() : table_->source();
+  // A value from a command-line override carries the override as its path.
+  const std::string& where = region.path && region.path->starts_with("--set ") ? *region.path : *file_;
+  throw InputError(fmt::format("{}:{}:{}: key '{}{}': {}", where, region.begin.line, region.begin.column,
+                               prefix_, key, what));
 }
 
 const toml::node* SceneTable::get(std::string_view key, bool required) const {

@@ -1,8 +1,10 @@
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <functional>
 
 #include "mfree/core/error.hpp"
 #include "mfree/io/scene_reader.hpp"
+#include "../test_support.hpp"
 
 using namespace mfree;
 
@@ -55,4 +57,29 @@ TEST_CASE("scene reader: choices and arrays", "[io]") {
              Catch::Contains("array of 2 numbers"));
   CHECK_THROWS_WITH(Scene::load("/nonexistent/scene.toml"),
                     Catch::Contains("/nonexistent/scene.toml") && Catch::Contains("cannot open"));
+}
+
+TEST_CASE("scene overrides: --set replaces, adds, and is named in errors", "[io]") {
+  mfree::testing::ScratchFolder folder("overrides");
+  const std::filesystem::path file = folder.path / "scene.toml";
+  {
+    std::ofstream out(file);
+    out << "[material]\nE = 3e7\n[mpm]\nmethod = \"bspline\"\n";
+  }
+  const Scene scene = Scene::load(file, {"material.E=2.5e7", "material.nu=0.25", "mpm.method=cpdi",
+                                         "study.cells=[8, 16]"});
+  const SceneTable root = scene.root();
+  CHECK(root.table("material").number("E", 0, 1e300) == 2.5e7);
+  CHECK(root.table("material").number("nu", 0, 0.5) == 0.25);
+  CHECK(root.table("mpm").string("method") == "cpdi");
+  CHECK(root.table("study").numbers("cells", 0, 1, 100) == std::vector<double>{8, 16});
+
+  const auto read_e = [&](const std::vector<std::string>& o) {
+    return mfree::testing::message_of<InputError>([&] {
+      (void)Scene::load(file, o).root().table("material").number("E", 0.0, 1e300);
+    });
+  };
+  CHECK_THAT(read_e({"material.E=-1"}), Catch::Contains("--set material.E=-1") && Catch::Contains("out of range"));
+  CHECK_THAT(read_e({"material.E.x=1"}), Catch::Contains("'material.E' is not a section"));
+  CHECK_THAT(read_e({"material"}), Catch::Contains("expected section.key=value"));
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Wall-clock time of the named stages of a run, in the order they first ran; optionally
-// reports each stage as it finishes (progress of long runs).
+// Wall-clock time of the named stages of a run, in the order they first ran, and how many
+// times each ran (a stage computed once per run shows 1 however many steps reuse it);
+// optionally reports each stage as it finishes (progress of long runs).
 
 #include <chrono>
 #include <iomanip>
@@ -35,14 +36,18 @@ class StageTimer {
       line << "  ... " << name << " done in " << std::fixed << std::setprecision(3) << seconds << " s\n";
       *log_ << line.str() << std::flush;
     }
-    for (auto& [n, s] : stages_)
-      if (n == name) {
-        s += seconds;
+    for (std::size_t i = 0; i < stages_.size(); ++i)
+      if (stages_[i].first == name) {
+        stages_[i].second += seconds;
+        ++calls_[i];
         return;
       }
     stages_.emplace_back(name, seconds);
+    calls_.push_back(1);
   }
   [[nodiscard]] const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+  /// calls()[i]: how many times stages()[i] ran.
+  [[nodiscard]] const std::vector<long>& calls() const { return calls_; }
   [[nodiscard]] double total() const {
     double t = 0.0;
     for (const auto& [n, s] : stages_) t += s;
@@ -51,6 +56,7 @@ class StageTimer {
 
  private:
   std::vector<std::pair<std::string, double>> stages_;
+  std::vector<long> calls_;
   std::ostream* log_ = nullptr;
 };
 

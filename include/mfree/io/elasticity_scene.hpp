@@ -21,7 +21,8 @@
 //                 stability_factor, energy_every, frames (VTK frames over the run),
 //                 error_times (fractions of end_time at which errors are measured)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, error, weights),
-//                 vtk, probe = [x, y] (u^h there at every load or time step)
+//                 vtk, probe = [x, y] (u^h there at every load or time step),
+//                 eigenvalues = n (the n smallest eigenvalues of the free stiffness; linear statics)
 //   [study]       for `mfree converge`: spacings, clouds, orders, schemes, betas, probe, reference,
 //                 quadratic_factor, quadratic_gauss_points; time_schemes, time_steps,
 //                 time_step_check (dynamics)
@@ -55,6 +56,7 @@ struct OutputSettings {
   std::set<std::string> fields;  ///< empty: nothing computed or written
   bool vtk = true;
   std::optional<Vec2> probe;
+  int eigenvalues = 0;  ///< smallest free-stiffness eigenvalues to report (linear statics; 0: none)
   [[nodiscard]] bool wants(const std::string& f) const { return fields.count(f) > 0; }
 };
 
@@ -102,7 +104,9 @@ struct ElasticityScene {
   [[nodiscard]] bool nonlinear() const { return newton || dynamics || !is_linear(material); }
 };
 
-/// Parses and checks a scene; `want_study` makes [study] required (mfree converge).
-ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study);
+/// Parses and checks a scene; `want_study` makes [study] required (mfree converge);
+/// `overrides` as Scene::load.
+ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study,
+                                      const std::vector<std::string>& overrides = {});
 
 }  // namespace mfree

@@ -64,7 +64,9 @@ struct MPMScene {
 /// True when the scene file has an [mpm] section (then `mfree run` takes this path).
 bool is_mpm_scene(const std::filesystem::path& file);
 
-/// Parses and checks an MPM scene; `want_study` makes [study] required (mfree converge).
-MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study);
+/// Parses and checks an MPM scene; `want_study` makes [study] required (mfree converge);
+/// `overrides` as Scene::load.
+MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study,
+                        const std::vector<std::string>& overrides = {});
 
 }  // namespace mfree

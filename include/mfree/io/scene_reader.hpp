@@ -79,7 +79,10 @@ class SceneTable {
 class Scene {
  public:
   /// Throws InputError for a missing file or a TOML syntax error (with line and column).
-  static Scene load(const std::filesystem::path& path);
+  /// `overrides` are command-line settings "section.key=value" (value in TOML syntax; a bare
+  /// word is a string) replacing or adding keys before anything is read; errors about them
+  /// name the override instead of the file.
+  static Scene load(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
   static Scene parse(std::string_view text, const std::string& name);
   Scene(Scene&&) noexcept;
   ~Scene();
