@@ -129,8 +129,12 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
     Eigen::VectorXd g_new;  // f_ext - f_c at the new state
     if (explicit_scheme) {
       d += dt * v_half;
-      g_new = applied(d, t);
-      a = (g_new - internal(d)).cwiseQuotient(lumped);
+      try {
+        g_new = applied(d, t);
+        a = (g_new - internal(d)).cwiseQuotient(lumped);
+      } catch (const NumericalError& e) {  // the model knows where, the integrator when
+        throw NumericalError(fmt::format("{} (central differences, step {}, t = {:.4e} s)", e.what(), n, t));
+      }
       v = v_half + 0.5 * dt * a;
       v_half = v + 0.5 * dt * a;
       if (!std::isfinite(d.squaredNorm()))

@@ -1,7 +1,10 @@
 #include "mfree/galerkin/motion_errors.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
+#include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 
 namespace mfree {
@@ -30,7 +33,14 @@ MotionErrors MotionErrorSampler::operator()(const Eigen::VectorXd& d, const Eige
       const double w = at_.weights[k];
       sum[0] += w * (u - exact.displacement(x, time)).squaredNorm();
       sum[1] += w * (vel - exact.velocity(x, time)).squaredNorm();
-      sum[2] += w * (cauchy_stress(material_, f) - exact.cauchy_stress(x, time)).squaredNorm();
+      Mat2 sigma;
+      try {
+        sigma = cauchy_stress(material_, f);
+      } catch (const NumericalError& e) {  // u^h itself is inverted here: say where and when
+        throw NumericalError(fmt::format("{} in the discrete motion at error point ({:.6g}, {:.6g}), t = {:.6g} s",
+                                         e.what(), x.x(), x.y(), time));
+      }
+      sum[2] += w * (sigma - exact.cauchy_stress(x, time)).squaredNorm();
     }
     partial[thread] = sum;
   });

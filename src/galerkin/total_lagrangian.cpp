@@ -9,6 +9,18 @@ namespace mfree {
 
 namespace {
 
+/// f() at point k of `points` (`kind`: quadrature or boundary); a NumericalError of the
+/// material (J <= 0) gets the point.
+template <class F>
+auto at_point(const char* kind, const std::vector<Vec2>& points, Index k, F&& f) {
+  try {
+    return f();
+  } catch (const NumericalError& e) {
+    throw NumericalError(fmt::format("{} at {} point {} ({:.6g}, {:.6g}); use smaller load or time steps", e.what(),
+                                     kind, k, points[k].x(), points[k].y()));
+  }
+}
+
 /// The condition of every boundary segment: the first whose region holds its midpoint.
 std::vector<const BoundaryCondition*> segment_conditions(const SolidProblem& p, const Domain& domain) {
   const auto& segments = domain.boundary();
@@ -165,7 +177,9 @@ Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) co
 Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const {
   std::vector<Mat2> wp(q_.size());
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
-    for (Index k = begin; k < end; ++k) wp[k] = q_.weights[k] * stress(problem_.material, deformation_gradient(k, d));
+    for (Index k = begin; k < end; ++k)
+      wp[k] = q_.weights[k] *
+              at_point("quadrature", q_.points, k, [&] { return stress(problem_.material, deformation_gradient(k, d)); });
   });
   return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
 }
@@ -185,7 +199,8 @@ Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, cons
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n));
-    const Vec2 traction = p.projection * (stress(problem_.material, f_at) * n);
+    const Vec2 traction =
+        p.projection * (at_point("boundary", bq_.points, p.point, [&] { return stress(problem_.material, f_at); }) * n);
     for (Index s = begin; s < end; ++s) {
       const double phi = at_boundary_.phi[s];
       f.segment<2>(2 * at_boundary_.nodes[s]) +=
@@ -223,7 +238,9 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
   const bool linear = is_linear(problem_.material);
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
-      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : mfree::tangent(problem_.material, deformation_gradient(p, d)));
+      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : at_point("quadrature", q_.points, p, [&] {
+                                 return mfree::tangent(problem_.material, deformation_gradient(p, d));
+                               }));
   });
   add_column_blocks(q_, domain_rows_, pattern_, domain_symmetric_, values, [&](Index kk, Index slot_j) {
     const Vec2& g = q_.grad[slot_j];
@@ -245,7 +262,9 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
     Mat2 f_at = Mat2::Identity();
     for (Index s = begin; s < end; ++s) f_at += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].transpose();
-    const Tangent a = linear ? reference_tangent_ : mfree::tangent(problem_.material, f_at);
+    const Tangent a = linear ? reference_tangent_ : at_point("boundary", bq_.points, p.point, [&] {
+      return mfree::tangent(problem_.material, f_at);
+    });
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     t.resize(m);
@@ -269,7 +288,9 @@ double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
   std::vector<double> partial(thread_count(), 0.0);
   parallel_ranges(q_.size(), [&](int thread, Index begin, Index end) {
     double sum = 0.0;
-    for (Index k = begin; k < end; ++k) sum += q_.weights[k] * energy(problem_.material, deformation_gradient(k, d));
+    for (Index k = begin; k < end; ++k)
+      sum += q_.weights[k] *
+             at_point("quadrature", q_.points, k, [&] { return energy(problem_.material, deformation_gradient(k, d)); });
     partial[thread] = sum;
   });
   double total = 0.0;

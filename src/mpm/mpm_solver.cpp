@@ -20,6 +20,17 @@ std::string_view to_string(UpdateScheme s) {
 
 namespace {
 
+/// Runs f; a NumericalError from it (which knows where) gets the time appended (the solver
+/// knows when).
+template <class F>
+void at_time(double t, F&& f) {
+  try {
+    f();
+  } catch (const NumericalError& e) {
+    throw NumericalError(fmt::format("{} at t = {:.6g} s", e.what(), t));
+  }
+}
+
 const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
   if (!(p.density > 0.0)) throw InputError(fmt::format("MPM: the density must be positive (got {})", p.density));
   if (!(s.end_time > 0.0)) throw InputError(fmt::format("MPM: end_time must be positive (got {})", s.end_time));
@@ -111,6 +122,7 @@ void MPMSolver::step() {
   const bool again = settings_.update == UpdateScheme::szs || settings_.update == UpdateScheme::usavg;
   const double stress_dt = settings_.update == UpdateScheme::usavg ? 0.5 * dt_ : dt_;
   timer_.time("weights", [&] { compute_weights(); });
+  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
   timer_.time("particles to grid", [&] { particles_to_grid(); });
   if (first) timer_.time("stress update", [&] { update_stress(stress_dt); });
   timer_.time("grid forces", [&] { compute_grid_forces(); });
@@ -128,15 +140,16 @@ void MPMSolver::compute_weights() {
   Particles& P = particles_;
   basis_.resize(weights_, P.size());
   const bool domains = !P.half_size.empty();
-  try {
+  at_time(time_, [&] {
     parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
       for (Index p = begin; p < end; ++p)
         basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_, p);
     });
-    if (mls_) mls_->update(P.position);
-  } catch (const NumericalError& e) {  // the weights know where, the solver knows when
-    throw NumericalError(fmt::format("{} at t = {:.6g} s", e.what(), time_));
-  }
+  });
+}
+
+void MPMSolver::update_mls_functions() {
+  at_time(time_, [&] { mls_->update(particles_.position); });
 }
 
 void MPMSolver::particles_to_grid() {

@@ -30,7 +30,7 @@ namespace {
 
 using namespace mfree;
 
-const char* const stages[] = {"weights",     "particles to grid", "stress update",       "grid forces",
+const char* const stages[] = {"weights",       "MLS functions",     "particles to grid", "stress update", "grid forces",
                               "grid momentum", "grid to particles", "second extrapolation"};
 
 void BM_mpm_step(benchmark::State& state, MPMMethod method, int degree, UpdateScheme update, bool body_force) {

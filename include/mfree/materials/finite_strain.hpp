@@ -38,8 +38,8 @@ inline double von_mises(const Mat2& s, double szz) {
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * shear * shear);
 }
 
-/// J = det F, throwing NumericalError ("J = ... <= 0 at <where>") when the material is
-/// inverted or collapsed.
+/// J = det F, throwing NumericalError ("J = ... <= 0 (F = ...)") when the material is
+/// inverted or collapsed; the solver that called adds where and when.
 double checked_jacobian(const Mat2& f, const char* model);
 
 }  // namespace mfree

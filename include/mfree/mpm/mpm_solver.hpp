@@ -3,7 +3,8 @@
 //
 // One step from t to t + dt, in the stages the papers name:
 //
-//   1. weights S_ip, G_ip at the particles (and, for bspline_mls, the MLS functions phi_gp)
+//   1. weights S_ip, G_ip at the particles; for bspline_mls, then the MLS functions phi_gp
+//      at the Gauss points (a stage of its own: a scene without MLS never runs it)
 //   2. particles to grid: m_i = sum S_ip m_p, (mv)_i = sum S_ip m_p v_p
 //        (bspline_mls: m_i = sum_g N_i(x_g) rho_g omega_g, eqs. 18-23)
 //   3. USF, USAVG: stress update from v_i = (mv)_i / m_i (USAVG over dt / 2)
@@ -105,6 +106,7 @@ class MPMSolver {
 
  private:
   void compute_weights();
+  void update_mls_functions();
   void particles_to_grid();
   void update_stress(double dt);
   void compute_grid_forces();
