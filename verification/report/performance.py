@@ -1,0 +1,171 @@
+"""Performance: what a run computes and how its stages scale with threads.
+
+Every run prints and writes (summary.json) its stage table: wall seconds and the number of
+times each stage ran. Two sections read those tables:
+
+    only what the scene needs   runs that ask for less (no fields, no MLS, a linear material)
+                                must not run the stages they do not need, and the set-up stages
+                                (clouds, shape functions, weights and projection) run once per
+                                run however many load or time steps reuse them
+    thread scaling              the same runs with OMP_NUM_THREADS = 1 and 2, stage by stage
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from common import Context, RunResult, Section, new_figure, save_figure, table
+
+CANTILEVER = Path("verification/cantilever/cantilever.toml")
+LARGE = Path("verification/cantilever/large_deformation.toml")
+VIBRATION = Path("verification/vibration/vibration.toml")
+MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
+QUIET = ["output.fields=[]", "output.vtk=false"]
+
+# Stages that prepare the discretisation: computed once, reused by every load or time step.
+SET_UP = ["clouds", "shape functions", "boundary functions", "weights and projection", "consistency"]
+
+
+def sections(ctx: Context) -> list[Section]:
+    out = []
+    with ctx.step("performance: only what the scene needs"):
+        out.append(only_what_is_needed(ctx))
+    with ctx.step("performance: thread scaling"):
+        out.append(thread_scaling(ctx))
+    return out
+
+
+def stages(run: RunResult) -> dict[str, tuple[float, int]]:
+    """name -> (seconds, calls) of a run's stage table (empty for a failed run)."""
+    if not run.ok or not run.summary:
+        return {}
+    return {s["name"]: (s["seconds"] or 0.0, s["calls"]) for s in run.summary["stages"]}
+
+
+def stage_table(runs: dict[str, RunResult]) -> str:
+    """One row per stage (in order of first appearance), one column per run: seconds (calls)."""
+    names: list[str] = []
+    for r in runs.values():
+        names += [n for n in stages(r) if n not in names]
+    rows = []
+    for n in names:
+        row = [n]
+        for r in runs.values():
+            s = stages(r).get(n)
+            row.append("—" if s is None else f"{s[0]:.3g} s ({s[1]})")
+        rows.append(row)
+    rows.append(["**total**"] + [f"**{r.summary['total_seconds']:.3g} s**" if r.ok and r.summary else "failed"
+                                 for r in runs.values()])
+    return table(["stage"] + list(runs), rows)
+
+
+def only_what_is_needed(ctx: Context) -> Section:
+    title = "Only what the scene needs"
+    h = 1.5 if ctx.quick else 0.75
+    dyn = ["nodes.spacing=0.0625" if ctx.quick else "nodes.spacing=0.03125", "dynamics.end_time=0.005",
+           "dynamics.error_times=[1.0]"]
+    mpm = ["mpm.cells=16" if ctx.quick else "mpm.cells=32", "dynamics.end_time=0.002", "dynamics.error_times=[1.0]",
+           "dynamics.frames=0"]
+    meshfree = {
+        "cantilever, fields + VTK": ctx.mfree_run("run", CANTILEVER, "performance/needs/cantilever_fields", [f"nodes.spacing={h}"]),
+        "cantilever, no output": ctx.mfree_run("run", CANTILEVER, "performance/needs/cantilever_quiet", QUIET + [f"nodes.spacing={h}"]),
+        "Neo-Hookean, Newton": ctx.mfree_run("run", LARGE, "performance/needs/newton", QUIET + [f"nodes.spacing={h}"]),
+        "vibration, no output": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_quiet",
+                                              QUIET + dyn + ["dynamics.frames=0"]),
+        "vibration, 5 frames": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_frames",
+                                             dyn + ["dynamics.frames=5"]),
+    }
+    particles = {
+        "MPM B-spline": ctx.mfree_run("run", MPM_VIBRATION, "performance/needs/mpm_bspline", QUIET + mpm),
+        "MPM B-spline + MLS": ctx.mfree_run("run", MPM_VIBRATION, "performance/needs/mpm_mls",
+                                            QUIET + mpm + ["mpm.method=bspline_mls"]),
+        "MPM CPDI": ctx.mfree_run("run", MPM_VIBRATION, "performance/needs/mpm_cpdi", QUIET + mpm + ["mpm.method=cpdi"]),
+    }
+
+    checks = []
+
+    def check(what: str, ok: bool) -> None:
+        checks.append([what, "yes" if ok else "no"])
+
+    st = {k: stages(r) for k, r in {**meshfree, **particles}.items()}
+    check("no fields asked for: no `output` stage (stress recovery and writing skipped)",
+          "output" in st["cantilever, fields + VTK"] and "output" not in st["cantilever, no output"]
+          and "output" not in st["vibration, no output"] and "output" in st["vibration, 5 frames"])
+    check("a linear material: one assembly, one factorisation, one solve (no Newton iterations)",
+          all(st["cantilever, no output"].get(s, (0, 0))[1] == 1 for s in ("assembly", "factorisation", "solve")))
+    newton_factorisations = st["Neo-Hookean, Newton"].get("factorisation", (0, 0))[1]
+    check(f"set-up stages ({', '.join(SET_UP)}) run once in every meshfree run, though the Newton run "
+          f"factorises {newton_factorisations} times and the vibration takes "
+          f"{meshfree['vibration, no output'].summary['steps'] if meshfree['vibration, no output'].summary else '?'} steps",
+          all(calls == 1 for name in SET_UP for k in meshfree for (s, calls) in [st[k].get(name, (0, 1))]))
+    check("`MLS functions` run only when the scene asks for MLS reconstruction",
+          "MLS functions" in st["MPM B-spline + MLS"] and "MLS functions" not in st["MPM B-spline"]
+          and "MLS functions" not in st["MPM CPDI"])
+    steps = particles["MPM B-spline"].summary["steps"] if particles["MPM B-spline"].summary else None
+    check("MPM: every stage runs once per step (weights are recomputed because particles move)",
+          steps is not None and all(c == steps for (_, c) in st["MPM B-spline"].values()))
+    all_ok = all(c[1] == "yes" for c in checks)
+    body = ("Stage tables (wall seconds and, in brackets, how many times the stage ran) of runs that ask for "
+            "different things. Each `mfree run` prints this table and writes it to summary.json.\n\n"
+            f"Meshfree: the cantilever at h = {h} with all fields written to VTK and with none, the Neo-Hookean "
+            "cantilever by Newton with load steps, and the vibration problem (central differences, 1/4 period) "
+            "without output and with 5 VTK frames.\n\n" + stage_table(meshfree)
+            + "\nMPM: the vibration problem (0.002 s) with quadratic B-splines, with MLS reconstruction, and "
+              "with CPDI.\n\n" + stage_table(particles)
+            + "\nChecks on these tables:\n\n" + table(["check", "holds"], checks)
+            + "\nShape functions and their projected gradients are computed once per run (the set-up "
+              "stages above) and reused by every load step, Newton iteration and time step: the "
+              "total-Lagrangian residual and tangent evaluate stresses at the quadrature points from the "
+              "stored gradients. The MPM weights are recomputed every step because the particles move.\n")
+    return Section(title, body, [("Only what the scene needs, nothing twice", "stage tables show it",
+                                  f"{sum(c[1] == 'yes' for c in checks)}/{len(checks)} checks hold",
+                                  "yes" if all_ok else "no")])
+
+
+def thread_scaling(ctx: Context) -> Section:
+    title = "Thread scaling, 1 and 2 threads"
+    cases = {
+        "cantilever (linear statics)": (CANTILEVER, QUIET + ["nodes.spacing=0.75" if ctx.quick else "nodes.spacing=0.375"]),
+        "vibration (total Lagrangian, explicit)": (VIBRATION, QUIET + [
+            "nodes.spacing=0.0625" if ctx.quick else "nodes.spacing=0.03125", "dynamics.end_time=0.005",
+            "dynamics.frames=0", "dynamics.error_times=[1.0]"]),
+        "MPM quadratic B-spline": (MPM_VIBRATION, QUIET + [
+            "mpm.cells=32" if ctx.quick else "mpm.cells=64", "dynamics.end_time=0.002", "dynamics.frames=0",
+            "dynamics.error_times=[1.0]"]),
+        "MPM B-spline + MLS": (MPM_VIBRATION, QUIET + [
+            "mpm.method=bspline_mls", "mpm.cells=16" if ctx.quick else "mpm.cells=32", "dynamics.end_time=0.001",
+            "dynamics.frames=0", "dynamics.error_times=[1.0]"]),
+    }
+    rows, bars = [], []
+    for label, (scene, sets) in cases.items():
+        slug = label.split(" (")[0].replace(" ", "_").replace("+", "plus")
+        one = ctx.mfree_run("run", scene, f"performance/threads/{slug}_1", sets, threads=1)
+        two = ctx.mfree_run("run", scene, f"performance/threads/{slug}_2", sets, threads=2)
+        s1, s2 = stages(one), stages(two)
+        for name, (t1, calls) in s1.items():
+            if name not in s2 or t1 < 1e-3:
+                continue  # stages under a millisecond say nothing about scaling
+            t2 = s2[name][0]
+            rows.append([label, name, calls, t1, t2, f"{t1 / t2:.2f}"])
+            bars.append((f"{label.split(' (')[0]}: {name}", t1 / t2))
+        if one.ok and two.ok:
+            t1, t2 = one.summary["total_seconds"], two.summary["total_seconds"]
+            rows.append([f"**{label}**", "**total**", "", t1, t2, f"**{t1 / t2:.2f}**"])
+    fig, (ax,) = new_figure(width=8, height=0.28 * max(len(bars), 4) + 1)
+    ax.barh([b[0] for b in bars], [b[1] for b in bars], color="tab:blue")
+    ax.axvline(1.0, color="k", lw=0.8)
+    ax.axvline(2.0, color="k", lw=0.8, ls=":")
+    ax.invert_yaxis()
+    ax.set_xlabel("speed-up, 2 threads against 1")
+    ax.tick_params(axis="y", labelsize=7)
+    figure = save_figure(fig, ctx.figure("performance_threads"))
+    totals = [r for r in rows if r[1] == "**total**"]
+    body = (f"The same runs with OMP_NUM_THREADS = 1 and 2 on this machine ({os.cpu_count()} cores), stage by "
+            "stage (stages under a millisecond left out). One run each: single runs drift by about 15 % on "
+            "this machine; `build/mfree_bench` (verification/benchmarks/) repeats them for firmer figures.\n\n"
+            + table(["run", "stage", "calls", "1 thread [s]", "2 threads [s]", "speed-up"], rows)
+            + "\n" + ctx.image(figure, "Speed-up of every stage from 1 to 2 threads")
+            + "\nSerial stages show a speed-up near 1 (the sparse factorisation is CHOLMOD's or UMFPACK's "
+              "own; the light MPM grid stages are bound by memory bandwidth).\n")
+    observed = "; ".join(f"{r[0].strip('*').split(' (')[0]} {r[5].strip('*')}x" for r in totals)
+    return Section(title, body, [("Two threads against one (whole runs)", "up to 2x", observed, "—")])

@@ -1,0 +1,575 @@
+"""Stability stress tests: each drives one knob of a method towards (and past) the point where
+it breaks, and records what the program does there: a converged answer, a growing error, or a
+clear error message (never a NaN in an output file).
+
+Every point is one `mfree run` of a verification scene with --set overrides; its numbers come
+from the run's summary.json, its failure from the run's error message.
+
+    cloud irregularity        lattice -> perturbed -> random nodes, three quadrature schemes
+    support size              kernel support factor down to a singular moment matrix
+    quadrature ratio          1 to 6 quadrature points per node, free-stiffness eigenvalues
+    negative weights          quadratic RK quadrature weights on irregular clouds
+    Nitsche penalty           beta from 1 to 1e4
+    MPM Courant number        per method and update scheme, to the empirical stability limit
+    vibration amplitude       up to where det F of the exact motion approaches 0
+    long runs                 ten periods, energy drift per method
+    Newton under growing load load steps, cut-backs, and the error when they run out
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+from common import (Context, RunResult, Section, log_axes, new_figure, num, read_csv, save_figure,
+                    table, number)
+
+CANTILEVER = Path("verification/cantilever/cantilever.toml")
+NITSCHE = Path("verification/cantilever/nitsche_sweep.toml")
+LARGE = Path("verification/cantilever/large_deformation.toml")
+VIBRATION = Path("verification/vibration/vibration.toml")
+MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
+MPM_LONG = Path("verification/mpm-vibration/long_run.toml")
+
+MPM_METHODS = ["classic", "ugimp", "cpdi", "bspline", "bspline_cubic", "bspline_mls"]
+MPM_UPDATES = ["usf", "usl", "szs", "usavg"]
+QUIET = ["output.fields=[]", "output.vtk=false"]  # a sweep point writes no fields
+
+
+def sections(ctx: Context) -> list[Section]:
+    out = []
+    for title, study in [("Cloud irregularity", cloud_irregularity),
+                         ("Support size and the moment matrix", support_size),
+                         ("Quadrature-to-node ratio and zero-energy modes", quadrature_ratio),
+                         ("Quadratic RK: negative quadrature weights", negative_weights),
+                         ("Nitsche penalty", nitsche_penalty),
+                         ("MPM Courant number", mpm_courant),
+                         ("Vibration amplitude up to det F -> 0", amplitude),
+                         ("Long runs: energy over ten periods", long_runs),
+                         ("Newton under growing load", newton_load)]:
+        with ctx.step(f"stability: {title}"):
+            out.append(study(ctx, title))
+    out.append(failure_modes(ctx))
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# Helpers
+
+
+def message(run: RunResult) -> str:
+    """The error message of a failed run, without the program's prefix."""
+    lines = [line for line in run.stderr.strip().splitlines() if line.strip()]
+    text = lines[-1] if lines else f"exit status {run.returncode}, no message"
+    return text.removeprefix("mfree: error: ")
+
+
+def short(text: str, limit: int = 110) -> str:
+    return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
+_FAILURES: list[tuple[str, str]] = []  # (stress test, message) of every failed sweep point
+
+
+def point(ctx: Context, test: str, subcommand: str, scene: Path, name: str, sets: list[str]) -> RunResult:
+    """One sweep point; a failure is an observation, recorded for the failure-mode table."""
+    run = ctx.mfree_run(subcommand, scene, name, sets, expect_failure=True)
+    if not run.ok:
+        _FAILURES.append((test, message(run)))
+    return run
+
+
+def scene_table(path: Path) -> dict:
+    with open(path, "rb") as f:
+        return tomllib.load(f)
+
+
+def dilatational_wave_speed(scene: dict) -> float:
+    """c_d = sqrt((lambda + 2 mu) / rho0) of the scene's material: the MPM Courant limit is h / c_d."""
+    m = scene["material"]
+    e, nu, rho = m["youngs_modulus"], m["poisson_ratio"], m["density"]
+    return math.sqrt(e * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho)
+
+
+def first_error(run: RunResult, key: str = "displacement", index: int = 0) -> float:
+    if not run.ok or not run.summary or len(run.summary.get("errors", [])) <= index:
+        return math.nan
+    value = run.summary["errors"][index].get(key)
+    return math.nan if value is None else value
+
+
+def value(run: RunResult, key: str) -> float:
+    if not run.ok or not run.summary or run.summary.get(key) is None:
+        return math.nan
+    return run.summary[key]
+
+
+# ---------------------------------------------------------------------------------------------
+# Meshfree Galerkin
+
+
+def cloud_irregularity(ctx: Context, title: str) -> Section:
+    spacing = 1.5 if ctx.quick else 0.75
+    perturbations = [0.0, 0.3] if ctx.quick else [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]
+    schemes = ["projected", "gauss_cells", "nodal"]
+    clouds = [(f"perturbed {p:g}", ["nodes.cloud=perturbed", f"nodes.perturbation={p}"]) for p in perturbations]
+    clouds.append(("random", ["nodes.cloud=random"]))
+    results = {}
+    for label, cloud_sets in clouds:
+        for scheme in schemes:
+            name = f"stability/irregularity/{label.replace(' ', '_')}_{scheme}"
+            results[label, scheme] = point(ctx, title, "run", CANTILEVER, name,
+                                           QUIET + cloud_sets + [f"nodes.spacing={spacing}", f"quadrature.scheme={scheme}"])
+    rows = []
+    for label, _ in clouds:
+        row = [label]
+        for scheme in schemes:
+            r = results[label, scheme]
+            row += [value(r, "l2_displacement"), value(r, "energy")] if r.ok else ["failed: " + short(message(r), 40), "—"]
+        rows.append(row)
+    fig, (ax,) = new_figure()
+    x = list(range(len(clouds)))
+    for scheme in schemes:
+        ax.plot(x, [value(results[c, scheme], "l2_displacement") for c, _ in clouds], "o-", label=scheme)
+    ax.set_xticks(x, [c.replace("perturbed ", "") for c, _ in clouds])
+    ax.set_yscale("log")
+    ax.set_xlabel("node perturbation (fraction of the spacing); random")
+    ax.set_ylabel("relative L2 displacement error")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    figure = save_figure(fig, ctx.figure("stability_irregularity"))
+
+    lattice = value(results[clouds[0][0], "projected"], "l2_displacement")
+    worst = max(value(results[c, "projected"], "l2_displacement") for c, _ in clouds)
+    ok = worst <= 3 * lattice
+    body = (f"The Timoshenko cantilever (section 3) with linear RK at node spacing {spacing}, the nodes moved "
+            f"from the lattice by uniform random offsets up to the given fraction of the spacing, and a "
+            f"uniformly random cloud (seeded). Each column pair is one quadrature scheme: relative L2 "
+            f"displacement and energy errors, measured by independent Gauss cells.\n\n"
+            "Expected: the projected, consistency-corrected quadrature stays as accurate on irregular clouds "
+            "as on the lattice (it passes the patch test on any cloud); Gauss cells and nodal integration, "
+            "not integration-consistent, lose accuracy as the cloud gets irregular.\n\n"
+            + table(["cloud"] + [f"{s} {q}" for s in schemes for q in ("L2 u", "energy")], rows)
+            + f"\nObserved: projected error from {num(lattice)} (lattice) to at most {num(worst)} "
+            f"({worst / lattice:.1f}x); criterion: within 3x of the lattice.\n\n"
+            + ctx.image(figure, "Cantilever error against cloud irregularity, per quadrature scheme")
+            + f"\nReproduce one point: `{ctx.command('run', CANTILEVER, ['nodes.cloud=random', f'nodes.spacing={spacing}'])}`\n")
+    return Section(title, body, [("Irregular clouds (projected quadrature)", "error within 3x of the lattice",
+                                  f"{worst / lattice:.1f}x", "yes" if ok else "no")])
+
+
+def support_size(ctx: Context, title: str) -> Section:
+    spacing = 1.5
+    factors = {"linear": [2.0, 1.5, 1.0, 0.75] if ctx.quick else [2.0, 1.75, 1.5, 1.25, 1.1, 1.0, 0.9, 0.75, 0.6],
+               "quadratic": [3.0, 2.0, 1.25] if ctx.quick else [3.0, 2.5, 2.0, 1.75, 1.5, 1.25, 1.1]}
+    clouds = {"lattice": ["nodes.cloud=lattice"], "perturbed 0.3": ["nodes.cloud=perturbed", "nodes.perturbation=0.3"]}
+    rows, smallest, headlines = [], {}, []
+    for order, fs in factors.items():
+        for cloud, cloud_sets in clouds.items():
+            for f in fs:
+                name = f"stability/support/{order}_{cloud.split()[0]}_{f:g}"
+                r = point(ctx, title, "run", CANTILEVER, name,
+                          QUIET + cloud_sets + [f"nodes.spacing={spacing}", f"kernel.order={order}", f"kernel.factor={f}"])
+                if r.ok:
+                    smallest[order, cloud] = f
+                rows.append([order, cloud, f, value(r, "l2_displacement") if r.ok else None,
+                             value(r, "energy") if r.ok else None, "ok" if r.ok else short(message(r), 150)])
+    limits = table(["RK order", "cloud", "smallest working factor"],
+                   [[o, c, smallest.get((o, c), "none")] for o in factors for c in clouds])
+    body = ("The cantilever at node spacing 1.5 with the support radius a = factor x h shrunk until the RK "
+            "moment matrix M(x) = sum phi_a(x - x_I) p(x_I - x) p(x_I - x)^T becomes singular: a linear basis "
+            "needs at least 3 neighbours not on one line inside the support of every point, a quadratic one "
+            "at least 6 not on one conic. On a lattice with a circular support, factor 1 puts the nearest "
+            "neighbours on the support's edge where the window vanishes.\n\n"
+            "Expected: accuracy degrades gracefully as the support shrinks, then the run stops with an error "
+            "naming the point, the neighbour count and the remedy (never a NaN).\n\n"
+            + limits + "\n" + table(["RK order", "cloud", "factor", "L2 u", "energy", "outcome"], rows)
+            + f"\nReproduce: `{ctx.command('run', CANTILEVER, ['nodes.spacing=1.5', 'kernel.factor=0.9'])}`\n")
+    clear = all(r[5] == "ok" or "moment matrix" in r[5] for r in rows)
+    headlines.append(("Support too small", "clear moment-matrix error",
+                      "linear lattice works down to factor " + str(smallest.get(("linear", "lattice"), "none")),
+                      "yes" if clear else "no"))
+    return Section(title, body, headlines)
+
+
+def quadrature_ratio(ctx: Context, title: str) -> Section:
+    ratios = [1, 2, 4] if ctx.quick else [1, 1.5, 2, 3, 4, 5, 6]
+    spacing = 3.0 if ctx.quick else 1.5
+    count = 6
+    runs = {}
+    for cloud, sets in [("lattice", ["nodes.cloud=lattice"]), ("perturbed", ["nodes.cloud=perturbed"])]:
+        for ratio in ratios:
+            runs[cloud, f"projected, ratio {ratio:g}"] = point(
+                ctx, title, "run", CANTILEVER, f"stability/ratio/{cloud}_{ratio:g}",
+                QUIET + sets + [f"nodes.spacing={spacing}", f"quadrature.ratio={ratio}", f"output.eigenvalues={count}"])
+        for scheme in ["nodal", "gauss_cells"]:
+            runs[cloud, scheme] = point(ctx, title, "run", CANTILEVER, f"stability/ratio/{cloud}_{scheme}",
+                                        QUIET + sets + [f"nodes.spacing={spacing}", f"quadrature.scheme={scheme}",
+                                                        f"output.eigenvalues={count}"])
+    rows = []
+    for (cloud, label), r in runs.items():
+        if not r.ok:
+            rows.append([cloud, label, "—", "failed: " + short(message(r))] + ["—"] * 4)
+            continue
+        lam = r.summary["smallest_eigenvalues"]
+        rows.append([cloud, label, int(r.summary["quadrature_points"]), int(r.summary["zero_modes"]),
+                     lam[3], lam[4], value(r, "l2_displacement"), value(r, "energy")])
+    fig, (ax,) = new_figure()
+    for cloud in ["lattice", "perturbed"]:
+        pts = [(ratio, runs[cloud, f"projected, ratio {ratio:g}"]) for ratio in ratios]
+        ax.plot([p for p, r in pts if r.ok], [r.summary["smallest_eigenvalues"][3] for p, r in pts if r.ok],
+                "o-", label=f"projected, {cloud}")
+        for scheme, marker in [("nodal", "s"), ("gauss_cells", "^")]:
+            r = runs[cloud, scheme]
+            if r.ok:
+                ax.axhline(r.summary["smallest_eigenvalues"][3], ls=":", color="grey")
+                ax.text(ratios[-1], r.summary["smallest_eigenvalues"][3], f" {scheme}, {cloud}", fontsize=7, va="bottom", ha="right")
+    ax.set_yscale("log")
+    ax.set_xlabel("quadrature points per node")
+    ax.set_ylabel("4th smallest eigenvalue / largest")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    figure = save_figure(fig, ctx.figure("stability_quadrature_ratio"))
+
+    lattice = [(ratio, runs["lattice", f"projected, ratio {ratio:g}"]) for ratio in ratios]
+    good = [r.summary["smallest_eigenvalues"][3] for _, r in lattice if r.ok]
+    reference = max(good) if good else math.nan
+    soft = [ratio for ratio, r in lattice if r.ok and r.summary["smallest_eigenvalues"][3] < 1e-2 * reference]
+    spurious = [ratio for ratio, r in lattice if r.ok and r.summary["zero_modes"] > 3]
+    observed = (f"near-zero-energy modes (4th eigenvalue below 1 % of its best value) at ratio "
+                f"{', '.join(f'{s:g}' for s in soft)}" if soft else "no near-zero modes at any ratio")
+    singular = [f"{cloud} ratio {label.split()[-1]}" for (cloud, label), r in runs.items()
+                if not r.ok and label.startswith("projected")]
+    if singular:
+        observed += f"; singular stiffness (the solve refused) on {', '.join(singular)}"
+    body = (f"Eigenvalues of the free stiffness K (no boundary conditions; 2 x nodes DOFs, dense solve) of the "
+            f"cantilever at node spacing {spacing}, divided by the largest. A 2D body has exactly three zero "
+            "eigenvalues, the rigid-body motions; each further zero is a spurious zero-energy mode (counted "
+            "below 1e-8 of the largest), and a 4th eigenvalue orders of magnitude below its converged value is "
+            "a near-zero-energy mode that the quadrature barely resists. The projected scheme at 1 to 6 "
+            "quadrature points per node against nodal integration and Gauss cells.\n\n"
+            "Expected (SPEC, seed 003): about 4 quadrature points per node in 2D are needed for stability; "
+            "too few points under-integrate and admit (near-)zero-energy modes.\n\n"
+            + table(["cloud", "scheme", "quadrature points", "zero modes", "lambda_4 / lambda_max",
+                     "lambda_5 / lambda_max", "L2 u", "energy"], rows)
+            + f"\nObserved on the lattice: {observed}; exact zero modes beyond the three rigid ones at ratio "
+            f"{', '.join(f'{s:g}' for s in spurious) if spurious else 'none'}.\n\n"
+            + ctx.image(figure, "Softest deformation mode against quadrature points per node")
+            + f"\nReproduce: `{ctx.command('run', CANTILEVER, [f'nodes.spacing={spacing}', 'quadrature.ratio=1', 'output.eigenvalues=6'])}`\n")
+    return Section(title, body, [("Quadrature ratio: zero-energy modes", "modes at too few points per node",
+                                  observed, "—")])
+
+
+def negative_weights(ctx: Context, title: str) -> Section:
+    rows = []
+    integration = ctx.work / "integration" / "integration.csv"
+    if integration.exists():
+        for r in read_csv(integration):
+            if r["scheme"] == "rk" and r["function"] == "f1":
+                rows.append([r["cloud"], r["order"], int(r["points"]), int(r["negative_weights"]),
+                             number(r["most_negative"]), number(r["error"])])
+    spacing = 1.5
+    runs = []
+    for cloud in ["perturbed", "random"]:
+        for qcloud in ["lattice", "like_nodes"]:
+            for order in ["linear", "quadratic"]:
+                r = point(ctx, title, "run", CANTILEVER, f"stability/negative/{cloud}_{qcloud}_{order}",
+                          QUIET + [f"nodes.cloud={cloud}", f"nodes.spacing={spacing}", f"quadrature.cloud={qcloud}",
+                                   f"quadrature.order={order}"])
+                runs.append([cloud, qcloud, order, int(value(r, "quadrature_points")) if r.ok else "—",
+                             int(value(r, "negative_weights")) if r.ok else "—",
+                             value(r, "most_negative_weight_relative"), value(r, "l2_displacement"),
+                             value(r, "energy")] if r.ok else [cloud, qcloud, order, "failed: " + short(message(r))] + ["—"] * 4)
+    negatives = sum(r[4] for r in runs if isinstance(r[4], int))
+    refused = [r for r in runs if isinstance(r[3], str) and r[3].startswith("failed")]
+    observed = (f"{negatives} negative weights in the cantilever runs that completed; {len(refused)} run(s) refused "
+                "because a quadrature point got a weight <= 0 (its projected gradient divides by the weight)")
+    body = ("Quadrature weights w_K = integral of phi_K (section 1's scheme) with linear and quadratic RK "
+            "functions of the quadrature cloud. Quadratic RK functions take negative values, so on irregular "
+            "clouds some weights are negative (SPEC section 3); a negative weight makes the quadrature of "
+            "a positive energy indefinite, and the projected gradient of a point, a weighted average divided "
+            "by its weight, is undefined there.\n\n"
+            "Integration study, f1, scheme rk (weights of the quadrature cloud itself):\n\n"
+            + (table(["cloud", "RK order", "points", "negative weights", "most negative", "error f1"], rows)
+               if rows else "(integration study not run)\n")
+            + "\nCantilever (spacing 1.5) with the quadrature cloud a lattice (the default) or of the node "
+              "cloud's kind (`quadrature.cloud = like_nodes`), and linear or quadratic quadrature RK:\n\n"
+            + table(["nodes", "quadrature cloud", "quadrature RK", "points", "negative weights",
+                     "most negative / largest", "L2 u", "energy"], runs)
+            + f"\nObserved: {observed}. The default (a lattice quadrature cloud with linear RK) has none.\n\n"
+            + f"Reproduce: `{ctx.command('run', CANTILEVER, ['nodes.cloud=random', 'quadrature.cloud=like_nodes', 'quadrature.order=quadratic'])}`\n")
+    integration_negative = sum(r[3] for r in rows if r[1] == "quadratic")
+    return Section(title, body, [("Quadratic RK weights on irregular clouds", "some negative (SPEC 3)",
+                                  f"{integration_negative} negative in the integration study; {len(refused)} "
+                                  "cantilever run(s) refused with a clear error", "—")])
+
+
+def nitsche_penalty(ctx: Context, title: str) -> Section:
+    sets = ["study.spacings=[3.0, 1.5]"] if ctx.quick else []
+    run = ctx.mfree_run("converge", NITSCHE, "stability/nitsche", sets)
+    if not run.ok:
+        return Section(title, f"The Nitsche sweep failed: {message(run)}\n", [])
+    ctx.tolerate_failed_rows(run, "Nitsche penalty: a beta below the coercivity threshold gives an indefinite "
+                                  "matrix, which the solver refuses (the row's errors are empty)")
+    rows = read_csv(run.folder / "convergence.csv")
+    spacings = sorted({number(r["spacing"]) for r in rows}, reverse=True)
+    betas = sorted({number(r["beta"]) for r in rows})
+    by = {(number(r["beta"]), number(r["spacing"])): r for r in rows}
+    fig, (ax,) = new_figure()
+    for h in spacings:
+        ax.plot(betas, [number(by[b, h]["l2_displacement"]) for b in betas], "o-", label=f"L2 u, h = {h:g}")
+        ax.plot(betas, [number(by[b, h]["energy"]) for b in betas], "s--", label=f"energy, h = {h:g}")
+    log_axes(ax, "Nitsche penalty beta (penalty = beta E / h)", "relative error")
+    ax.legend(fontsize=8)
+    figure = save_figure(fig, ctx.figure("stability_nitsche"))
+    table_rows = [[b] + [number(by[b, h][k]) for h in spacings for k in ("l2_displacement", "energy")] for b in betas]
+    fine = spacings[-1]
+    solved = [b for b in betas if not math.isnan(number(by[b, fine]["l2_displacement"]))]
+    best = min(solved, key=lambda b: number(by[b, fine]["l2_displacement"]))
+    refused = [f"beta = {b:g}, h = {h:g}" for b in betas for h in spacings if math.isnan(number(by[b, h]["l2_displacement"]))]
+    body = ("The cantilever's clamped end imposed by Nitsche's method with penalty beta E / h, beta swept over "
+            "four decades (linear RK, lattice, projected quadrature). Nitsche's method is consistent, so the "
+            "error should be insensitive to beta once beta exceeds the stability threshold (a multiple of the "
+            "trace-inverse constant); a too small beta loses coercivity, a huge one makes it a plain penalty "
+            "method and worsens conditioning.\n\n"
+            + table(["beta"] + [f"{k}, h = {h:g}" for h in spacings for k in ("L2 u", "energy")], table_rows)
+            + f"\nObserved: smallest displacement error at beta = {best:g} (h = {fine:g})"
+            + (f"; not solvable (matrix not positive definite, refused by the solver): {', '.join(refused)}"
+               if refused else "") + ".\n\n"
+            + ctx.image(figure, "Cantilever errors against the Nitsche penalty")
+            + f"\nReproduce: `{ctx.command('converge', NITSCHE)}`\n")
+    return Section(title, body, [("Nitsche penalty", "plateau above the stability threshold",
+                                  f"best beta = {best:g}", "—")])
+
+
+# ---------------------------------------------------------------------------------------------
+# MPM
+
+
+def mpm_courant(ctx: Context, title: str) -> Section:
+    scene = scene_table(ctx.root / MPM_VIBRATION)
+    c = dilatational_wave_speed(scene)
+    amplitude = scene["exact"]["amplitude"]
+    cells, ppc = 16, 9
+    h = 1.0 / cells
+    if ctx.quick:
+        methods, updates, courants, periods = ["bspline", "cpdi"], ["usf", "usl"], [0.5, 1.5], 1
+    else:
+        methods, updates, courants, periods = MPM_METHODS, MPM_UPDATES, [0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0], 3
+    end = 0.02 * periods
+    results = {}
+    for m in methods:
+        for u in updates:
+            for cn in courants:
+                dt = cn * h / c
+                results[m, u, cn] = point(
+                    ctx, title, "run", MPM_VIBRATION, f"stability/courant/{m}_{u}_{cn:g}",
+                    QUIET + [f"mpm.method={m}", f"mpm.update={u}", f"mpm.cells={cells}", f"mpm.particles_per_cell={ppc}",
+                             # dt = min(time_step, courant h / c_d): both set to the point's C
+                             f"dynamics.time_step={dt:.9e}", f"dynamics.courant={cn}",
+                             f"dynamics.end_time={end}", "dynamics.frames=0",
+                             "dynamics.error_times=[1.0]", "dynamics.energy_every=10",
+                             f"dynamics.allow_unstable_time_step={'true' if cn > 1 else 'false'}"])
+
+    def stable(r: RunResult) -> bool:
+        return r.ok and first_error(r) < amplitude
+
+    rows, limits = [], {}
+    for m in methods:
+        for u in updates:
+            ok = [cn for cn in courants if stable(results[m, u, cn])]
+            # The empirical limit: the largest Courant number below which every tested one is stable.
+            limit = None
+            for cn in courants:
+                if not stable(results[m, u, cn]):
+                    break
+                limit = cn
+            limits[m, u] = limit
+            first_bad = next((results[m, u, cn] for cn in courants if not stable(results[m, u, cn])), None)
+            why = "—" if first_bad is None else (
+                short(message(first_bad), 90) if not first_bad.ok else f"error {num(first_error(first_bad))} m > A")
+            rows.append([m, u, "none" if limit is None else f"{limit:g}",
+                         ", ".join(f"{x:g}" for x in ok) or "none", why])
+    err_rows = [[f"{m} {u}"] + [first_error(results[m, u, cn]) / amplitude if results[m, u, cn].ok else "failed"
+                                for cn in courants] for m in methods for u in updates]
+    fig, axes = new_figure(len(updates), width=4.5)
+    for ax, u in zip(axes, updates):
+        for m in methods:
+            ys = [first_error(results[m, u, cn]) / amplitude for cn in courants]
+            ax.plot(courants, ys, "o-", label=m)
+        ax.axhline(1.0, color="k", lw=0.8, ls=":")
+        ax.set_yscale("log")
+        ax.set_title(u.upper())
+        ax.set_xlabel("Courant number dt c_d / h")
+        ax.set_ylabel(f"relative RMS u error after {periods} period(s)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=7)
+    figure = save_figure(fig, ctx.figure("stability_mpm_courant"))
+    usf = {m: limits[m, "usf"] for m in methods}
+    body = (f"The MPM vibration problem (A = {amplitude}, {cells} cells, {ppc} particles per cell) run for "
+            f"{periods} period(s) at time steps dt = C h / c_d, c_d = {c:.1f} m/s the dilatational wave speed, "
+            f"for Courant numbers C from {courants[0]} to {courants[-1]} "
+            "(allow_unstable_time_step = true above 1). A run is stable when it completes and its RMS "
+            f"displacement error at the end is below the amplitude A = {amplitude} m (an unstable run grows "
+            "without bound or stops with an error naming the particle and time).\n\n"
+            "Expected: explicit MPM is stable up to C of order 1 (the grid's CFL limit); shape functions "
+            "with wider support (B-splines) and the update scheme shift it.\n\n"
+            "Empirical stability limit (the largest tested C with every smaller one stable):\n\n"
+            + table(["method", "update", "limit C", "stable at", "first unstable point"], rows)
+            + "\nRelative RMS displacement error (error / A) at the end, per Courant number:\n\n"
+            + table(["method update"] + [f"C = {cn:g}" for cn in courants], err_rows)
+            + "\n" + ctx.image(figure, "MPM error after the run against the Courant number, per update scheme")
+            + f"\nReproduce one point: `{ctx.command('run', MPM_VIBRATION, ['mpm.method=cpdi', 'mpm.cells=16', f'dynamics.time_step={1.2 * h / c:.4e}', 'dynamics.courant=1.2', 'dynamics.allow_unstable_time_step=true'])}`\n")
+    return Section(title, body, [("MPM Courant limit (USF)", "C of order 1",
+                                  ", ".join(f"{m} {'none' if v is None else f'{v:g}'}" for m, v in usf.items()), "—")])
+
+
+def amplitude(ctx: Context, title: str) -> Section:
+    amplitudes = [0.05, 0.15] if ctx.quick else [0.05, 0.1, 0.125, 0.14, 0.15, 0.155, 0.158]
+    methods = ["bspline", "cpdi"] if ctx.quick else MPM_METHODS
+    cells, ppc, dt = 16, 9, 4e-5
+    rows, outcome = [], {}
+    for a in amplitudes:
+        jmin = (1 - 2 * math.pi * a) ** 2
+        row = [a, jmin]
+        r = point(ctx, title, "run", VIBRATION, f"stability/amplitude/meshfree_{a:g}",
+                  QUIET + [f"exact.amplitude={a}", "nodes.spacing=0.0625", "dynamics.end_time=0.02", "dynamics.frames=0",
+                           "dynamics.error_times=[0.25, 1.0]"])
+        outcome["meshfree TL", a] = r
+        for m in methods:
+            outcome[m, a] = point(ctx, title, "run", MPM_VIBRATION, f"stability/amplitude/{m}_{a:g}",
+                                  QUIET + [f"exact.amplitude={a}", f"mpm.method={m}", f"mpm.cells={cells}",
+                                           f"mpm.particles_per_cell={ppc}", f"dynamics.time_step={dt}",
+                                           "dynamics.end_time=0.02", "dynamics.frames=0", "dynamics.error_times=[0.25, 1.0]"])
+        for label in ["meshfree TL"] + methods:
+            r = outcome[label, a]
+            row.append(first_error(r, index=1) / a if r.ok else "failed")
+        rows.append(row)
+    failures = [[label, a, short(message(r), 140)] for (label, a), r in outcome.items() if not r.ok]
+    body = ("The vibration problem of sections 5 and 6 at growing amplitude A, one period. The exact motion "
+            "has det F = (1 + 2 pi A cos(2 pi X) sin(c pi t)) (1 - 2 pi A cos(2 pi Y) sin(c pi t)), whose minimum "
+            "(1 - 2 pi A)^2 reaches 0 at A = 1/(2 pi) = 0.159. Total-Lagrangian meshfree (central differences, "
+            f"h = 1/16) and every MPM method ({cells} cells, {ppc} particles per cell, dt = {dt:g} s, USF); "
+            "relative RMS displacement error at t = T (error / A), or the run's failure.\n\n"
+            "Expected: errors grow as det F -> 0; a run that inverts a particle or quadrature point (J <= 0) "
+            "stops with an error naming the point, its position and the time.\n\n"
+            + table(["A", "min det F (exact)", "meshfree TL"] + methods, rows)
+            + ("\nFailures, as the program reported them:\n\n" + table(["method", "A", "message"], failures)
+               if failures else "\nNo run failed.\n")
+            + f"\nReproduce one point: `{ctx.command('run', MPM_VIBRATION, ['exact.amplitude=0.15', 'mpm.method=cpdi'])}`\n")
+    survivors = [label for label in ["meshfree TL"] + methods if outcome[label, amplitudes[-1]].ok]
+    return Section(title, body, [("Amplitude up to det F -> 0", "clear J <= 0 errors, no NaN",
+                                  f"at A = {amplitudes[-1]}: {', '.join(survivors) or 'none'} complete", "—")])
+
+
+def long_runs(ctx: Context, title: str) -> Section:
+    sets = (["dynamics.end_time=0.04", "dynamics.error_times=[1.0]", "study.methods=[\"bspline\", \"cpdi\"]",
+             "dynamics.frames=0", "output.fields=[]"] if ctx.quick else ["dynamics.frames=0", "output.fields=[]"])
+    mpm = ctx.mfree_run("converge", MPM_LONG, "stability/long_mpm", sets)
+    ctx.tolerate_failed_rows(mpm, "MPM runs that fail within ten periods are recorded with their message")
+    scene = scene_table(ctx.root / MPM_LONG)
+    a = scene["exact"]["amplitude"]
+    end = 0.04 if ctx.quick else scene["dynamics"]["end_time"]
+    meshfree = {}
+    for scheme, dt in [("central_difference", 1e-5), ("newmark", 2.5e-5)]:
+        meshfree[scheme] = point(ctx, title, "run", VIBRATION, f"stability/long_{scheme}",
+                                 QUIET + [f"exact.amplitude={a}", "nodes.spacing=0.0625", f"dynamics.scheme={scheme}",
+                                          f"dynamics.time_step={dt}", f"dynamics.end_time={end}", "dynamics.frames=0",
+                                          "dynamics.error_times=[1.0]", "dynamics.energy_every=20"])
+    rows, curves = [], []
+    if mpm.ok:
+        for r in read_csv(mpm.folder / "mpm_convergence.csv"):
+            if number(r["time_fraction"]) == 1.0 or r["status"] != "ok":
+                rows.append([f"MPM {r['method']}", r["status"] if r["status"] == "ok" else short(r["status"], 90),
+                             number(r["displacement"]) / a, number(r["energy_drift"]), number(r["seconds"])])
+        energy = mpm.folder / "mpm_energy.csv"
+        if energy.exists():
+            series = {}
+            for r in read_csv(energy):
+                series.setdefault(f"MPM {r['method']}", []).append((number(r["time"]), number(r["total"])))
+            curves += list(series.items())
+    for scheme, r in meshfree.items():
+        rows.append([f"meshfree TL {scheme}", "ok" if r.ok else short(message(r), 90),
+                     first_error(r) / a, value(r, "energy_drift"), r.seconds])
+        if r.ok and (r.folder / "energy.csv").exists():
+            curves.append((f"meshfree TL {scheme}", [(number(e["time"]), number(e["total"]))
+                                                     for e in read_csv(r.folder / "energy.csv")]))
+    fig, (ax,) = new_figure(width=7)
+    for label, pts in curves:
+        t0 = pts[0][1]
+        ax.plot([p[0] / 0.02 for p in pts], [p[1] - t0 for p in pts], label=label)
+    ax.set_xlabel("time / period")
+    ax.set_ylabel("E(t) - E(0) [J/m]: kinetic + strain - work of body forces")
+    ax.set_yscale("symlog", linthresh=1.0)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    figure = save_figure(fig, ctx.figure("stability_long_runs"))
+    body = (f"The vibration problem at A = {a} for {end / 0.02:g} periods: every MPM method (16 cells, 9 particles "
+            "per cell, dt = 1e-5 s, USF) and the total-Lagrangian meshfree solver (h = 1/16, central differences "
+            "dt = 1e-5 s and Newmark's trapezoidal rule dt = 2.5e-5 s). Energy balance E = kinetic + strain - "
+            "work of the body forces, constant for the exact motion; drift = max |E(t) - E(0)| / max (kinetic + "
+            "strain).\n\n"
+            "Expected: Newmark's trapezoidal rule conserves energy up to the Newton tolerance; central "
+            "differences conserve a shadow energy (bounded oscillation); MPM drifts (FLIP/PIC transfers and "
+            "first-order stepping), and a method that goes unstable stops with an error.\n\n"
+            + table(["method", "status", "relative u error at the end", "energy drift", "seconds"], rows)
+            + "\n" + ctx.image(figure, "Energy balance through the long runs")
+            + f"\nReproduce: `{ctx.command('converge', MPM_LONG)}`\n")
+    drift = {row[0]: row[3] for row in rows}
+    return Section(title, body, [("Long runs: energy drift", "bounded for stable methods",
+                                  "; ".join(f"{k} {num(v, 2)}" for k, v in drift.items()), "—")])
+
+
+# ---------------------------------------------------------------------------------------------
+# Newton
+
+
+def newton_load(ctx: Context, title: str) -> Section:
+    scene = scene_table(ctx.root / LARGE)
+    load = scene["exact"]["load"]
+    spacing = 1.5 if ctx.quick else 0.75
+    scales = [1, 2] if ctx.quick else [0.5, 1, 2, 4, 8]
+    base = QUIET + [f"nodes.spacing={spacing}", "newton.load_factors=[0.5, 1.0]",
+                    "newton.max_iterations=6", "newton.line_search=false"]
+    rows = []
+    cases = [(f"P = {s:g} x {load:g}", base + [f"exact.load={s * load}"]) for s in scales]
+    cases.append((f"P = {load:g}, one step, no cut-backs allowed",
+                  QUIET + [f"nodes.spacing={spacing}", "newton.load_factors=[1.0]", "newton.max_iterations=6",
+                           "newton.line_search=false", "newton.max_cutbacks=0"]))
+    for i, (label, sets) in enumerate(cases):
+        r = point(ctx, title, "run", LARGE, f"stability/newton_{i}", sets)
+        if r.ok:
+            steps = r.summary["load_steps"]
+            csv = read_csv(r.folder / "load_steps.csv")
+            rows.append([label, "converged", len(steps), int(sum(s["iterations"] for s in steps)),
+                         int(sum(s["cutbacks"] for s in steps)), number(csv[-1]["probe_uy"]),
+                         number(csv[-1]["probe_uy"]) / 48.0])
+        else:
+            rows.append([label, short(message(r), 160), "—", "—", "—", "—", "—"])
+    body = ("The Neo-Hookean cantilever of section 4 under end loads growing to several times the one that "
+            "bends it to 43 % of its length, with two load steps (0.5 and 1 of the load), Newton "
+            "without line search and at most 6 iterations per step: a step that does not converge is halved "
+            "(cut back) and retried, up to max_cutbacks times. The last case allows no cut-back.\n\n"
+            "Expected: larger loads need more cut-backs and iterations but converge; when cut-backs run out "
+            "the run stops with an error naming the load factor and the remedy (never a NaN).\n\n"
+            + table(["load", "outcome", "load steps", "Newton iterations", "cut-backs", "tip u_y", "u_y / L"], rows)
+            + f"\nReproduce: `{ctx.command('run', LARGE, ['newton.load_factors=[1.0]', 'newton.max_iterations=6', 'newton.line_search=false'])}`\n")
+    cut = sum(r[4] for r in rows if isinstance(r[4], int))
+    return Section(title, body, [("Newton with cut-backs", "converges under growing load; clear error otherwise",
+                                  f"{cut} cut-backs over {len(scales)} loads", "—")])
+
+
+def failure_modes(ctx: Context) -> Section:
+    kinds = {}
+    for test, text in _FAILURES:
+        kinds.setdefault((test, short(text, 160)), 0)
+        kinds[test, short(text, 160)] += 1
+    rows = [[test, count, text] for (test, text), count in sorted(kinds.items())]
+    nan_free = all("nan" not in text.lower() for _, text in _FAILURES)
+    body = ("Every sweep point above that did not complete, with the message the program printed (stderr, exit "
+            "status 1). None of these runs left a NaN in an output file: the report scans every CSV and "
+            "summary.json it produced and fails when it finds one (see the header).\n\n"
+            + (table(["stress test", "runs", "message"], rows) if rows else "No sweep point failed.\n"))
+    return Section("Failure modes", body, [("Failures end in a clear error", "message, exit 1, no NaN output",
+                                            f"{len(_FAILURES)} failed points, {len(rows)} distinct messages",
+                                            "yes" if nan_free else "no")])
