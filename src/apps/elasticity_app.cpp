@@ -82,7 +82,7 @@ int run_elasticity(const std::filesystem::path& path, const std::vector<std::str
     for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.string());
     std::cout << "  open field.vtu in ParaView for contour plots (see README)\n";
   } else {
-    std::cout << "  no output fields asked for: stress recovery and writing skipped\n";
+    std::cout << "  no output fields asked for: stress recovery and field files skipped (summary.json only)\n";
   }
   std::cout << "stages:\n";
   print_stages(r.timer);
