@@ -32,6 +32,16 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+# The verification scenes the report runs (relative to the repository root), and what they share.
+CANTILEVER = Path("verification/cantilever/cantilever.toml")
+NITSCHE = Path("verification/cantilever/nitsche_sweep.toml")
+LARGE_DEFORMATION = Path("verification/cantilever/large_deformation.toml")
+VIBRATION = Path("verification/vibration/vibration.toml")
+MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
+MPM_LONG = Path("verification/mpm-vibration/long_run.toml")
+MPM_METHODS = ["classic", "ugimp", "cpdi", "bspline", "bspline_cubic", "bspline_mls"]
+QUIET = ["output.fields=[]", "output.vtk=false"]  # a sweep point writes no fields
+
 # A run folder name is a relative path of plain components: it is deleted before each run.
 _SAFE_NAME = re.compile(r"^[A-Za-z0-9_.-]+(/[A-Za-z0-9_.-]+)*$")
 _NONFINITE = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity", "-infinity"}

@@ -12,15 +12,10 @@ times each stage ran. Two sections read those tables:
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
-from common import Context, RunResult, Section, new_figure, save_figure, table
+from common import (CANTILEVER, LARGE_DEFORMATION, MPM_VIBRATION, QUIET, VIBRATION, Context, RunResult, Section,
+                    new_figure, save_figure, table)
 
-CANTILEVER = Path("verification/cantilever/cantilever.toml")
-LARGE = Path("verification/cantilever/large_deformation.toml")
-VIBRATION = Path("verification/vibration/vibration.toml")
-MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
-QUIET = ["output.fields=[]", "output.vtk=false"]
 
 REPEATS = 3  # runs per thread count in the scaling table (best of)
 
@@ -71,7 +66,7 @@ def only_what_is_needed(ctx: Context) -> Section:
     meshfree = {
         "cantilever, fields + VTK": ctx.mfree_run("run", CANTILEVER, "performance/needs/cantilever_fields", [f"nodes.spacing={h}"]),
         "cantilever, no output": ctx.mfree_run("run", CANTILEVER, "performance/needs/cantilever_quiet", QUIET + [f"nodes.spacing={h}"]),
-        "Neo-Hookean, Newton": ctx.mfree_run("run", LARGE, "performance/needs/newton", QUIET + [f"nodes.spacing={h}"]),
+        "Neo-Hookean, Newton": ctx.mfree_run("run", LARGE_DEFORMATION, "performance/needs/newton", QUIET + [f"nodes.spacing={h}"]),
         "vibration, no output": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_quiet",
                                               QUIET + dyn + ["dynamics.frames=0"]),
         "vibration, 5 frames": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_frames",

@@ -21,19 +21,11 @@ import math
 import tomllib
 from pathlib import Path
 
-from common import (Context, RunResult, Section, log_axes, new_figure, num, read_csv, save_figure,
-                    table, number)
+from common import (CANTILEVER, LARGE_DEFORMATION, MPM_LONG, MPM_METHODS, MPM_VIBRATION, NITSCHE, QUIET, VIBRATION,
+                    Context, RunResult, Section, log_axes, new_figure, num, number, read_csv, save_figure, table)
 
-CANTILEVER = Path("verification/cantilever/cantilever.toml")
-NITSCHE = Path("verification/cantilever/nitsche_sweep.toml")
-LARGE = Path("verification/cantilever/large_deformation.toml")
-VIBRATION = Path("verification/vibration/vibration.toml")
-MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
-MPM_LONG = Path("verification/mpm-vibration/long_run.toml")
 
-MPM_METHODS = ["classic", "ugimp", "cpdi", "bspline", "bspline_cubic", "bspline_mls"]
 MPM_UPDATES = ["usf", "usl", "szs", "usavg"]
-QUIET = ["output.fields=[]", "output.vtk=false"]  # a sweep point writes no fields
 
 
 def sections(ctx: Context) -> list[Section]:
@@ -525,7 +517,7 @@ def long_runs(ctx: Context, title: str) -> Section:
 
 
 def newton_load(ctx: Context, title: str) -> Section:
-    scene = scene_table(ctx.root / LARGE)
+    scene = scene_table(ctx.root / LARGE_DEFORMATION)
     load = scene["exact"]["load"]
     spacing = 1.5 if ctx.quick else 0.75
     scales = [1, 2] if ctx.quick else [0.5, 1, 2, 4, 8]
@@ -537,7 +529,7 @@ def newton_load(ctx: Context, title: str) -> Section:
                   QUIET + [f"nodes.spacing={spacing}", "newton.load_factors=[1.0]", "newton.max_iterations=6",
                            "newton.line_search=false", "newton.max_cutbacks=0"]))
     for i, (label, sets) in enumerate(cases):
-        r = point(ctx, title, "run", LARGE, f"stability/newton_{i}", sets)
+        r = point(ctx, title, "run", LARGE_DEFORMATION, f"stability/newton_{i}", sets)
         if r.ok:
             steps = r.summary["load_steps"]
             csv = read_csv(r.folder / "load_steps.csv")
@@ -553,7 +545,7 @@ def newton_load(ctx: Context, title: str) -> Section:
             "Expected: larger loads need more cut-backs and iterations but converge; when cut-backs run out "
             "the run stops with an error naming the load factor and the remedy (never a NaN).\n\n"
             + table(["load", "outcome", "load steps", "Newton iterations", "cut-backs", "tip u_y", "u_y / L"], rows)
-            + f"\nReproduce: `{ctx.command('run', LARGE, ['newton.load_factors=[1.0]', 'newton.max_iterations=6', 'newton.line_search=false'])}`\n")
+            + f"\nReproduce: `{ctx.command('run', LARGE_DEFORMATION, ['newton.load_factors=[1.0]', 'newton.max_iterations=6', 'newton.line_search=false'])}`\n")
     cut = sum(r[4] for r in rows if isinstance(r[4], int))
     return Section(title, body, [("Newton with cut-backs", "converges under growing load; clear error otherwise",
                                   f"{cut} cut-backs over {len(scales)} loads", "—")])

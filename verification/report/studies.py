@@ -19,7 +19,7 @@ import traceback
 from collections import defaultdict
 from pathlib import Path
 
-from common import (Context, Section, fastest, legend_outside, level_ticks, log_axes, new_figure, num, number,
+from common import (CANTILEVER, LARGE_DEFORMATION, MPM_METHODS, MPM_VIBRATION, VIBRATION, Context, Section, fastest, legend_outside, level_ticks, log_axes, new_figure, num, number,
                     rate, rate_text, read_csv, save_figure, seconds_text, slope_guide, table)
 
 TOLERANCE = 0.3  # observed rate >= expected - TOLERANCE
@@ -28,10 +28,6 @@ TARGETS = (1e-2, 1e-3, 1e-4)  # relative errors of the work-precision tables
 
 INTEGRATION = Path("verification/integration")
 PATCH_TEST = Path("verification/report/patch_test.toml")
-CANTILEVER = Path("verification/cantilever/cantilever.toml")
-LARGE_DEFORMATION = Path("verification/cantilever/large_deformation.toml")
-VIBRATION = Path("verification/vibration/vibration.toml")
-MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
 
 VIBRATION_QUICK = ["study.spacings=[0.25,0.125]", "study.time_step_check=false",
                    "dynamics.end_time=0.005", "dynamics.error_times=[1.0]"]
@@ -43,7 +39,6 @@ MPM_QUICK = ["study.cells=[8,16]", "study.particles_per_cell=[4]",
              "dynamics.end_time=0.005", "dynamics.error_times=[1.0]"]
 CANTILEVER_QUICK = ["study.spacings=[6.0,3.0]"]
 
-MPM_METHODS = ["classic", "ugimp", "cpdi", "bspline", "bspline_cubic", "bspline_mls"]
 QUADRATURES = ["projected", "gauss_cells", "nodal"]
 INTEGRATION_SCHEMES = ["rk linear", "rk quadratic", "voronoi", "gauss_cells", "equal"]
 CLOUD_STYLE = {"lattice": "-", "perturbed": "--", "random": ":", "-": "-."}
