@@ -3,6 +3,7 @@
 #include <fstream>
 #include <regex>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
@@ -19,9 +20,8 @@ std::string cantilever_text() {
 
 /// The error message for a scene text, "" when it parses.
 std::string scene_error(const std::string& text, const std::string& name = "scene.toml") {
-  const auto dir = std::filesystem::temp_directory_path() / "mfree-scene-tests";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
+  static const testing::ScratchFolder folder("elasticity_scene");  // one per test process
+  const auto path = folder.path / name;
   std::ofstream(path) << text;
   try {
     (void)read_elasticity_scene(path, false);
@@ -72,12 +72,12 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
 }
 
 TEST_CASE("elasticity output: VTK files read back with the arrays asked for", "[io]") {
-  const auto dir = std::filesystem::temp_directory_path() / "mfree-output-test";
-  std::filesystem::remove_all(dir);
+  const testing::ScratchFolder folder("elasticity_output");
+  const auto dir = folder.path / "out";
   std::string text = replace(cantilever_text(), "spacing = 1.5", "spacing = 3.0");
   text = replace(text, "folder = \"results/cantilever\"", "folder = \"" + dir.string() + "\"");
-  std::ofstream(std::filesystem::temp_directory_path() / "mfree-output.toml") << text;
-  const ElasticityScene scene = read_elasticity_scene(std::filesystem::temp_directory_path() / "mfree-output.toml", false);
+  std::ofstream(folder.path / "scene.toml") << text;
+  const ElasticityScene scene = read_elasticity_scene(folder.path / "scene.toml", false);
   const ExactElasticity exact = *scene.exact();
   const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, &exact);
   const auto files = write_elasticity_fields(scene, r);

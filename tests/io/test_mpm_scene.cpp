@@ -20,9 +20,8 @@ std::string vibration_text() {
 }
 
 std::filesystem::path write_scene(const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "mfree-mpm-scene-tests";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "mpm.toml";
+  static const testing::ScratchFolder folder("mpm_scene");  // one per test process
+  const auto path = folder.path / "mpm.toml";
   std::ofstream(path) << text;
   return path;
 }

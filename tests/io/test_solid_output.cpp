@@ -3,6 +3,7 @@
 #include <fstream>
 #include <regex>
 
+#include "../test_support.hpp"
 #include "mfree/io/solid_output.hpp"
 #include "mfree/io/vtk_output.hpp"
 
@@ -10,27 +11,29 @@ using namespace mfree;
 
 namespace {
 
-/// The vibration scene on a coarse cloud, writing into `dir` the fields listed.
-ElasticityScene vibration_scene(const std::filesystem::path& dir, const std::string& fields) {
+/// The vibration scene on a coarse cloud, stored in `folder`, writing the fields listed into
+/// `folder`/frames.
+ElasticityScene vibration_scene(const std::filesystem::path& folder, const std::string& fields) {
+  const auto dir = folder / "frames";
   std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/vibration/vibration.toml");
   std::string text{std::istreambuf_iterator<char>(in), {}};
   text = std::regex_replace(text, std::regex("spacing = 0.0625"), "spacing = 0.25");
   text = std::regex_replace(text, std::regex("folder = \"results/vibration\""), "folder = \"" + dir.string() + "\"");
   text = std::regex_replace(text, std::regex("fields = \\[.*\\]"), "fields = [" + fields + "]");
-  const auto path = std::filesystem::temp_directory_path() / "mfree-frames.toml";
+  const auto path = folder / "scene.toml";
   std::ofstream(path) << text;
   return read_elasticity_scene(path, false);
 }
 
-/// A fresh output folder, the coarse vibration scene writing the fields into it, and its
-/// discretisation.
+/// A scratch folder of this test process, the coarse vibration scene writing the fields into
+/// its `frames` subfolder, and its discretisation.
 struct FramesCase {
-  std::filesystem::path dir;
+  testing::ScratchFolder folder;
   ElasticityScene scene;
+  std::filesystem::path dir;
   Discretisation disc;
-  FramesCase(const std::string& folder, const std::string& fields)
-      : dir(std::filesystem::temp_directory_path() / folder), scene(vibration_scene(dir, fields)) {
-    std::filesystem::remove_all(dir);
+  FramesCase(const std::string& name, const std::string& fields)
+      : folder(name), scene(vibration_scene(folder.path, fields)), dir(scene.output.folder) {
     StageTimer timer;
     disc = discretise(scene.domain, scene.settings, timer);
   }
@@ -39,8 +42,8 @@ struct FramesCase {
 }  // namespace
 
 TEST_CASE("VTK frames: a .pvd series of .vtu files holding the fields asked for and no others", "[io]") {
-  const FramesCase fc("mfree-frames", "\"displacement\", \"velocity\"");
-  const auto& [dir, scene, disc] = fc;
+  const FramesCase fc("frames", "\"displacement\", \"velocity\"");
+  const auto& [folder, scene, dir, disc] = fc;
   SolidFrames frames(scene, disc, nullptr);
   Eigen::VectorXd d = Eigen::VectorXd::Zero(2 * disc.node_count()), v = d;
   for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = Vec2(0.01, -0.02);  // a translation
@@ -67,8 +70,8 @@ TEST_CASE("VTK frames: a .pvd series of .vtu files holding the fields asked for 
 }
 
 TEST_CASE("VTK frames: stress is the Cauchy stress of F = I + grad u^h, zero for a rigid motion", "[io]") {
-  const FramesCase fc("mfree-frames-stress", "\"stress\", \"von_mises\"");
-  const auto& [dir, scene, disc] = fc;
+  const FramesCase fc("frames_stress", "\"stress\", \"von_mises\"");
+  const auto& [folder, scene, dir, disc] = fc;
   SolidFrames frames(scene, disc, nullptr);
   // A rigid rotation by 0.7 rad about the origin: u = (R - I) X, stress free for Neo-Hookean.
   Mat2 r;
