@@ -20,47 +20,104 @@ std::string_view to_string(Consistency c) {
   return "?";
 }
 
-std::vector<Vec2> boundary_sums(const GalerkinQuadrature& at_boundary, const std::vector<Vec2>& normals,
-                                const std::vector<double>& weights, Index nodes) {
-  std::vector<Vec2> b(nodes, Vec2::Zero());
-  for (Index p = 0; p < at_boundary.size(); ++p)
-    for (Index s = at_boundary.row_begin(p); s < at_boundary.row_end(p); ++s)
-      b[at_boundary.nodes[s]] += weights[p] * at_boundary.phi[s] * normals[p];
+ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
+                                             const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq,
+                                             RKOrder order)
+    : q_(q),
+      nodes_(nodes),
+      monomials_(order == RKOrder::linear ? 1 : 3),
+      incidence_(q.offsets, q.nodes, static_cast<Index>(nodes.size())),
+      scale_(nodes.size(), 1.0),
+      target_(nodes.size(), Moments::Zero()) {
+  const Index n = static_cast<Index>(nodes.size());
+  const RowIncidence on_boundary(at_boundary.offsets, at_boundary.nodes, n);
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) {
+      const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
+      double s = 0.0;
+      for (Index k : rows) s = std::max(s, (q.centroids[k] - nodes[i]).norm());
+      if (s > 0.0) scale_[i] = s;
+      // Boundary sum of phi_I m n, minus the volume part sum_K w_K phi_I(x_K) grad m of the
+      // divergence theorem (grad m = e_l / s_I for m_l = (x_l - x_I,l) / s_I).
+      Moments t = Moments::Zero();
+      const std::span<const Index> bp = on_boundary.rows_of(i), bs = on_boundary.slots_of(i);
+      for (std::size_t a = 0; a < bp.size(); ++a) {
+        const Index p = bp[a];
+        const Eigen::Vector3d m = monomial(i, bq.points[p]);
+        t += (bq.weights[p] * at_boundary.phi[bs[a]]) * m * bq.normals[p].transpose();
+      }
+      if (monomials_ == 3) {
+        double volume = 0.0;
+        for (std::size_t a = 0; a < rows.size(); ++a) volume += q.weights[rows[a]] * q.phi[slots[a]];
+        t(1, 0) -= volume / scale_[i];
+        t(2, 1) -= volume / scale_[i];
+      }
+      t.bottomRows(3 - monomials_).setZero();
+      target_[i] = t;
+    }
+  });
+}
+
+Eigen::Vector3d ConsistencyConditions::monomial(Index i, const Vec2& x) const {
+  const Vec2 z = (x - nodes_[i]) / scale_[i];
+  return {1.0, z.x(), z.y()};
+}
+
+ConsistencyConditions::Moments ConsistencyConditions::residual(Index i, const std::vector<Vec2>& g) const {
+  Moments r = target_[i];
+  const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
+  for (std::size_t a = 0; a < rows.size(); ++a) {
+    const Index k = rows[a];
+    r -= q_.weights[k] * monomial(i, q_.centroids[k]) * g[slots[a]].transpose();
+  }
+  r.bottomRows(3 - monomials_).setZero();
+  return r;
+}
+
+std::vector<Vec2> ConsistencyConditions::linear_targets() const {
+  std::vector<Vec2> b(target_.size());
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = target_[i].row(0).transpose();
   return b;
 }
 
-namespace {
-/// sum_K w_K g_I(x_K) for every node.
-std::vector<Vec2> weighted_gradient_sums(const GalerkinQuadrature& q, const std::vector<Vec2>& g,
-                                         std::size_t nodes) {
-  std::vector<Vec2> s(nodes, Vec2::Zero());
-  for (Index k = 0; k < q.size(); ++k)
-    for (Index i = q.row_begin(k); i < q.row_end(k); ++i) s[q.nodes[i]] += q.weights[k] * g[i];
-  return s;
-}
-}  // namespace
-
-double consistency_defect(const GalerkinQuadrature& q, const std::vector<Vec2>& gradients,
-                          const std::vector<Vec2>& b) {
-  const std::vector<Vec2> s = weighted_gradient_sums(q, gradients, b.size());
-  double worst = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    worst = std::max(worst, (b[i] - s[i]).norm());
-    scale = std::max(scale, b[i].norm());
-  }
-  return scale > 0.0 ? worst / scale : worst;
+double ConsistencyConditions::defect(const std::vector<Vec2>& gradients) const {
+  const Index n = static_cast<Index>(nodes_.size());
+  std::vector<double> worst(n, 0.0);
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) worst[i] = residual(i, gradients).rowwise().norm().maxCoeff();
+  });
+  double scale = 0.0;
+  for (const Moments& t : target_) scale = std::max(scale, t.row(0).norm());
+  const double w = n > 0 ? *std::max_element(worst.begin(), worst.end()) : 0.0;
+  return scale > 0.0 ? w / scale : w;
 }
 
-std::vector<Vec2> vci_test_gradients(const GalerkinQuadrature& q, const std::vector<Vec2>& b) {
-  const std::vector<Vec2> s = weighted_gradient_sums(q, q.grad, b.size());
-  std::vector<double> support(b.size(), 0.0);
-  for (Index k = 0; k < q.size(); ++k)
-    for (Index i = q.row_begin(k); i < q.row_end(k); ++i) support[q.nodes[i]] += q.weights[k];
-  std::vector<Vec2> eta(b.size(), Vec2::Zero());
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (support[i] > 0.0) eta[i] = (b[i] - s[i]) / support[i];
-  std::vector<Vec2> test = q.grad;
-  for (std::size_t s2 = 0; s2 < test.size(); ++s2) test[s2] += eta[q.nodes[s2]];
+std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
+  const Index n = static_cast<Index>(nodes_.size());
+  const int nm = monomials_;
+  std::vector<Vec2> test = q_.grad;
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) {
+      const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
+      if (rows.empty()) continue;
+      // M_I xi_I = R_I on the node's monomials.
+      Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+      for (Index k : rows) {
+        const Eigen::Vector3d p = monomial(i, q_.centroids[k]);
+        m += q_.weights[k] * p * p.transpose();
+      }
+      const Eigen::MatrixXd mm = m.topLeftCorner(nm, nm);
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(mm);
+      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
+        throw NumericalError(fmt::format(
+            "VCI: the moment matrix of node {} at ({:.6g}, {:.6g}) is singular ({} quadrature points in "
+            "its support); use larger supports",
+            i, nodes_[i].x(), nodes_[i].y(), rows.size()));
+      const Eigen::MatrixXd xi = ldlt.solve(residual(i, q_.grad).topRows(nm));
+      for (std::size_t a = 0; a < rows.size(); ++a)
+        test[slots[a]] += xi.transpose() * monomial(i, q_.centroids[rows[a]]).head(nm);
+    }
+  });
   return test;
 }
 
@@ -141,7 +198,10 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
   solver.analyze(a);
   solver.factorize(a);
 
-  const std::vector<Vec2> s = weighted_gradient_sums(q, q.grad, nodes.size());
+  // r = b - sum_K w_K g_I(x_K), the residual of (IC_1).
+  std::vector<Vec2> s(nodes.size(), Vec2::Zero());
+  for (Index k = 0; k < nk; ++k)
+    for (Index i = q.row_begin(k); i < q.row_end(k); ++i) s[q.nodes[i]] += q.weights[k] * q.grad[i];
   SymmetricCorrection report;
   for (int c = 0; c < 2; ++c) {
     Eigen::VectorXd r(n);

@@ -76,18 +76,18 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   res.at_boundary = timer.time("boundary functions", [&] {
     return sample_shape_functions(*res.trial, res.boundary.points, true);
   });
-  const std::vector<Vec2> b = boundary_sums(res.at_boundary, res.boundary.normals, res.boundary.weights, res.node_count());
-  res.consistency_before = consistency_defect(res.quadrature, res.quadrature.grad, b);
+  const ConsistencyConditions conditions(res.quadrature, res.nodes, res.at_boundary, res.boundary, s.order);
+  res.consistency_before = conditions.defect(res.quadrature.grad);
 
   res.consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
   timer.time("consistency", [&] {
     if (res.consistency == Consistency::symmetric) {
-      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes, b);
+      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes, conditions.linear_targets());
       res.correction_residual = c.residual;
-      res.consistency_after = consistency_defect(res.quadrature, res.quadrature.grad, b);
+      res.consistency_after = conditions.defect(res.quadrature.grad);
     } else if (res.consistency == Consistency::vci) {
-      res.test_gradients = vci_test_gradients(res.quadrature, b);
-      res.consistency_after = consistency_defect(res.quadrature, res.test_gradients, b);
+      res.test_gradients = conditions.vci_test_gradients();
+      res.consistency_after = conditions.defect(res.test_gradients);
     } else {
       res.consistency_after = res.consistency_before;
     }

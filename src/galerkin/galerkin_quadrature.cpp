@@ -61,6 +61,7 @@ GalerkinQuadrature sample_shape_functions(const RKShapeFunctions& trial, const s
   GalerkinQuadrature q;
   q.points = points;
   q.weights.assign(points.size(), 1.0);
+  q.centroids = points;
   fill_rows(trial, q, with_gradient);
   return q;
 }
@@ -69,6 +70,7 @@ GalerkinQuadrature direct_quadrature(const RKShapeFunctions& trial, const Quadra
   GalerkinQuadrature q;
   q.points = rule.points;
   q.weights = rule.weights;
+  q.centroids = rule.points;
   fill_rows(trial, q, true);
   return q;
 }
@@ -117,11 +119,13 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   }
   row_nodes = {};
 
-  // One pass over the lattice: w_K += c_v phi_K(v) and row K += c_v phi_K(v) grad phi_I(v).
-  // w_K is the sum rk_quadrature_weights takes; it is taken here too so that phi_K(v) is
-  // evaluated once for both.
+  // One pass over the lattice: w_K += c_v phi_K(v), w_K c_K += c_v phi_K(v) v and
+  // row K += c_v phi_K(v) grad phi_I(v). w_K is the sum rk_quadrature_weights takes; it is
+  // taken here too so that phi_K(v) is evaluated once for all three.
   // Rows are shared between lattice points handled by different threads: atomic adds.
   std::vector<double> w(nq, 0.0);
+  std::vector<Vec2> moment(nq, Vec2::Zero());
+  double* m = moment.data()->data();
   const auto& lp = lattice.points();
   const auto& lc = lattice.weights();
   double* g = q.grad.data()->data();
@@ -135,6 +139,10 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
         const double c = lc[v] * phik.phi[a];
 #pragma omp atomic
         w[k] += c;
+#pragma omp atomic
+        m[2 * k] += c * lp[v].x();
+#pragma omp atomic
+        m[2 * k + 1] += c * lp[v].y();
         const auto first = q.nodes.begin() + q.offsets[k], last = q.nodes.begin() + q.offsets[k + 1];
         for (std::size_t i = 0; i < phii.size(); ++i) {
           const auto it = std::lower_bound(first, last, phii.nodes[i]);
@@ -155,8 +163,10 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
           "larger quadrature support.",
           k, q.points[k].x(), q.points[k].y(), w[k]));
     for (Index s = q.offsets[k]; s < q.offsets[k + 1]; ++s) q.grad[s] /= w[k];
+    moment[k] /= w[k];
   }
   q.weights = std::move(w);
+  q.centroids = std::move(moment);
   return q;
 }
 

@@ -84,7 +84,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
     ExactSpec e;
-    e.solution = t.choice("solution", {"timoshenko_beam", "linear", "vibration"});
+    e.solution = t.choice("solution", {"timoshenko_beam", "linear", "quadratic", "vibration"});
     if (e.solution == "timoshenko_beam") {
       e.load = t.number("load", -1e300, 1e300);
     } else if (e.solution == "vibration") {
@@ -96,6 +96,14 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       const auto g = t.pairs("gradient", 2);
       e.offset = Vec2(a[0], a[1]);
       e.gradient << g[0][0], g[0][1], g[1][0], g[1][1];
+      if (e.solution == "quadratic") {
+        for (int c = 0; c < 2; ++c) {
+          const std::string key = c == 0 ? "hessian_x" : "hessian_y";
+          const auto h = t.pairs(key, 2);
+          if (h[0][1] != h[1][0]) t.error(key, "a Hessian is symmetric: [[a, b], [b, c]]");
+          e.hessians[c] << h[0][0], h[0][1], h[1][0], h[1][1];
+        }
+      }
     }
     t.finish();
     out.exact_spec = e;
@@ -111,7 +119,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     c.region = read_box(t, "region");
     if (t.is_string("value")) {
       (void)t.choice("value", {"exact"});
-      if (!exact) t.error("value", "'exact' needs a static [exact] solution (timoshenko_beam or linear)");
+      if (!exact) t.error("value", "'exact' needs a static [exact] solution (timoshenko_beam, linear or quadratic)");
       const ExactElasticity ex = *exact;
       if (c.type != BoundaryCondition::Type::traction)
         c.value = [ex](const Vec2& x, const Vec2&) { return ex.displacement(x); };
@@ -260,13 +268,16 @@ SolidProblem ElasticityScene::solid_problem() const {
   SolidProblem p = mfree::solid_problem(linear);
   p.material = material;
   if (const auto v = vibration())
-    p.body_force = [v = *v](const Vec2& x, double t) { return v.density * v.body_force(x, t); };
+    p.body_force = [v = *v](const Vec2& x, double t) -> Vec2 { return v.density * v.body_force(x, t); };
   return p;
 }
 
 std::optional<ExactElasticity> ElasticityScene::exact() const {
   if (!exact_spec || exact_spec->solution == "vibration") return std::nullopt;
   if (exact_spec->solution == "linear") return linear_field(exact_spec->offset, exact_spec->gradient, settings.problem.material);
+  if (exact_spec->solution == "quadratic")
+    return quadratic_field(exact_spec->offset, exact_spec->gradient, exact_spec->hessians[0], exact_spec->hessians[1],
+                           settings.problem.material);
   const Box b = domain.bounding_box();
   // The beam's axis is y = 0 from x = 0 (SPEC section 4): the domain must be [0, L] x [-D/2, D/2].
   if (std::abs(b.lo.x()) > 1e-12 * b.size().x() || std::abs(b.lo.y() + b.hi.y()) > 1e-12 * b.size().y())

@@ -69,6 +69,29 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
   CHECK_THAT(scene_error(replace(good, "solution = \"timoshenko_beam\"\nload = 1000.0",
                                  "solution = \"vibration\"\namplitude = 0.05")),
              Catch::Contains("exact.solution") && Catch::Contains("neo_hookean"));
+  const std::string quadratic =
+      "solution = \"quadratic\"\noffset = [0.0, 0.0]\ngradient = [[0.0, 0.0], [0.0, 0.0]]\n"
+      "hessian_x = [[1.0, 0.5], [0.5, 2.0]]\nhessian_y = [[0.0, 1.0], [-1.0, 0.0]]";
+  CHECK_THAT(scene_error(replace(good, "solution = \"timoshenko_beam\"\nload = 1000.0", quadratic)),
+             Catch::Contains("exact.hessian_y") && Catch::Contains("symmetric"));
+}
+
+TEST_CASE("elasticity scenes: the quadratic exact field and its body force", "[io]") {
+  const std::string text = replace(cantilever_text(), "solution = \"timoshenko_beam\"\nload = 1000.0",
+                                   "solution = \"quadratic\"\noffset = [0.1, 0.2]\ngradient = [[0.0, 0.0], [0.0, 0.0]]\n"
+                                   "hessian_x = [[2.0, 0.0], [0.0, 0.0]]\nhessian_y = [[0.0, 0.0], [0.0, 0.0]]");
+  const testing::ScratchFolder folder("quadratic_exact");
+  std::ofstream(folder.path / "scene.toml") << text;
+  const ElasticityScene scene = read_elasticity_scene(folder.path / "scene.toml", false);
+  const ExactElasticity exact = *scene.exact();
+  // u_x = 0.1 + x^2: eps_xx = 2x, so sigma_xx = E / (1 - nu^2) 2x and b_x = -2E / (1 - nu^2)
+  // in plane stress; b_y = -d sigma_xy / dx - d sigma_yy / dy = 0.
+  const double e = 3.0e7, nu = 0.3;
+  CHECK(exact.displacement(Vec2(3.0, 1.0)).isApprox(Vec2(9.1, 0.2), 1e-15));
+  CHECK(std::abs(exact.stress(Vec2(3.0, 1.0))[0] - e / (1 - nu * nu) * 6.0) <= 1e-6);
+  CHECK(std::abs(exact.body_force(Vec2(3.0, 1.0)).x() + 2.0 * e / (1 - nu * nu)) <= 1e-6);
+  CHECK(exact.body_force(Vec2(3.0, 1.0)).y() == 0.0);
+  CHECK(scene.settings.problem.body_force(Vec2(1.0, 1.0)).x() == exact.body_force(Vec2(1.0, 1.0)).x());
 }
 
 TEST_CASE("elasticity output: VTK files read back with the arrays asked for", "[io]") {

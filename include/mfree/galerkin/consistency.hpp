@@ -1,56 +1,100 @@
 #pragma once
 // Integration consistency of the weak-form gradients (SPEC section 3).
 //
-// The linear patch test needs, for every node I,
+// The patch test of order p needs, for every node I and every monomial m of degree < p
+// (linear RK: m = 1; quadratic RK: m in {1, x, y}),
 //
-//     sum_K w_K g_I(x_K) = b_I := sum over boundary points of w_b phi_I(x_b) n_b       (IC)
+//     sum_K w_K [ g_I(x_K) m(c_K) + phi_I(x_K) grad m ]
+//         = sum over boundary points of w_b phi_I(x_b) m(x_b) n_b                      (IC_p)
 //
-// and at every quadrature point the gradient reproduction sum_I g_I x_I^T = I,
-// sum_I g_I = 0 (R). Projected gradients satisfy (R) exactly and (IC) up to the background
-// lattice error. Two corrections restore (IC):
+// the discrete divergence theorem for phi_I m, with m at the row centroid c_K where the
+// projected gradient of a field of degree p is exact (GalerkinQuadrature). For m = 1 it
+// reads sum_K w_K g_I(x_K) = b_I. Rows also reproduce gradients, sum_I g_I x_I^T = I and
+// sum_I g_I = 0 (R; for quadratic RK the quadratic monomials too, at c_K). Projected
+// gradients satisfy (R) exactly and (IC_p) up to the background lattice error. Two
+// corrections restore (IC):
 //
-//   vci        variationally consistent integration (Chen, Hillman, Rueter 2013): test
-//              gradients ghat_I = g_I + eta_I on the rows holding I, with
-//              eta_I = r_I / sum of w_K over those rows, r_I = b_I - sum_K w_K g_I(x_K).
-//              Trial gradients stay: the stiffness is non-symmetric (UMFPACK).
-//   symmetric  the smallest correction delta of the gradients themselves (used for test and
-//              trial alike) that meets (IC) and keeps (R): on row K,
+//   vci        variationally consistent integration (Chen, Hillman, Rueter 2013, "An
+//              arbitrary order variationally consistent integration for Galerkin meshfree
+//              methods", IJNME 95): test gradients
+//                ghat_I(x_K) = g_I(x_K) + xi_I^T m(c_K)
+//              on the rows holding I, xi_I (one 2-vector per monomial) solving the small
+//              moment system M_I xi_I = R_I, M_I = sum_K w_K m(c_K) m(c_K)^T, R_I the
+//              residual of (IC_p). Of the RK order: quadratic RK gets quadratic VCI, which
+//              passes the quadratic patch test. Trial gradients keep (R): the stiffness is
+//              non-symmetric (UMFPACK).
+//   symmetric  (IC_1) only: the smallest correction delta of the gradients themselves (used
+//              for test and trial alike) that meets (IC_1) and keeps the linear part of (R):
+//              on row K,
 //                delta_K = w_K (I - Q_K) lambda_K,
 //              Q_K the orthogonal projector onto span{1, x_I, y_I} over the row's nodes (so
-//              (R) is untouched), lambda per node solving, per component,
+//              linear (R) is untouched), lambda per node solving, per component,
 //                A lambda = r,  A = sum_K w_K^2 S_K^T (I - Q_K) S_K,
 //              a symmetric positive semi-definite system whose null space span{1, x, y} is
 //              orthogonal to r (sum_I r_I = 0 and sum_I r_I x_I^T = 0 hold whenever the
 //              weights integrate 1 and x exactly). A is assembled on the node-to-node
 //              pattern of the rows and factorised once by CHOLMOD for both components:
 //              it behaves like a fourth-order operator, too ill-conditioned for iterative
-//              solvers. The stiffness stays symmetric positive definite (CHOLMOD).
+//              solvers. The stiffness stays symmetric positive definite (CHOLMOD). For
+//              quadratic RK it breaks the quadratic part of (R), which caps the energy rate
+//              near 1.5 instead of 2 (verification/cantilever/README.md).
+//
+// Monomials are taken in node-local scaled coordinates, m = [1, (x - x_I) / s_I,
+// (y - y_I) / s_I] with s_I the largest |c_K - x_I| over the node's rows: (IC_p) for these is
+// an invertible combination of (IC_p) for {1, x, y}, and M_I stays well conditioned.
 
 #include <string_view>
 #include <vector>
 
+#include "mfree/galerkin/boundary_quadrature.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/linalg/node_pattern.hpp"
 
 namespace mfree {
 
 enum class Consistency { none, vci, symmetric };
 std::string_view to_string(Consistency c);
 
-/// b_I for every node, from the trial functions sampled at the boundary points.
-std::vector<Vec2> boundary_sums(const GalerkinQuadrature& at_boundary, const std::vector<Vec2>& normals,
-                                const std::vector<double>& weights, Index nodes);
+/// The conditions (IC_p) of one domain quadrature, boundary quadrature and RK order.
+class ConsistencyConditions {
+ public:
+  /// Row l of a node's matrix is the condition of monomial m_l (x and y components).
+  using Moments = Eigen::Matrix<double, 3, 2>;
 
-/// max_I |b_I - sum_K w_K g_I(x_K)| / max_I |b_I|: 0 for a consistent rule.
-double consistency_defect(const GalerkinQuadrature& q, const std::vector<Vec2>& gradients,
-                          const std::vector<Vec2>& b);
+  /// `at_boundary`: the trial functions sampled at bq's points. The arrays are viewed, not
+  /// copied: q must outlive this object.
+  ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
+                        const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq, RKOrder order);
 
-/// VCI test gradients (same layout as q.grad).
-std::vector<Vec2> vci_test_gradients(const GalerkinQuadrature& q, const std::vector<Vec2>& b);
+  /// Monomials per node: 1 (linear) or 3 (quadratic).
+  [[nodiscard]] int monomials() const { return monomials_; }
+  /// b_I of (IC_1) for every node.
+  [[nodiscard]] std::vector<Vec2> linear_targets() const;
+  /// max over nodes and monomials of the residual of (IC_p) for the given gradients (same
+  /// layout as q.grad), relative to max_I |b_I|: 0 for a consistent rule.
+  [[nodiscard]] double defect(const std::vector<Vec2>& gradients) const;
+  /// VCI test gradients (same layout as q.grad).
+  [[nodiscard]] std::vector<Vec2> vci_test_gradients() const;
+
+ private:
+  /// m(c_K) of node i in its scaled coordinates.
+  [[nodiscard]] Eigen::Vector3d monomial(Index i, const Vec2& x) const;
+  /// The residual of (IC_p) at node i for the gradients g (rows beyond monomials() zero).
+  [[nodiscard]] Moments residual(Index i, const std::vector<Vec2>& g) const;
+
+  const GalerkinQuadrature& q_;
+  const std::vector<Vec2>& nodes_;
+  int monomials_;
+  RowIncidence incidence_;
+  std::vector<double> scale_;     ///< s_I
+  std::vector<Moments> target_;   ///< boundary sum minus sum_K w_K phi_I(x_K) grad m, per node
+};
 
 struct SymmetricCorrection {
   double residual = 0.0;     ///< relative residual |A lambda - r| / |r| (worst component)
 };
 /// Applies the symmetric correction to q.grad in place.
+/// b: the linear targets b_I (ConsistencyConditions::linear_targets).
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
                                               const std::vector<Vec2>& b);
 

@@ -65,8 +65,8 @@ struct Discretisation {
   BoundaryQuadrature boundary;
   GalerkinQuadrature at_boundary;       ///< trial functions and gradients at boundary's points
   Consistency consistency = Consistency::none;  ///< the correction applied
-  double consistency_before = 0.0;      ///< consistency defect of the gradients, relative
-  double consistency_after = 0.0;
+  double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
+  double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
 
   [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }

@@ -30,6 +30,11 @@ ExactElasticity timoshenko_beam(double length, double depth, double load, const 
 /// A linear displacement u = a + G x: constant stress, no body force (the patch test).
 ExactElasticity linear_field(const Vec2& a, const Mat2& g, const LinearElastic& material);
 
+/// A quadratic displacement u_c = a_c + (G x)_c + x^T H_c x / 2 (H_0, H_1 symmetric): linear
+/// stress and the constant body force b = -div sigma (the quadratic patch test).
+ExactElasticity quadratic_field(const Vec2& a, const Mat2& g, const Mat2& h0, const Mat2& h1,
+                                const LinearElastic& material);
+
 struct ElasticErrors {
   double l2_displacement = 0.0;  ///< ||u^h - u||_L2 / ||u||_L2
   double energy = 0.0;           ///< (int (eps^h - eps) D (eps^h - eps))^1/2 / (int eps D eps)^1/2

@@ -10,6 +10,9 @@
 //                 gradbar phi_I(x_K) = (1 / w_K) integral of phi_K grad phi_I,
 //               both on the background lattice (one evaluation of every function per
 //               lattice point). gradbar reproduces gradients exactly: sum_I gradbar phi_I x_I^T = I.
+//               For quadratic RK it is the gradient of a quadratic field at the centroid
+//               c_K = (1 / w_K) integral of phi_K x (the field's gradient is linear), not at
+//               x_K: quadratic consistency conditions are stated at c_K (SPEC section 3).
 //   direct      any given rule (Gauss points on background cells, or the nodes themselves
 //               with Voronoi weights: direct nodal integration) with the gradients of phi_I.
 // A consistency correction (consistency.hpp) may then adjust the gradients.
@@ -26,6 +29,7 @@ namespace mfree {
 struct GalerkinQuadrature {
   std::vector<Vec2> points;
   std::vector<double> weights;
+  std::vector<Vec2> centroids;  ///< c_K: where the row's gradients are exact (x_K for direct rules)
   std::vector<Index> offsets;  ///< row K is [offsets[K], offsets[K + 1])
   std::vector<Index> nodes;
   std::vector<double> phi;

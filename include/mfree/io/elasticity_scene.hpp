@@ -6,10 +6,12 @@
 //   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor
 //   [quadrature]  scheme (projected | gauss_cells | nodal), ratio, cloud (lattice | like_nodes),
 //                 order, factor,
-//                 lattice_refinement, consistency (symmetric | vci | none), gauss_points
+//                 lattice_refinement, consistency (symmetric | vci | none; vci is of the
+//                 RK order: quadratic RK gets quadratic VCI), gauss_points
 //   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
 //                 youngs_modulus, poisson_ratio, density (dynamics)
-//   [exact]       solution (timoshenko_beam: load; linear: offset, gradient;
+//   [exact]       solution (timoshenko_beam: load; linear: offset, gradient; quadratic:
+//                 offset, gradient, hessian_x, hessian_y (symmetric, of u_x and u_y);
 //                 vibration: amplitude)   optional
 //   [[boundary]]  name, type (displacement | slip | traction), region = [[x0, y0], [x1, y1]],
 //                 value = "exact" or [vx, vy]
@@ -29,6 +31,7 @@
 //
 // Every key is type- and range-checked; unknown keys are errors (scene_reader.hpp).
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -44,11 +47,12 @@
 namespace mfree {
 
 struct ExactSpec {
-  std::string solution;  ///< timoshenko_beam | linear | vibration
+  std::string solution;  ///< timoshenko_beam | linear | quadratic | vibration
   double load = 0.0;
   double amplitude = 0.0;
   Vec2 offset = Vec2::Zero();
   Mat2 gradient = Mat2::Zero();
+  std::array<Mat2, 2> hessians{Mat2::Zero(), Mat2::Zero()};  ///< of u_x and u_y (quadratic)
 };
 
 struct OutputSettings {
