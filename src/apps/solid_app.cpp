@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
@@ -186,6 +187,7 @@ std::string energy_csv(const std::vector<EnergyRecord>& energy) {
 }  // namespace
 
 double energy_drift(const std::vector<EnergyRecord>& energy) {
+  if (energy.empty()) return std::numeric_limits<double>::quiet_NaN();
   double scale = 0.0, drift = 0.0;
   for (const EnergyRecord& e : energy) {
     scale = std::max(scale, e.kinetic + e.strain);
@@ -210,12 +212,16 @@ int run_dynamics(const ElasticityScene& scene) {
     for (const MotionErrors& e : run.errors)
       std::cout << fmt::format("  {:10.6f} {:12.4e} {:12.4e} {:12.4e}\n", e.time, e.displacement, e.velocity, e.stress);
   }
-  std::cout << fmt::format("  energy: total {:.6e} at t = 0, {:.6e} at the end; largest drift {:.3e} of the largest "
-                           "kinetic + strain energy\n",
-                           r.energy.front().total(), r.energy.back().total(), energy_drift(r.energy));
   const std::filesystem::path folder = scene.output.folder;
-  write_file_atomically(folder / "energy.csv", energy_csv(r.energy));
-  std::cout << fmt::format("  wrote {}\n", (folder / "energy.csv").string());
+  if (r.energy.empty()) {
+    std::cout << "  energy: not recorded ([dynamics] energy_every = 0)\n";
+  } else {
+    std::cout << fmt::format("  energy: total {:.6e} at t = 0, {:.6e} at the end; largest drift {:.3e} of the largest "
+                             "kinetic + strain energy\n",
+                             r.energy.front().total(), r.energy.back().total(), energy_drift(r.energy));
+    write_file_atomically(folder / "energy.csv", energy_csv(r.energy));
+    std::cout << fmt::format("  wrote {}\n", (folder / "energy.csv").string());
+  }
   if (!run.probe.empty()) {
     std::string csv = "time,probe_ux,probe_uy\n";
     for (const auto& [t, u] : run.probe) csv += fmt::format("{:.9e},{:.9e},{:.9e}\n", t, u.x(), u.y());
@@ -278,14 +284,15 @@ int converge_dynamics(const ElasticityScene& scene) {
                               std::log(p.velocity / e.velocity) / lr, std::log(p.stress / e.stress) / lr);
         }
         const std::string line =
-            fmt::format("{:<18} {:8.5f} {:7d} {:10.3e} {:8.5f} {:10.3e} {:10.3e} {:10.3e} {:17} {:8.2f} {:9.2e}",
+            fmt::format("{:<18} {:8.5f} {:7d} {:10.3e} {:8.5f} {:10.3e} {:10.3e} {:10.3e} {:17} {:8.2f} {:>9}",
                         to_string(scheme), h, 2 * run.nodes, run.result.time_step, e.time, e.displacement, e.velocity,
-                        e.stress, rates, seconds, drift);
+                        e.stress, rates, seconds, std::isnan(drift) ? "off" : fmt::format("{:9.2e}", drift));
         table += line + "\n";
         if (k + 1 == run.errors.size()) std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
-        csv += fmt::format("{},{},{},{},{:.6e},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.3e}\n", to_string(scheme), h,
+        // No energy record (energy_every = 0): an empty cell, not a NaN.
+        csv += fmt::format("{},{},{},{},{:.6e},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{}\n", to_string(scheme), h,
                            run.nodes, 2 * run.nodes, run.result.time_step, run.result.steps, seconds, e.time,
-                           e.displacement, e.velocity, e.stress, drift);
+                           e.displacement, e.velocity, e.stress, std::isnan(drift) ? "" : fmt::format("{:.3e}", drift));
       }
       series.push_back(std::move(run));
     }

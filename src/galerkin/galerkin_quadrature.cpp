@@ -119,42 +119,58 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   }
   row_nodes = {};
 
-  // One pass over the lattice: w_K += c_v phi_K(v), w_K c_K += c_v phi_K(v) v and
-  // row K += c_v phi_K(v) grad phi_I(v). w_K is the sum rk_quadrature_weights takes; it is
-  // taken here too so that phi_K(v) is evaluated once for all three.
-  // Rows are shared between lattice points handled by different threads: atomic adds.
+  // The lattice sums w_K = sum_v c_v phi_K(v), w_K c_K = sum_v c_v phi_K(v) v and
+  // row K = sum_v c_v phi_K(v) grad phi_I(v), over chunks of lattice points:
+  //   1. every lattice point of the chunk evaluates phi_K and grad phi_I once (in parallel);
+  //   2. every quadrature point K adds the chunk's terms in increasing lattice order (in
+  //      parallel over K, each K owned by one thread).
+  // Each sum is so taken in one fixed order: a run gives the same numbers bit for bit, on
+  // any number of threads. Chunks bound the memory of the stored evaluations.
   std::vector<double> w(nq, 0.0);
   std::vector<Vec2> moment(nq, Vec2::Zero());
-  double* m = moment.data()->data();
   const auto& lp = lattice.points();
   const auto& lc = lattice.weights();
-  double* g = q.grad.data()->data();
-  parallel_blocks(static_cast<Index>(lp.size()), 2048, [&](Index b, Index e) {
-    ShapeValues phik, phii;
-    for (Index v = b; v < e; ++v) {
-      quadrature_functions.evaluate(lp[v], phik, false);
-      trial.evaluate(lp[v], phii, true);
-      for (std::size_t a = 0; a < phik.size(); ++a) {
-        const Index k = phik.nodes[a];
-        const double c = lc[v] * phik.phi[a];
-#pragma omp atomic
-        w[k] += c;
-#pragma omp atomic
-        m[2 * k] += c * lp[v].x();
-#pragma omp atomic
-        m[2 * k + 1] += c * lp[v].y();
-        const auto first = q.nodes.begin() + q.offsets[k], last = q.nodes.begin() + q.offsets[k + 1];
-        for (std::size_t i = 0; i < phii.size(); ++i) {
-          const auto it = std::lower_bound(first, last, phii.nodes[i]);
-          const std::size_t slot = static_cast<std::size_t>(it - q.nodes.begin());
-#pragma omp atomic
-          g[2 * slot] += c * phii.grad[i].x();
-#pragma omp atomic
-          g[2 * slot + 1] += c * phii.grad[i].y();
+  const Index nl = static_cast<Index>(lp.size());
+  constexpr Index chunk = Index{1} << 15;
+  std::vector<ShapeValues> phik(std::min(chunk, nl)), phii(phik.size());
+  std::vector<Index> first(nq + 1), terms;  // K's terms (v, a): terms[first[K]], ... (pairs)
+  for (Index v0 = 0; v0 < nl; v0 += chunk) {
+    const Index v1 = std::min(nl, v0 + chunk);
+    parallel_blocks(v1 - v0, 256, [&](Index b, Index e) {
+      for (Index v = b; v < e; ++v) {
+        quadrature_functions.evaluate(lp[v0 + v], phik[v], false);
+        trial.evaluate(lp[v0 + v], phii[v], true);
+      }
+    });
+    std::fill(first.begin(), first.end(), 0);
+    for (Index v = 0; v < v1 - v0; ++v)
+      for (Index k : phik[v].nodes) ++first[k + 1];
+    for (Index k = 0; k < nq; ++k) first[k + 1] += first[k];
+    terms.resize(2 * static_cast<std::size_t>(first[nq]));
+    std::vector<Index> next(first.begin(), first.end() - 1);
+    for (Index v = 0; v < v1 - v0; ++v)
+      for (std::size_t a = 0; a < phik[v].size(); ++a) {
+        const Index at = next[phik[v].nodes[a]]++;
+        terms[2 * at] = v;
+        terms[2 * at + 1] = static_cast<Index>(a);
+      }
+    parallel_blocks(nq, 512, [&](Index b, Index e) {
+      for (Index k = b; k < e; ++k) {
+        const auto row_first = q.nodes.begin() + q.offsets[k], row_last = q.nodes.begin() + q.offsets[k + 1];
+        for (Index t = first[k]; t < first[k + 1]; ++t) {
+          const Index v = terms[2 * t];
+          const double c = lc[v0 + v] * phik[v].phi[terms[2 * t + 1]];
+          w[k] += c;
+          moment[k] += c * lp[v0 + v];
+          const ShapeValues& gi = phii[v];
+          for (std::size_t i = 0; i < gi.size(); ++i) {
+            const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
+            q.grad[static_cast<std::size_t>(it - q.nodes.begin())] += c * gi.grad[i];
+          }
         }
       }
-    }
-  });
+    });
+  }
   for (Index k = 0; k < nq; ++k) {
     if (!(w[k] > 0.0))
       throw NumericalError(fmt::format(

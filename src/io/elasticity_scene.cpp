@@ -173,7 +173,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
     if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
     d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
-    d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 1, 1 << 30));
+    d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
     dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
     dyn.error_times = t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
     if (!(out.density > 0.0)) t.error("scheme", "dynamics needs [material] density");

@@ -146,3 +146,36 @@ TEST_CASE("central differences refuse a time step above the stability limit", "[
       integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(), s, timer);
   CHECK(std::abs(r.energy.back().total() - r.energy.front().total()) <= 1e-3 * r.energy.front().kinetic);
 }
+
+TEST_CASE("energy_every = 0 records no energy and leaves the motion bit for bit as it is", "[galerkin][dynamics]") {
+  const VibrationCase c(0.05, 1.0 / 8, true, true);
+  for (TimeScheme scheme : {TimeScheme::central_difference, TimeScheme::newmark}) {
+    CAPTURE(to_string(scheme));
+    DynamicsSettings s;
+    s.scheme = scheme;
+    s.density = c.exact.density;
+    s.end_time = 0.05 * c.exact.period();
+    s.time_step = c.exact.period() / 400;
+    const auto run = [&](int energy_every, StageTimer& timer) {
+      s.energy_every = energy_every;
+      return integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(),
+                                s, timer);
+    };
+    StageTimer with, without;
+    const DynamicsResult recorded = run(1, with), silent = run(0, without);
+    CHECK(recorded.energy.size() == static_cast<std::size_t>(recorded.steps) + 1);
+    CHECK(silent.energy.empty());
+    const auto calls = [](const StageTimer& t, const std::string& stage) {
+      for (std::size_t i = 0; i < t.stages().size(); ++i)
+        if (t.stages()[i].first == stage) return t.calls()[i];
+      return 0L;
+    };
+    CHECK(calls(with, "energy") == recorded.steps + 1);
+    CHECK(calls(without, "energy") == 0);
+    // Newmark evaluates the applied forces at the new state for the work term alone.
+    CHECK(calls(without, "residual") ==
+          calls(with, "residual") - (scheme == TimeScheme::newmark ? recorded.steps : 0));
+    CHECK((silent.d - recorded.d).norm() == 0.0);
+    CHECK((silent.v - recorded.v).norm() == 0.0);
+  }
+}

@@ -69,6 +69,8 @@ def only_what_is_needed(ctx: Context) -> Section:
         "Neo-Hookean, Newton": ctx.mfree_run("run", LARGE_DEFORMATION, "performance/needs/newton", QUIET + [f"nodes.spacing={h}"]),
         "vibration, no output": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_quiet",
                                               QUIET + dyn + ["dynamics.frames=0"]),
+        "vibration, no output, no energy": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_no_energy",
+                                                         QUIET + dyn + ["dynamics.frames=0", "dynamics.energy_every=0"]),
         "vibration, 5 frames": ctx.mfree_run("run", VIBRATION, "performance/needs/vibration_frames",
                                              dyn + ["dynamics.frames=5"]),
     }
@@ -88,6 +90,11 @@ def only_what_is_needed(ctx: Context) -> Section:
     check("no fields asked for: no `output` stage (stress recovery and writing skipped)",
           "output" in st["cantilever, fields + VTK"] and "output" not in st["cantilever, no output"]
           and "output" not in st["vibration, no output"] and "output" in st["vibration, 5 frames"])
+    check("no energy balance asked for (`energy_every = 0`): no `energy` stage, the same `residual` calls "
+          "(central differences need the applied forces anyway)",
+          "energy" in st["vibration, no output"] and "energy" not in st["vibration, no output, no energy"]
+          and st["vibration, no output, no energy"].get("residual", (0, 0))[1]
+          == st["vibration, no output"].get("residual", (0, -1))[1])
     check("a linear material: one assembly, one factorisation, one solve (no Newton iterations)",
           all(st["cantilever, no output"].get(s, (0, 0))[1] == 1 for s in ("assembly", "factorisation", "solve")))
     newton_factorisations = st["Neo-Hookean, Newton"].get("factorisation", (0, 0))[1]
@@ -106,7 +113,7 @@ def only_what_is_needed(ctx: Context) -> Section:
             "different things. Each `mfree run` prints this table and writes it to summary.json.\n\n"
             f"Meshfree: the cantilever at h = {h} with all fields written to VTK and with none, the Neo-Hookean "
             "cantilever by Newton with load steps, and the vibration problem (central differences, 1/4 period) "
-            "without output and with 5 VTK frames.\n\n" + stage_table(meshfree)
+            "without output, without output or energy balance, and with 5 VTK frames.\n\n" + stage_table(meshfree)
             + "\nMPM: the vibration problem (0.002 s) with quadratic B-splines, with MLS reconstruction, and "
               "with CPDI.\n\n" + stage_table(particles)
             + "\nChecks on these tables:\n\n" + table(["check", "holds"], checks)

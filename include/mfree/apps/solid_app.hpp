@@ -35,7 +35,8 @@ struct DynamicRun {
 /// The run behind run_dynamics and converge_dynamics (verbose: progress and VTK frames).
 DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose);
 
-/// max_t |E(t) - E(0)| / max_t (kinetic + strain): the energy error of a run.
+/// max_t |E(t) - E(0)| / max_t (kinetic + strain): the energy error of a run; NaN when no
+/// energy was recorded (energy_every = 0).
 double energy_drift(const std::vector<EnergyRecord>& energy);
 
 }  // namespace mfree

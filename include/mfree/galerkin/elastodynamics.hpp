@@ -43,7 +43,7 @@ struct DynamicsSettings {
   double end_time = 0.0;
   std::optional<double> time_step;      ///< requested dt (required for newmark)
   double stability_factor = 0.5;        ///< explicit without time_step: dt = factor x limit
-  int energy_every = 1;                 ///< steps between energy records (work is summed every step)
+  int energy_every = 1;                 ///< steps between energy records (work is summed every step); 0: none
   NewtonSettings newton;                ///< newmark
   std::ostream* progress = nullptr;     ///< a line per tenth of the run
 };
@@ -70,7 +70,7 @@ struct DynamicsResult {
   std::optional<double> stability_limit;  ///< explicit: 2 / omega_max
   long newton_iterations = 0;             ///< newmark: summed over the steps
   long factorisations = 0;                ///< newmark: tangents factorised (modified Newton)
-  std::vector<EnergyRecord> energy;
+  std::vector<EnergyRecord> energy;       ///< empty when energy_every = 0
   Eigen::VectorXd d, v;                   ///< at end_time
 };
 

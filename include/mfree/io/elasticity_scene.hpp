@@ -20,7 +20,8 @@
 //   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance,
 //                 max_iterations, line_search, load_steps or load_factors, max_cutbacks
 //   [dynamics]    scheme (central_difference | newmark), end_time, time_step,
-//                 stability_factor, energy_every, frames (VTK frames over the run),
+//                 stability_factor, energy_every (steps between energy records; 0: no
+//                 energy balance computed), frames (VTK frames over the run),
 //                 error_times (fractions of end_time at which errors are measured)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, error, weights),
 //                 vtk, probe = [x, y] (u^h there at every load or time step),
