@@ -28,7 +28,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
                                       const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
-  ElasticityScene out{file, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, {}, {}};
+  ElasticityScene out{file, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
 
   {
