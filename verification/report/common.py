@@ -334,9 +334,10 @@ def level_ticks(ax, values: list[float], reciprocal: bool = False) -> None:
     ax.set_xticklabels([f"1/{1 / v:g}" if reciprocal else f"{v:g}" for v in values])
 
 
-def log_axes(ax, xlabel: str, ylabel: str, invert_x: bool = False) -> None:
-    """Log-log axes with labels and a light grid."""
-    ax.set_xscale("log")
+def log_axes(ax, xlabel: str, ylabel: str, invert_x: bool = False, log_x: bool = True) -> None:
+    """Log-log (or, with log_x=False, semi-log) axes with labels and a light grid."""
+    if log_x:
+        ax.set_xscale("log")
     ax.set_yscale("log")
     if invert_x:
         ax.invert_xaxis()

@@ -9,7 +9,7 @@ usage (from the repository root; `bash verification/report/run.sh` builds mfree 
                                                                runs in results/report/ (~25 min on 2 cores)
     /usr/bin/python3 verification/report/report.py --quick --out DIR
                                                                coarse levels only (a few minutes):
-                                                               DIR/REPORT.md, DIR/figures/, DIR/work/
+                                                               DIR/REPORT.md, DIR/figures/, DIR/runs/
     --mfree PATH                                               the program (default build/mfree)
 
 Sections: the convergence studies (studies.py), then stability (stability.py) and performance
@@ -85,7 +85,7 @@ def make_context(args: argparse.Namespace) -> Context:
     verification/ and the raw runs to results/report/ (results/report-quick/ in quick mode)."""
     if args.out is not None:
         out = args.out.resolve()
-        figures, work = out / "figures", out / "work"
+        figures, work = out / "figures", out / "runs"
     else:
         out = ROOT / "verification"
         figures = HERE / "figures"

@@ -124,10 +124,7 @@ def cloud_irregularity(ctx: Context, title: str) -> Section:
     for scheme in schemes:
         ax.plot(x, [value(results[c, scheme], "l2_displacement") for c, _ in clouds], "o-", label=scheme)
     ax.set_xticks(x, [c.replace("perturbed ", "") for c, _ in clouds])
-    ax.set_yscale("log")
-    ax.set_xlabel("node perturbation (fraction of the spacing); random")
-    ax.set_ylabel("relative L2 displacement error")
-    ax.grid(True, which="both", alpha=0.3)
+    log_axes(ax, "node perturbation (fraction of the spacing); random", "relative L2 displacement error", log_x=False)
     ax.legend()
     figure = save_figure(fig, ctx.figure("stability_irregularity"))
 
@@ -216,10 +213,7 @@ def quadrature_ratio(ctx: Context, title: str) -> Section:
             if r.ok:
                 ax.axhline(r.summary["smallest_eigenvalues"][3], ls=":", color="grey")
                 ax.text(ratios[-1], r.summary["smallest_eigenvalues"][3], f" {scheme}, {cloud}", fontsize=7, va="bottom", ha="right")
-    ax.set_yscale("log")
-    ax.set_xlabel("quadrature points per node")
-    ax.set_ylabel("4th smallest eigenvalue / largest")
-    ax.grid(True, which="both", alpha=0.3)
+    log_axes(ax, "quadrature points per node", "4th smallest eigenvalue / largest", log_x=False)
     ax.legend()
     figure = save_figure(fig, ctx.figure("stability_quadrature_ratio"))
 
@@ -390,11 +384,8 @@ def mpm_courant(ctx: Context, title: str) -> Section:
             ys = [first_error(results[m, u, cn]) / amplitude for cn in courants]
             ax.plot(courants, ys, "o-", label=m)
         ax.axhline(1.0, color="k", lw=0.8, ls=":")
-        ax.set_yscale("log")
         ax.set_title(u.upper())
-        ax.set_xlabel("Courant number dt c_d / h")
-        ax.set_ylabel(f"relative RMS u error after {periods} period(s)")
-        ax.grid(True, which="both", alpha=0.3)
+        log_axes(ax, "Courant number dt c_d / h", f"relative RMS u error after {periods} period(s)", log_x=False)
     axes[0].legend(fontsize=7)
     figure = save_figure(fig, ctx.figure("stability_mpm_courant"))
     usf = {m: limits[m, "usf"] for m in methods}

@@ -167,6 +167,18 @@ def fraction_label(fraction: float) -> str:
     return names.get(round(fraction, 6), f"{fraction:g} T")
 
 
+def refinement_axes(axes, keys: list[str], series: dict, xlabel: str, ylabel: str) -> None:
+    """Log-log axes of the errors `keys` (one per axis) of the series' rows against their
+    spacing 1/n, coarse to fine, with a rate-2 guide under the lowest error; `ylabel` may
+    name {key}."""
+    hs = sorted({number(r["spacing"]) for rs in series.values() for r in rs}, reverse=True)
+    for ax, key in zip(axes, keys):
+        log_axes(ax, xlabel, ylabel.format(key=key), invert_x=True)
+        level_ticks(ax, hs, reciprocal=True)
+        low = min(number(r[key]) for rs in series.values() for r in rs)
+        slope_guide(ax, hs[0], hs[-1], 0.5 * low * (hs[0] / hs[-1]) ** 2, 2)
+
+
 def commands_block(*commands: str) -> str:
     """Shell commands as a markdown code block."""
     return "```sh\n" + "\n".join(commands) + "\n```\n"
@@ -766,12 +778,7 @@ def plot_vibration(ctx: Context, series: dict, period: float) -> Path:
         for ax, (key, _) in zip(axes, MOTION):
             ax.plot(hs, [number(r[key]) for r in rs], "-", marker=marker, color=colour,
                     label=f"{scheme}, {fraction_label(fraction)}")
-    hs = sorted({number(r["spacing"]) for rs in series.values() for r in rs}, reverse=True)
-    for ax, (key, _) in zip(axes, MOTION):
-        log_axes(ax, "node spacing h", f"RMS {key} error", invert_x=True)
-        level_ticks(ax, hs, reciprocal=True)
-        low = min(number(r[key]) for rs in series.values() for r in rs)
-        slope_guide(ax, hs[0], hs[-1], 0.5 * low * (hs[0] / hs[-1]) ** 2, 2)
+    refinement_axes(axes, [key for key, _ in MOTION], series, "node spacing h", "RMS {key} error")
     legend_outside(axes[-1])
     return save_figure(fig, ctx.figure("vibration_error_vs_spacing"))
 
@@ -915,12 +922,7 @@ def plot_mpm(ctx: Context, quarter: dict) -> Path:
         for ax, key in zip(axes, ("displacement", "stress")):
             ax.plot(hs, [number(r[key]) for r in rs], "o-", color=f"C{position(method, MPM_METHODS)}",
                     label=f"{method}, {ppc} ppc")
-    hs = sorted({number(r["spacing"]) for rs in quarter.values() for r in rs}, reverse=True)
-    for ax, key in zip(axes, ("displacement", "stress")):
-        log_axes(ax, "cell size h", f"RMS {key} error at T/4", invert_x=True)
-        level_ticks(ax, hs, reciprocal=True)
-        low = min(number(r[key]) for rs in quarter.values() for r in rs)
-        slope_guide(ax, hs[0], hs[-1], 0.5 * low * (hs[0] / hs[-1]) ** 2, 2)
+    refinement_axes(axes, ["displacement", "stress"], quarter, "cell size h", "RMS {key} error at T/4")
     legend_outside(axes[-1])
     return save_figure(fig, ctx.figure("mpm_error_vs_cell_size"))
 
