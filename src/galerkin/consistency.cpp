@@ -74,10 +74,13 @@ ConsistencyConditions::Moments ConsistencyConditions::residual(Index i, const st
   return r;
 }
 
-std::vector<Vec2> ConsistencyConditions::linear_targets() const {
-  std::vector<Vec2> b(target_.size());
-  for (std::size_t i = 0; i < b.size(); ++i) b[i] = target_[i].row(0).transpose();
-  return b;
+std::vector<Vec2> ConsistencyConditions::linear_residuals(const std::vector<Vec2>& gradients) const {
+  const Index n = static_cast<Index>(nodes_.size());
+  std::vector<Vec2> r(n);
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) r[i] = residual(i, gradients).row(0).transpose();
+  });
+  return r;
 }
 
 double ConsistencyConditions::defect(const std::vector<Vec2>& gradients) const {
@@ -94,35 +97,35 @@ double ConsistencyConditions::defect(const std::vector<Vec2>& gradients) const {
 
 std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
   const Index n = static_cast<Index>(nodes_.size());
-  const int nm = monomials_;
   std::vector<Vec2> test = q_.grad;
   parallel_blocks(n, 256, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) {
       const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
       if (rows.empty()) continue;
-      // M_I xi_I = R_I on the node's monomials.
+      // M_I xi_I = R_I on the order's monomials; for linear RK the unused rows of M_I are
+      // (sum_K w_K) I, and those of R_I zero, so that xi_I is zero there.
       Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
       for (Index k : rows) {
         const Eigen::Vector3d p = monomial(i, q_.centroids[k]);
         m += q_.weights[k] * p * p.transpose();
       }
-      const Eigen::MatrixXd mm = m.topLeftCorner(nm, nm);
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(mm);
+      if (monomials_ == 1) m = m(0, 0) * Eigen::Matrix3d::Identity();
+      const Eigen::LDLT<Eigen::Matrix3d> ldlt(m);
       if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
         throw NumericalError(fmt::format(
             "VCI: the moment matrix of node {} at ({:.6g}, {:.6g}) is singular ({} quadrature points in "
             "its support); use larger supports",
             i, nodes_[i].x(), nodes_[i].y(), rows.size()));
-      const Eigen::MatrixXd xi = ldlt.solve(residual(i, q_.grad).topRows(nm));
+      const Moments xi = ldlt.solve(residual(i, q_.grad));
       for (std::size_t a = 0; a < rows.size(); ++a)
-        test[slots[a]] += xi.transpose() * monomial(i, q_.centroids[rows[a]]).head(nm);
+        test[slots[a]] += xi.transpose() * monomial(i, q_.centroids[rows[a]]);
     }
   });
   return test;
 }
 
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                              const std::vector<Vec2>& b) {
+                                              const std::vector<Vec2>& residuals) {
   const Index nk = q.size();
   const Index n = static_cast<Index>(nodes.size());
   // Per row: centre, scale and the inverse Gram matrix (P^T P)^-1 of P = [1, (x_I - x_K) / s].
@@ -198,14 +201,10 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
   solver.analyze(a);
   solver.factorize(a);
 
-  // r = b - sum_K w_K g_I(x_K), the residual of (IC_1).
-  std::vector<Vec2> s(nodes.size(), Vec2::Zero());
-  for (Index k = 0; k < nk; ++k)
-    for (Index i = q.row_begin(k); i < q.row_end(k); ++i) s[q.nodes[i]] += q.weights[k] * q.grad[i];
   SymmetricCorrection report;
   for (int c = 0; c < 2; ++c) {
     Eigen::VectorXd r(n);
-    for (Index i = 0; i < n; ++i) r[i] = b[i][c] - s[i][c];
+    for (Index i = 0; i < n; ++i) r[i] = residuals[i][c];
     for (Index i : {p0, p1, p2}) r[i] = 0.0;
     const Eigen::VectorXd lambda = solver.solve(r);
     const double rn = r.norm();

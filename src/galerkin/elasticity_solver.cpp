@@ -82,7 +82,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   res.consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
   timer.time("consistency", [&] {
     if (res.consistency == Consistency::symmetric) {
-      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes, conditions.linear_targets());
+      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes,
+                                                                conditions.linear_residuals(res.quadrature.grad));
       res.correction_residual = c.residual;
       res.consistency_after = conditions.defect(res.quadrature.grad);
     } else if (res.consistency == Consistency::vci) {

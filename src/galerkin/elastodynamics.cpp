@@ -126,9 +126,10 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
   const double c = 4.0 / (dt * dt);
 
   Eigen::VectorXd v_half = v + 0.5 * dt * a;
+  Eigen::VectorXd d_old;  // the work term's d_n
   for (int n = 1; n <= out.steps; ++n) {
     const double t = n * dt;
-    const Eigen::VectorXd d_old = d;
+    if (energy) d_old = d;
     Eigen::VectorXd g_new;  // f_ext - f_c at the new state
     if (explicit_scheme) {
       d += dt * v_half;

@@ -66,10 +66,8 @@ class ConsistencyConditions {
   ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
                         const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq, RKOrder order);
 
-  /// Monomials per node: 1 (linear) or 3 (quadratic).
-  [[nodiscard]] int monomials() const { return monomials_; }
-  /// b_I of (IC_1) for every node.
-  [[nodiscard]] std::vector<Vec2> linear_targets() const;
+  /// r_I = b_I - sum_K w_K g_I(x_K), the residual of (IC_1), for every node.
+  [[nodiscard]] std::vector<Vec2> linear_residuals(const std::vector<Vec2>& gradients) const;
   /// max over nodes and monomials of the residual of (IC_p) for the given gradients (same
   /// layout as q.grad), relative to max_I |b_I|: 0 for a consistent rule.
   [[nodiscard]] double defect(const std::vector<Vec2>& gradients) const;
@@ -79,7 +77,7 @@ class ConsistencyConditions {
  private:
   /// m(c_K) of node i in its scaled coordinates.
   [[nodiscard]] Eigen::Vector3d monomial(Index i, const Vec2& x) const;
-  /// The residual of (IC_p) at node i for the gradients g (rows beyond monomials() zero).
+  /// The residual of (IC_p) at node i for the gradients g (rows beyond the order's monomials zero).
   [[nodiscard]] Moments residual(Index i, const std::vector<Vec2>& g) const;
 
   const GalerkinQuadrature& q_;
@@ -93,9 +91,9 @@ class ConsistencyConditions {
 struct SymmetricCorrection {
   double residual = 0.0;     ///< relative residual |A lambda - r| / |r| (worst component)
 };
-/// Applies the symmetric correction to q.grad in place.
-/// b: the linear targets b_I (ConsistencyConditions::linear_targets).
+/// Applies the symmetric correction to q.grad in place; r: the residuals of (IC_1) of q.grad
+/// (ConsistencyConditions::linear_residuals).
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                              const std::vector<Vec2>& b);
+                                              const std::vector<Vec2>& r);
 
 }  // namespace mfree
