@@ -173,12 +173,19 @@ bool all_collinear(const Ring& r) {
   });
 }
 
-/// Validates raw rings from the input and orients them: outer CCW, holes CW.
-/// `source` names the input in error messages.
-std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& source) {
+/// Validates raw rings from the input and orients them: outer CCW, holes CW. `parts`, when
+/// given, holds a part per edge of every ring and is reordered with its ring. `source` names
+/// the input in error messages.
+std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& source,
+                                   std::vector<std::vector<int>>* parts = nullptr) {
   for (std::size_t k = 0; k < rings.size(); ++k) {
     Ring& r = rings[k];
-    if (r.size() > 1 && r.front() == r.back()) r.pop_back();
+    if (r.size() > 1 && r.front() == r.back()) {
+      r.pop_back();
+      if (parts && (*parts)[k].size() == r.size() + 1) (*parts)[k].pop_back();  // the degenerate closing edge
+    }
+    if (parts && (*parts)[k].size() != r.size())
+      throw InputError(fmt::format("{}: {} has {} edges but {} edge parts", source, ring_name(k), r.size(), (*parts)[k].size()));
     if (r.size() < 3) {
       throw InputError(fmt::format("{}: {} has {} distinct vertices; a ring needs at least 3",
                                    source, ring_name(k), r.size()));
@@ -192,7 +199,15 @@ std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& s
           "{}: {} is not simple (it crosses itself or repeats a vertex)", source, ring_name(k)));
     }
     const bool ccw = p.orientation() == CGAL::COUNTERCLOCKWISE;
-    if (ccw != (k == 0)) std::reverse(r.begin(), r.end());
+    if (ccw != (k == 0)) {
+      std::reverse(r.begin(), r.end());
+      if (parts) {
+        // Edge j of the reversed ring is edge n - 2 - j (mod n) of the given one.
+        const std::vector<int> given = (*parts)[k];
+        const std::size_t n = r.size();
+        for (std::size_t j = 0; j < n; ++j) (*parts)[k][j] = given[(2 * n - 2 - j) % n];
+      }
+    }
   }
 
   // Holes must lie strictly inside the outer ring and outside each other: no edge of one
@@ -245,8 +260,11 @@ struct Domain::Impl {
   double area = 0.0;
   Vec2 first_moment = Vec2::Zero();
 
-  explicit Impl(std::vector<Ring> oriented)
-      : rings(std::move(oriented)), segments(make_segments(rings)), grid(segments) {
+  std::vector<std::string> part_names;
+
+  explicit Impl(std::vector<Ring> oriented, const std::vector<std::vector<int>>& parts = {},
+                std::vector<std::string> names = {})
+      : rings(std::move(oriented)), segments(make_segments(rings, parts)), grid(segments), part_names(std::move(names)) {
     for (const Ring& r : rings) {
       fast_rings.push_back(fast_polygon(r));
       ring_boxes.push_back(ring_bounding_box(r));
@@ -257,7 +275,8 @@ struct Domain::Impl {
     box = ring_boxes[0];
   }
 
-  static std::vector<BoundarySegment> make_segments(const std::vector<Ring>& rings) {
+  static std::vector<BoundarySegment> make_segments(const std::vector<Ring>& rings,
+                                                    const std::vector<std::vector<int>>& parts) {
     std::vector<BoundarySegment> out;
     for (std::size_t k = 0; k < rings.size(); ++k) {
       const Ring& r = rings[k];
@@ -267,7 +286,8 @@ struct Domain::Impl {
         const double length = (b - a).norm();
         const Vec2 t = (b - a) / length;
         // The domain lies to the left of a -> b, so the outward normal is t turned clockwise.
-        out.push_back(BoundarySegment{a, b, Vec2(t.y(), -t.x()), length, static_cast<int>(k)});
+        const int part = parts.empty() ? -1 : parts[k][i];
+        out.push_back(BoundarySegment{a, b, Vec2(t.y(), -t.x()), length, static_cast<int>(k), static_cast<int>(i), part});
       }
     }
     return out;
@@ -291,7 +311,21 @@ Domain Domain::rectangle(Vec2 lo, Vec2 hi) {
         lo.x(), lo.y(), hi.x(), hi.y()));
   }
   Ring r{lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
-  return Domain(std::make_unique<Impl>(std::vector<Ring>{std::move(r)}));
+  return Domain(std::make_unique<Impl>(std::vector<Ring>{std::move(r)}, std::vector<std::vector<int>>{{0, 1, 2, 3}},
+                                       std::vector<std::string>{"bottom", "right", "top", "left"}));
+}
+
+Domain Domain::from_rings(std::vector<Ring> rings, std::vector<std::vector<int>> edge_parts,
+                          std::vector<std::string> part_names, const std::string& source) {
+  if (rings.empty()) throw InputError(fmt::format("{}: no boundary rings", source));
+  if (edge_parts.size() != rings.size())
+    throw InputError(fmt::format("{}: {} rings but edge parts for {}", source, rings.size(), edge_parts.size()));
+  for (const auto& ring : edge_parts)
+    for (int p : ring)
+      if (p < -1 || p >= static_cast<int>(part_names.size()))
+        throw InputError(fmt::format("{}: edge part {} is not a named part (there are {})", source, p, part_names.size()));
+  std::vector<Ring> oriented = normalised_rings(std::move(rings), source, &edge_parts);
+  return Domain(std::make_unique<Impl>(std::move(oriented), edge_parts, std::move(part_names)));
 }
 
 Domain Domain::from_wkt(std::string_view wkt, const std::string& source) {
@@ -332,6 +366,7 @@ Vec2 Domain::first_moment() const { return impl_->first_moment; }
 Box Domain::bounding_box() const { return impl_->box; }
 const std::vector<Ring>& Domain::rings() const { return impl_->rings; }
 const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->segments; }
+const std::vector<std::string>& Domain::part_names() const { return impl_->part_names; }
 
 std::vector<Ring> Domain::clip(const Box& box) const {
   const Impl& d = *impl_;

@@ -274,6 +274,57 @@ std::vector<SceneTable> SceneTable::tables(std::string_view key) const {
   return out;
 }
 
+namespace {
+/// The text of a number or formula node; nullopt for anything else.
+std::optional<std::string> expression_text(const toml::node& n) {
+  if (const auto s = n.value_exact<std::string>()) return *s;
+  if (const auto v = as_number(n)) return std::isfinite(*v) ? std::optional<std::string>(fmt::format("{}", *v)) : std::nullopt;
+  return std::nullopt;
+}
+}  // namespace
+
+std::string SceneTable::expression(std::string_view key) const {
+  const toml::node* n = get(key, true);
+  const auto v = expression_text(*n);
+  if (!v) fail(n, key, fmt::format("expected a finite number or a formula (a string), got {}", type_name(*n)));
+  return *v;
+}
+
+std::vector<std::string> SceneTable::expressions(std::string_view key, std::size_t size) const {
+  const toml::node* n = get(key, true);
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != size)
+    fail(n, key, fmt::format("expected an array of {} numbers or formulas (strings)", size));
+  std::vector<std::string> out;
+  for (const toml::node& item : *a) {
+    const auto v = expression_text(item);
+    if (!v) fail(&item, key, fmt::format("expected finite numbers or formulas (strings), got {}", type_name(item)));
+    out.push_back(*v);
+  }
+  return out;
+}
+
+bool SceneTable::is_array(std::string_view key) const {
+  const toml::node* n = table_->get(key);
+  return n && n->is_array();
+}
+
+std::vector<std::string> SceneTable::keys() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : *table_) {
+    out.emplace_back(k.str());
+    used_->insert(out.back());
+  }
+  return out;
+}
+
+std::string SceneTable::where(std::string_view key) const {
+  const toml::node* n = table_->get(key);
+  const toml::source_region& region = n ? n->source() : table_->source();
+  const std::string& file = region.path && region.path->starts_with("--set ") ? *region.path : *file_;
+  return fmt::format("{}:{}:{}: key '{}{}'", file, region.begin.line, region.begin.column, prefix_, key);
+}
+
 void SceneTable::error(std::string_view key, const std::string& what) const { fail(table_->get(key), key, what); }
 
 }  // namespace mfree

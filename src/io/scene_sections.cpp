@@ -29,4 +29,26 @@ Box read_box(const SceneTable& t, const std::string& key) {
           Vec2(std::max(p[0][0], p[1][0]), std::max(p[0][1], p[1][1]))};
 }
 
+Constants read_constants(const SceneTable& root) {
+  Constants c;
+  if (!root.has("constants")) return c;
+  const SceneTable t = root.table("constants");
+  for (const std::string& k : t.keys()) c[k] = t.number(k, -1e300, 1e300);
+  // Names are checked where formulas are built; check them here too, so that a scene
+  // without formulas still refuses a bad [constants] table.
+  (void)Formula("0", c, t.where(c.empty() ? "" : c.begin()->first));
+  t.finish();
+  return c;
+}
+
+Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
+  return Formula(t.expression(key), constants, t.where(key));
+}
+
+VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
+  const std::vector<std::string> e = t.expressions(key, 2);
+  const std::string at = t.where(key);
+  return {Formula(e[0], constants, at + "[0]"), Formula(e[1], constants, at + "[1]")};
+}
+
 }  // namespace mfree

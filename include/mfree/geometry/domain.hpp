@@ -32,12 +32,20 @@ struct BoundarySegment {
   Vec2 normal;    ///< outward unit normal
   double length;  ///< |b - a|
   int ring;       ///< 0: outer boundary, k >= 1: hole k
+  int edge;       ///< index of the edge in its ring (from vertex edge to vertex edge + 1)
+  int part;       ///< named boundary part (Domain::part_names()), -1: none
 };
 
 class Domain {
  public:
-  /// The rectangle [lo.x, hi.x] x [lo.y, hi.y]; throws InputError unless lo < hi.
+  /// The rectangle [lo.x, hi.x] x [lo.y, hi.y]; throws InputError unless lo < hi. Its edges
+  /// are the named parts "bottom", "right", "top" and "left".
   static Domain rectangle(Vec2 lo, Vec2 hi);
+  /// A polygon with holes from its rings (any orientation, outer ring first) and, per ring
+  /// and edge (edge i from vertex i to vertex i + 1), the index of its named part in
+  /// `part_names` or -1. Validated like WKT input; `source` names it in messages.
+  static Domain from_rings(std::vector<Ring> rings, std::vector<std::vector<int>> edge_parts,
+                           std::vector<std::string> part_names, const std::string& source);
   /// Parses one WKT POLYGON; `source` names the text in error messages (a file name).
   /// Throws InputError on malformed text, self-intersecting or degenerate rings.
   static Domain from_wkt(std::string_view wkt, const std::string& source = "<wkt>");
@@ -61,6 +69,8 @@ class Domain {
   [[nodiscard]] const std::vector<Ring>& rings() const;
   /// Every boundary edge with its outward normal, ring by ring in ring order.
   [[nodiscard]] const std::vector<BoundarySegment>& boundary() const;
+  /// Names of the boundary parts (BoundarySegment::part indexes them); may be empty.
+  [[nodiscard]] const std::vector<std::string>& part_names() const;
   /// The part of the box inside Omega, as rings oriented like rings(): counter-clockwise
   /// outer rings and clockwise holes, so Green's-theorem integrals over all returned rings
   /// add up to integrals over box ∩ Omega. Empty when they do not overlap.

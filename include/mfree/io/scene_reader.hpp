@@ -49,6 +49,18 @@ class SceneTable {
   bool boolean_or(std::string_view key, bool fallback) const;
   /// Array of points [[x, y], ...] of length `size` (any length >= 1 when 0).
   std::vector<std::array<double, 2>> pairs(std::string_view key, std::size_t size) const;
+  /// A value that is a number or a formula (a string): its text, numbers written so that
+  /// they read back to the same double.
+  std::string expression(std::string_view key) const;
+  /// An array of `size` such values.
+  std::vector<std::string> expressions(std::string_view key, std::size_t size) const;
+  /// True when the key holds an array.
+  bool is_array(std::string_view key) const;
+  /// Every key of this table (all marked read), for tables of user-chosen names.
+  std::vector<std::string> keys() const;
+  /// "FILE:LINE:COLUMN: key 'section.key'" of a key, for messages raised later (a formula
+  /// that evaluates to NaN during a run names the key it came from).
+  std::string where(std::string_view key) const;
   /// Array of tables ([[name]] sections); empty when the key is absent.
   std::vector<SceneTable> tables(std::string_view key) const;
   /// Throws an InputError at this key's position (for checks across several keys).

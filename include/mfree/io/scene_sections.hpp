@@ -4,12 +4,16 @@
 //   [material]  model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
 //               youngs_modulus, poisson_ratio, density (dynamics and MPM)
 //   a box       [[x0, y0], [x1, y1]] (corners in any order)
+//   [constants] name = number, ...: named constants every formula of the scene may use
+//   a value     a number or a formula string in x, y, X, Y, t (problems/formula.hpp); a
+//               vector value is an array of two of them, e.g. ["0", "-rho * g * (H - y)"]
 
 #include <string>
 
 #include "mfree/core/types.hpp"
 #include "mfree/io/scene_reader.hpp"
 #include "mfree/materials/material.hpp"
+#include "mfree/problems/formula.hpp"
 
 namespace mfree {
 
@@ -25,5 +29,14 @@ MaterialSection read_material(const SceneTable& root);
 
 /// The box of two corners under `key`.
 Box read_box(const SceneTable& t, const std::string& key);
+
+/// Reads [constants] (optional; empty when absent).
+Constants read_constants(const SceneTable& root);
+
+/// The number or formula under `key`, parsed (errors name the key).
+Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants);
+
+/// The two numbers or formulas under `key`.
+VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants);
 
 }  // namespace mfree

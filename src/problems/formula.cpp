@@ -1,0 +1,133 @@
+#include "mfree/problems/formula.hpp"
+
+#include <fmt/format.h>
+#include <muParser.h>
+#include <omp.h>
+
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <optional>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+namespace {
+
+constexpr std::array<const char*, 5> variable_names{"x", "y", "X", "Y", "t"};
+constexpr int max_threads = 1024;
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+/// One parser with its own variables: a thread evaluates through its own copy.
+struct Evaluator {
+  mu::Parser parser;
+  double x = 0.0, y = 0.0, t = 0.0;
+
+  Evaluator(const std::string& expression, const Constants& constants) {
+    parser.DefineVar("x", &x);
+    parser.DefineVar("y", &y);
+    parser.DefineVar("X", &x);
+    parser.DefineVar("Y", &y);
+    parser.DefineVar("t", &t);
+    parser.DefineConst("pi", M_PI);
+    parser.DefineConst("e", M_E);
+    for (const auto& [name, value] : constants) parser.DefineConst(name, value);
+    parser.SetExpr(expression);
+  }
+};
+
+}  // namespace
+
+struct Formula::Impl {
+  std::string expression, key;
+  Constants constants;
+  std::optional<double> value;  ///< set when the formula is a constant
+  bool time = false;
+  // Built on a thread's first call; each thread touches only its own entry.
+  mutable std::array<std::unique_ptr<Evaluator>, max_threads> evaluators;
+
+  Evaluator& mine() const {
+    const int k = omp_in_parallel() ? omp_get_thread_num() : 0;
+    if (k >= max_threads) throw NumericalError(fmt::format("{}: formula evaluated on thread {} (at most {})", key, k, max_threads));
+    if (!evaluators[k]) evaluators[k] = std::make_unique<Evaluator>(expression, constants);
+    return *evaluators[k];
+  }
+};
+
+Formula::Formula(const std::string& expression, const Constants& constants, std::string key) {
+  auto impl = std::make_shared<Impl>();
+  impl->expression = expression;
+  impl->key = std::move(key);
+  for (const auto& [name, value] : constants) {
+    if (!is_identifier(name))
+      throw InputError(fmt::format("{}: constant name '{}' is not a name (letters, digits and _, not starting with a digit)",
+                                   impl->key, name));
+    for (const char* v : variable_names)
+      if (name == v) throw InputError(fmt::format("{}: constant '{}' would hide the variable {}", impl->key, name, v));
+    if (name == "pi" || name == "e") throw InputError(fmt::format("{}: constant '{}' is predefined", impl->key, name));
+    if (!std::isfinite(value)) throw InputError(fmt::format("{}: constant '{}' is not finite", impl->key, name));
+  }
+  impl->constants = constants;
+  try {
+    Evaluator& e = impl->mine();
+    const mu::varmap_type used = e.parser.GetUsedVar();  // parses the expression
+    impl->time = used.count("t") > 0;
+    if (used.empty()) {
+      const double v = e.parser.Eval();
+      if (!std::isfinite(v))
+        throw InputError(fmt::format("{}: formula '{}' evaluates to {}", impl->key, expression, v));
+      impl->value = v;
+    }
+  } catch (const mu::Parser::exception_type& err) {
+    const int pos = err.GetPos();
+    std::string where;
+    if (pos >= 0) where = fmt::format(" (at character {}: '{}' <-- here)", pos + 1, expression.substr(0, static_cast<std::size_t>(pos) + 1));
+    throw InputError(fmt::format("{}: formula '{}' does not parse: {}{}; variables are x, y, X, Y, t, constants pi, e "
+                                 "and those of [constants]",
+                                 impl->key, expression, err.GetMsg(), where));
+  }
+  impl_ = std::move(impl);
+}
+
+Formula Formula::constant(double c, std::string key) {
+  if (!std::isfinite(c)) throw InputError(fmt::format("{}: value {} is not finite", key, c));
+  return Formula(fmt::format("{}", c), {}, std::move(key));
+}
+
+Formula::Formula(const Formula&) = default;
+Formula::Formula(Formula&&) noexcept = default;
+Formula& Formula::operator=(const Formula&) = default;
+Formula& Formula::operator=(Formula&&) noexcept = default;
+Formula::~Formula() = default;
+
+double Formula::operator()(const Vec2& x, double t) const {
+  if (impl_->value) return *impl_->value;
+  Evaluator& e = impl_->mine();
+  e.x = x.x();
+  e.y = x.y();
+  e.t = t;
+  const double v = e.parser.Eval();
+  if (!std::isfinite(v))
+    throw NumericalError(fmt::format("{}: formula '{}' is {} at (x, y) = ({:.6g}, {:.6g}), t = {:.6g}", impl_->key,
+                                     impl_->expression, v, x.x(), x.y(), t));
+  return v;
+}
+
+void Formula::evaluate(const std::vector<Vec2>& points, double t, std::vector<double>& out) const {
+  out.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = (*this)(points[i], t);
+}
+
+const std::string& Formula::expression() const { return impl_->expression; }
+const std::string& Formula::key() const { return impl_->key; }
+bool Formula::depends_on_time() const { return impl_->time; }
+bool Formula::is_constant() const { return impl_->value.has_value(); }
+
+}  // namespace mfree
