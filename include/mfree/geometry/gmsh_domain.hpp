@@ -1,0 +1,52 @@
+#pragma once
+// Domains from gmsh files: .geo scripts, .msh meshes and CAD files (STEP, BREP, IGES, read
+// through gmsh's OpenCASCADE kernel).
+//
+// The domain is the union of the file's surfaces (its 2D entities), which must lie in the
+// plane z = 0 and form one connected region, with or without holes. Its boundary is the set of
+// curves that bound exactly one surface (curves shared by two surfaces are interior), taken as
+// polygons from gmsh's 1D mesh: the end nodes of the line elements on those curves, chained
+// into closed rings whatever the curves' orientations. The polygon is inscribed in a curved
+// boundary (its vertices lie on the curves, its edges are chords), so areas and lengths
+// converge to the curved values at second order in the element size.
+//
+// Element sizes are the file's own (point sizes, Mesh.MeshSizeMax = Mesh.CharacteristicLengthMax,
+// size fields, transfinite curves); gmsh's configuration files are not read, so they are the
+// same on every machine. A file that holds a 1D mesh (a .msh) is used as it is; otherwise gmsh
+// meshes the curves (1D only). Higher-order line elements contribute their end nodes only. CAD
+// files carry no sizes: gmsh's defaults apply (coarse: two pieces per quarter circle); a .geo
+// that merges the CAD file (Merge "part.step";) can set sizes and physical curves.
+//
+// Named boundary parts: every boundary edge carries the name of the dim-1 physical group
+// ("Physical Curve") of its curve, -1 for curves in none; a group without a name is named by
+// its number ("7"). Domain::part_names() lists the groups on the boundary, by group tag.
+//
+// gmsh is global state: reads are serialised by a mutex, and each read runs in its own gmsh
+// session (initialise, read, finalise), so a program that uses gmsh itself must not call this
+// while its own session is open. gmsh prints nothing; OpenCASCADE's STEP parser may still
+// print its own syntax errors to standard output.
+
+#include <array>
+#include <filesystem>
+#include <string_view>
+
+#include "mfree/geometry/domain.hpp"
+
+namespace mfree {
+
+/// File extensions read by read_gmsh_domain (lower case; matched without regard to case).
+inline constexpr std::array<std::string_view, 7> gmsh_extensions = {".geo",  ".msh", ".step", ".stp",
+                                                                    ".brep", ".iges", ".igs"};
+
+/// Whether the path's extension is one of gmsh_extensions (without regard to case).
+[[nodiscard]] bool is_gmsh_file(const std::filesystem::path& file);
+
+/// Reads the domain of a gmsh file (see above). Throws InputError naming the file when the
+/// extension is not one of gmsh_extensions, the file is missing or unreadable, gmsh reports an
+/// error (its messages are quoted), the model has no surface or has volumes, a node lies off the
+/// plane z = 0, a boundary curve has no 1D elements, a curve belongs to two physical groups,
+/// the boundary does not close into rings (or meets itself), the surfaces form more than one
+/// connected region, or the rings fail Domain::from_rings's checks.
+[[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file);
+
+}  // namespace mfree
