@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/gmsh_domain.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
 #include "mfree/geometry/segment_grid.hpp"
 
@@ -338,6 +339,17 @@ Domain Domain::from_file(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError(fmt::format("mesh file '{}' does not exist or is not a regular file",
                                  path.string()));
+  }
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (is_gmsh_file(path)) return read_gmsh_domain(path);
+  if (extension != ".wkt") {
+    std::string accepted = ".wkt";
+    for (const std::string_view e : gmsh_extensions) accepted += fmt::format(", {}", e);
+    throw InputError(fmt::format("mesh file '{}': unknown extension '{}'; mfree reads {} (WKT, or gmsh "
+                                 "scripts, meshes and CAD files)",
+                                 path.string(), path.extension().string(), accepted));
   }
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;

@@ -5,7 +5,8 @@
 // orientation the domain lies to the left of every boundary edge, and the outward unit
 // normal of an edge a -> b is (t.y, -t.x) with t = (b - a) / |b - a|.
 //
-// Domains are built in (rectangle) or read from a WKT file (meshes/*.wkt), e.g.
+// Domains are built in (rectangle), read from a gmsh file (gmsh_domain.hpp: .geo, .msh, CAD)
+// or from a WKT file (meshes/*.wkt), e.g.
 //   POLYGON((0 0, 2 0, 2 1, 0 1, 0 0), (0.5 0.25, 0.5 0.75, 1 0.75, 1 0.25, 0.5 0.25))
 // WKT is what GIS tools, Shapely, QGIS and CAD exporters write. Ring orientation in the file
 // is free; mfree normalises it. The closing vertex repeating the first one is optional.
@@ -49,7 +50,10 @@ class Domain {
   /// Parses one WKT POLYGON; `source` names the text in error messages (a file name).
   /// Throws InputError on malformed text, self-intersecting or degenerate rings.
   static Domain from_wkt(std::string_view wkt, const std::string& source = "<wkt>");
-  /// Reads a WKT file; a missing or unreadable file is an InputError naming the path.
+  /// Reads a domain file by its extension (case aside): .wkt as WKT (from_wkt), the gmsh
+  /// extensions (.geo, .msh, .step, .stp, .brep, .iges, .igs) with read_gmsh_domain
+  /// (gmsh_domain.hpp), which also names the boundary parts. A missing or unreadable file, or
+  /// another extension (the message lists the accepted ones), is an InputError naming the path.
   static Domain from_file(const std::filesystem::path& path);
 
   Domain(const Domain&);

@@ -1,0 +1,309 @@
+#include <catch2/catch.hpp>
+
+#include "../test_support.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mfree/core/error.hpp"
+#include "mfree/geometry/domain.hpp"
+#include "mfree/geometry/gmsh_domain.hpp"
+#include "mfree/geometry/polygon_integrals.hpp"
+
+using mfree::BoundarySegment;
+using mfree::Domain;
+using mfree::Vec2;
+
+namespace {
+
+const double pi = std::acos(-1.0);
+
+std::string mesh_path(const std::string& name) { return std::string(MFREE_SOURCE_DIR) + "/meshes/" + name; }
+
+Domain mesh(const std::string& name) { return Domain::from_file(mesh_path(name)); }
+
+/// Writes text to folder/name and returns the path.
+std::string write_file(const mfree::testing::ScratchFolder& folder, const std::string& name,
+                       const std::string& text) {
+  const std::string path = (folder.path / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string input_error_message(const std::string& path) {
+  return mfree::testing::message_of<mfree::InputError>([&] { (void)Domain::from_file(path); });
+}
+
+/// Total length and number of segments of every named part.
+struct PartSum {
+  double length = 0.0;
+  int segments = 0;
+};
+
+std::map<std::string, PartSum> part_sums(const Domain& d) {
+  std::map<std::string, PartSum> out;
+  for (const BoundarySegment& s : d.boundary()) {
+    PartSum& p = out[s.part < 0 ? std::string("<none>") : d.part_names()[s.part]];
+    p.length += s.length;
+    p.segments += 1;
+  }
+  return out;
+}
+
+/// Area of the polygon inscribed in a quarter circle of radius r with n equal pieces, closed
+/// through the centre: n triangles of area r^2 sin(pi / (2n)) / 2.
+double quarter_fan_area(double r, int n) { return 0.5 * n * r * r * std::sin(pi / (2 * n)); }
+
+/// Length of n equal chords of a quarter circle of radius r.
+double quarter_chords(double r, int n) { return n * 2 * r * std::sin(pi / (4 * n)); }
+
+}  // namespace
+
+TEST_CASE("gmsh quarter annulus: area of the inscribed polygon and of the annulus", "[geometry]") {
+  // meshes/quarter_annulus.geo: a = 1 <= r <= b = 2, 64 pieces on the outer arc and, with the
+  // same element size, 32 on the inner one.
+  const double a = 1, b = 2;
+  const Domain d = mesh("quarter_annulus.geo");
+  REQUIRE(d.rings().size() == 1);
+  const std::map<std::string, PartSum> parts = part_sums(d);
+  REQUIRE(parts.count("outer") == 1);
+  REQUIRE(parts.count("inner") == 1);
+  const int nb = parts.at("outer").segments, na = parts.at("inner").segments;
+  CHECK(nb == 64);
+  CHECK(na == 32);
+
+  // The polygon: the outer fan minus the inner fan (the straight edges lie on the axes).
+  const double polygon = quarter_fan_area(b, nb) - quarter_fan_area(a, na);
+  CHECK(d.area() == Approx(polygon).epsilon(1e-13));
+  // Against the curved domain, pi (b^2 - a^2) / 4 = 3 pi / 4: each arc's chords cut off
+  // pi r^2 / 4 - quarter_fan_area(r, n) (~ pi h^2 / 24 for the element size h, the same for
+  // both arcs, so the two nearly cancel). Their sum bounds the error.
+  const double exact = pi * (b * b - a * a) / 4;
+  const double cut_outer = pi * b * b / 4 - quarter_fan_area(b, nb);
+  const double cut_inner = pi * a * a / 4 - quarter_fan_area(a, na);
+  CHECK(cut_outer == Approx(3.15e-4).epsilon(1e-2));
+  CHECK(std::abs(d.area() - exact) <= cut_outer + cut_inner);
+  CHECK(std::abs(d.area() - exact) > 0.0);
+
+  // The centroid lies on the diagonal (the domain is symmetric about y = x), to the accuracy
+  // of gmsh's node placement: its chords are equal to about 1e-10, not to rounding.
+  CHECK(d.first_moment().x() == Approx(d.first_moment().y()).epsilon(1e-10));
+}
+
+TEST_CASE("gmsh quarter annulus: lengths and segments of the named parts", "[geometry]") {
+  const double a = 1, b = 2;
+  const Domain d = mesh("quarter_annulus.geo");
+  const std::vector<std::string>& names = d.part_names();
+  CHECK(names.size() == 4);
+  const std::map<std::string, PartSum> parts = part_sums(d);
+  REQUIRE(parts.size() == 4);  // no segment without a part
+  CHECK(parts.at("x_axis").length == Approx(1.0).epsilon(1e-14));
+  CHECK(parts.at("y_axis").length == Approx(1.0).epsilon(1e-14));
+  CHECK(parts.at("outer").length == Approx(quarter_chords(b, 64)).epsilon(1e-13));
+  CHECK(parts.at("inner").length == Approx(quarter_chords(a, 32)).epsilon(1e-13));
+  // The chords are shorter than the arcs, pi and pi / 2, by 1 - sin(t)/t ~ t^2 / 6.
+  CHECK(parts.at("outer").length < pi * b / 2);
+  CHECK(parts.at("outer").length == Approx(pi * b / 2).epsilon(1e-4));
+
+  // Every segment's part agrees with where it lies.
+  for (const BoundarySegment& s : d.boundary()) {
+    INFO("segment " << s.edge << " from (" << s.a.x() << ", " << s.a.y() << ")");
+    REQUIRE(s.part >= 0);
+    const std::string& part = names[s.part];
+    std::string where;
+    if (s.a.y() == 0 && s.b.y() == 0) where = "x_axis";
+    else if (s.a.x() == 0 && s.b.x() == 0) where = "y_axis";
+    else if (std::abs(s.a.norm() - b) < 1e-14 && std::abs(s.b.norm() - b) < 1e-14) where = "outer";
+    else if (std::abs(s.a.norm() - a) < 1e-14 && std::abs(s.b.norm() - a) < 1e-14) where = "inner";
+    CHECK(part == where);
+    // Outward normals: away from the centre on the outer arc, towards it on the inner one,
+    // -y on the x axis and -x on the y axis.
+    const Vec2 mid = 0.5 * (s.a + s.b);
+    if (where == "outer") CHECK(s.normal.dot(mid) > 0.99 * mid.norm());
+    if (where == "inner") CHECK(s.normal.dot(mid) < -0.99 * mid.norm());
+    if (where == "x_axis") CHECK(s.normal == Vec2(0, -1));
+    if (where == "y_axis") CHECK(s.normal == Vec2(-1, 0));
+  }
+}
+
+TEST_CASE("gmsh quarter annulus: the .msh written by gmsh reads back to the same domain", "[geometry]") {
+  // meshes/quarter_annulus.msh is `gmsh -1 quarter_annulus.geo` (see meshes/README.md). Its
+  // coordinates are printed with 16 digits, so they match to about one rounding.
+  const Domain geo = mesh("quarter_annulus.geo");
+  const Domain msh = mesh("quarter_annulus.msh");
+  CHECK(msh.part_names() == geo.part_names());
+  REQUIRE(msh.rings().size() == geo.rings().size());
+  REQUIRE(msh.boundary().size() == geo.boundary().size());
+  for (std::size_t i = 0; i < geo.boundary().size(); ++i) {
+    const BoundarySegment& s = geo.boundary()[i];
+    const BoundarySegment& t = msh.boundary()[i];
+    INFO("segment " << i);
+    CHECK((s.a - t.a).norm() < 1e-15);
+    CHECK((s.b - t.b).norm() < 1e-15);
+    CHECK(s.part == t.part);
+  }
+  CHECK(msh.area() == Approx(geo.area()).epsilon(1e-14));
+}
+
+TEST_CASE("gmsh plate with a hole: .geo with named parts and its STEP export", "[geometry]") {
+  const double r = 0.5;
+  // The 64-gon hole of plate_with_hole.geo is the hole of plate_with_hole.wkt.
+  const Domain plate = mesh("plate_with_hole.geo");
+  REQUIRE(plate.rings().size() == 2);
+  CHECK(plate.rings()[1].size() == 64);
+  CHECK(plate.rings()[0].size() == 4 * 16);
+  CHECK(plate.area() == Approx(16 - 8 * std::sin(pi / 32)).epsilon(1e-14));
+  CHECK(plate.area() == Approx(mesh("plate_with_hole.wkt").area()).epsilon(1e-14));
+  const std::map<std::string, PartSum> parts = part_sums(plate);
+  REQUIRE(parts.size() == 5);
+  for (const std::string side : {"left", "right", "bottom", "top"}) {
+    INFO(side);
+    CHECK(parts.at(side).length == Approx(4.0).epsilon(1e-14));
+    CHECK(parts.at(side).segments == 16);
+  }
+  CHECK(parts.at("hole").length == Approx(64 * 2 * r * std::sin(pi / 64)).epsilon(1e-13));
+  for (const BoundarySegment& s : plate.boundary()) CHECK((s.ring == 1) == (plate.part_names()[s.part] == "hole"));
+
+  // The same geometry as CAD (exported by gmsh's OpenCASCADE kernel): no physical groups and no
+  // element sizes, so no named parts and gmsh's default sizes: a coarser regular polygon.
+  const Domain cad = mesh("plate_with_hole.step");
+  CHECK(cad.part_names().empty());
+  for (const BoundarySegment& s : cad.boundary()) CHECK(s.part == -1);
+  REQUIRE(cad.rings().size() == 2);
+  CHECK(mfree::ring_area(cad.rings()[0]) == Approx(16.0).epsilon(1e-14));
+  const int n = static_cast<int>(cad.rings()[1].size());
+  CHECK(n >= 8);
+  for (const Vec2& x : cad.rings()[1]) CHECK(x.norm() == Approx(r).epsilon(1e-12));
+  CHECK(cad.area() == Approx(16 - 0.5 * n * r * r * std::sin(2 * pi / n)).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh domains: several surfaces, curves in any direction, unnamed groups", "[geometry]") {
+  const mfree::testing::ScratchFolder folder("gmsh_surfaces");
+  // Two unit squares sharing the curve x = 1 (interior, so not boundary); the curves run in
+  // both directions. Group 7 has no name; curve 6 is in no group.
+  const std::string path = write_file(folder, "two_squares.geo", R"(
+    Point(1) = {0, 0, 0, 0.25}; Point(2) = {1, 0, 0, 0.25}; Point(3) = {2, 0, 0, 0.25};
+    Point(4) = {2, 1, 0, 0.25}; Point(5) = {1, 1, 0, 0.25}; Point(6) = {0, 1, 0, 0.25};
+    Line(1) = {2, 1}; Line(2) = {2, 3}; Line(3) = {4, 3}; Line(4) = {4, 5};
+    Line(5) = {5, 6}; Line(6) = {1, 6}; Line(7) = {2, 5};
+    Curve Loop(1) = {-1, 7, 5, -6}; Plane Surface(1) = {1};
+    Curve Loop(2) = {2, -3, 4, -7}; Plane Surface(2) = {2};
+    Physical Curve("bottom") = {1, 2};
+    Physical Curve(7) = {3};
+    Physical Curve("top") = {4, 5};
+    Physical Curve("shared") = {7};
+  )");
+  const Domain d = Domain::from_file(path);
+  REQUIRE(d.rings().size() == 1);
+  CHECK(d.area() == Approx(2.0).epsilon(1e-15));
+  // The shared curve is interior: its group names no boundary part.
+  CHECK(d.part_names() == std::vector<std::string>{"bottom", "7", "top"});
+  const std::map<std::string, PartSum> parts = part_sums(d);
+  CHECK(parts.at("bottom").length == Approx(2.0).epsilon(1e-15));
+  CHECK(parts.at("top").length == Approx(2.0).epsilon(1e-15));
+  CHECK(parts.at("7").length == Approx(1.0).epsilon(1e-15));
+  CHECK(parts.at("<none>").length == Approx(1.0).epsilon(1e-15));
+  CHECK(parts.at("bottom").segments == 8);
+}
+
+TEST_CASE("gmsh domains: bad files are InputErrors naming the file", "[geometry]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_errors");
+
+  const std::string bad = write_file(folder, "bad.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 2 ;\n");
+  CHECK_THAT(input_error_message(bad), Contains(bad) && Contains("gmsh cannot read it") && Contains("syntax error"));
+
+  const std::string garbage = write_file(folder, "garbage.msh", "not a mesh\n");
+  CHECK_THAT(input_error_message(garbage), Contains(garbage) && Contains("gmsh cannot read it"));
+
+  const std::string missing = (folder.path / "missing.geo").string();
+  CHECK_THAT(input_error_message(missing), Contains(missing) && Contains("does not exist"));
+
+  const std::string unknown = write_file(folder, "shape.dxf", "0\nSECTION\n");
+  CHECK_THAT(input_error_message(unknown),
+             Contains(unknown) && Contains("unknown extension '.dxf'") && Contains(".wkt") && Contains(".geo") &&
+                 Contains(".step"));
+  CHECK_THAT(mfree::testing::message_of<mfree::InputError>([&] { (void)mfree::read_gmsh_domain(unknown); }),
+             Contains(unknown) && Contains("unknown extension"));
+
+  const std::string curves = write_file(folder, "curves.geo", R"(
+    Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {0, 1, 0};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
+  )");
+  CHECK_THAT(input_error_message(curves), Contains(curves) && Contains("no 2D entity") && Contains("3 curves"));
+
+  const std::string islands = write_file(folder, "islands.geo", R"(
+    Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};
+    Point(5) = {3, 0, 0}; Point(6) = {4, 0, 0}; Point(7) = {4, 2, 0}; Point(8) = {3, 2, 0};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+    Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+    Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+    Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+  )");
+  CHECK_THAT(input_error_message(islands), Contains(islands) && Contains("2 disconnected regions") &&
+                                               Contains("[0, 1] x [0, 1]") && Contains("[3, 4] x [0, 2]"));
+
+  const std::string twice = write_file(folder, "twice.geo", R"(
+    Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {0, 1, 0};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
+    Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
+    Physical Curve("load") = {2};
+    Physical Curve("wall") = {1, 2};
+  )");
+  CHECK_THAT(input_error_message(twice), Contains(twice) && Contains("curve 2") && Contains("'load' and 'wall'"));
+
+  const std::string lifted = write_file(folder, "lifted.geo", R"(
+    Point(1) = {0, 0, 1}; Point(2) = {1, 0, 1}; Point(3) = {0, 1, 1};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
+    Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
+  )");
+  CHECK_THAT(input_error_message(lifted), Contains(lifted) && Contains("off the plane z = 0"));
+
+  const std::string box = write_file(folder, "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n");
+  CHECK_THAT(input_error_message(box), Contains(box) && Contains("1 3D volume"));
+
+  // A triangle whose hypotenuse (curve 2, from node 2 to node 3) has one element from node 2
+  // to its midpoint 4 only: the ring stops at nodes 3 and 4.
+  const std::string open = write_file(folder, "open.msh", R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Entities
+3 3 1 0
+1 0 0 0 0
+2 1 0 0 0
+3 0 1 0 0
+1 0 0 0 1 0 0 0 2 1 -2
+2 0 0 0 1 1 0 0 2 2 -3
+3 0 0 0 0 1 0 0 2 3 -1
+1 0 0 0 1 1 0 0 3 1 2 3
+$EndEntities
+$Nodes
+4 4 1 4
+0 1 0 1
+1
+0 0 0
+0 2 0 1
+2
+1 0 0
+0 3 0 1
+3
+0 1 0
+1 2 0 1
+4
+0.5 0.5 0
+$EndNodes
+$Elements
+3 3 1 3
+1 1 1 1
+1 1 2
+1 2 1 1
+2 2 4
+1 3 1 1
+3 3 1
+$EndElements
+)");
+  CHECK_THAT(input_error_message(open), Contains(open) && Contains("does not close") && Contains("(0, 1)"));
+}
