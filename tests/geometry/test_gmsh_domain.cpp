@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mfree/core/error.hpp"
@@ -207,6 +208,20 @@ TEST_CASE("gmsh domains: several surfaces, curves in any direction, unnamed grou
   CHECK(parts.at("7").length == Approx(1.0).epsilon(1e-15));
   CHECK(parts.at("<none>").length == Approx(1.0).epsilon(1e-15));
   CHECK(parts.at("bottom").segments == 8);
+}
+
+TEST_CASE("gmsh domains: reads from several threads at once give the same domain", "[geometry]") {
+  // gmsh is one global state; the reader serialises its sessions.
+  const Domain reference = mesh("quarter_annulus.geo");
+  std::vector<double> areas(4, 0.0);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    threads.emplace_back([&areas, i] {
+      areas[i] = mesh(i % 2 == 0 ? "quarter_annulus.geo" : "quarter_annulus.msh").area();
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (const double a : areas) CHECK(a == Approx(reference.area()).epsilon(1e-14));
 }
 
 TEST_CASE("gmsh domains: bad files are InputErrors naming the file", "[geometry]") {
