@@ -48,4 +48,5 @@ Physical Curve("right") = {2};
 Physical Curve("top") = {3};
 Physical Curve("left") = {4};
 Physical Curve("hole") = {5, 6, 7, 8};
+// The surface as a group too, so that a 2D mesh saved as .msh keeps its triangles.
 Physical Surface("plate") = {1};

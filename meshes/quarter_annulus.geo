@@ -32,4 +32,5 @@ Physical Curve("x_axis") = {1};
 Physical Curve("outer") = {2};
 Physical Curve("y_axis") = {3};
 Physical Curve("inner") = {4};
+// The surface as a group too, so that a 2D mesh saved as .msh keeps its triangles.
 Physical Surface("body") = {1};
