@@ -24,6 +24,7 @@ int run_elasticity(const std::filesystem::path& path, const std::vector<std::str
   if (scene.nonlinear()) return run_static(scene);
   const std::optional<ExactElasticity> exact = scene.exact();
   std::cout << fmt::format("mfree run: {} ({} thread(s))\n", path.string(), thread_count());
+  std::cout << scene.describe_conditions();
   ElasticitySettings s = scene.settings;
   s.progress = &std::cout;  // a large solve takes minutes: show each stage as it ends
   ElasticityResult r = solve_elasticity(scene.domain, s, exact ? &*exact : nullptr);
@@ -42,6 +43,12 @@ int run_elasticity(const std::filesystem::path& path, const std::vector<std::str
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
   RunSummary summary("linear_statics", path);
+  if (scene.output.probe) {
+    const Vec2 u = r.displacement({*scene.output.probe})[0];
+    std::cout << fmt::format("  probe ({:.6g}, {:.6g}): u^h = ({:.9e}, {:.9e})\n", scene.output.probe->x(),
+                             scene.output.probe->y(), u.x(), u.y());
+    summary.numbers("probe_displacement", {u.x(), u.y()});
+  }
   summary.number("nodes", static_cast<double>(r.nodes.size()));
   summary.number("dofs", 2.0 * static_cast<double>(r.nodes.size()));
   summary.number("quadrature_points", static_cast<double>(r.quadrature.size()));
@@ -99,7 +106,11 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
                                  path.string()));
   const StudySettings& st = *scene.study;
   const std::optional<ExactElasticity> exact = scene.exact();
-  if (!exact) throw InputError(fmt::format("{}: mfree converge needs an [exact] section", path.string()));
+  const std::optional<Vec2> probe = st.probe ? st.probe : scene.output.probe;
+  if (!exact && !probe)
+    throw InputError(fmt::format("{}: a study without an [exact] solution measures the displacement at a probe: give "
+                                 "[study] probe = [x, y] (or [output] probe)",
+                                 path.string()));
   const std::size_t runs =
       st.clouds.size() * st.orders.size() * st.schemes.size() * st.betas.size() * st.spacings.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", path.string(), runs,
@@ -115,6 +126,7 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
       for (QuadratureScheme q : st.schemes)
         for (double beta : st.betas) {
           std::vector<std::pair<double, ElasticErrors>> series;
+          std::vector<std::pair<double, Vec2>> probes;  // (h, u^h at the probe): studies without [exact]
           for (double h : st.spacings) {
             ElasticitySettings s = scene.settings;
             s.nodes.kind = cloud;
@@ -130,7 +142,7 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
             }
             std::optional<ElasticityResult> solved;
             try {
-              solved.emplace(solve_elasticity(scene.domain, s, &*exact));
+              solved.emplace(solve_elasticity(scene.domain, s, exact ? &*exact : nullptr));
             } catch (const NumericalError& e) {
               // A study goes on past a run that fails (a sweep is meant to find where they do).
               const std::string line =
@@ -146,7 +158,35 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
             double seconds = r.timer.total();  // the solve; the error measurement is not part of it
             for (const auto& [name, t] : r.timer.stages())
               if (name == "errors") seconds -= t;
-            const double probe = st.probe ? r.displacement({*st.probe})[0].y() : std::nan("");
+            if (!exact) {
+              // No exact solution: the probe values, their change between levels, the observed
+              // rate of that change and the Richardson-extrapolated value (SPEC section 8).
+              const Vec2 u = r.displacement({*probe})[0];
+              probes.emplace_back(h, u);
+              std::string change = "-", rate = "-", extrapolated = "-";
+              const std::size_t n = probes.size();
+              if (n >= 2) change = fmt::format("{:.3e}", (u - probes[n - 2].second).norm());
+              if (n >= 3) {
+                const double e1 = (probes[n - 2].second - probes[n - 3].second).norm(), e2 = (u - probes[n - 2].second).norm();
+                const double ratio = probes[n - 2].first / h;
+                const double p = std::log(e1 / e2) / std::log(probes[n - 3].first / probes[n - 2].first);
+                if (std::isfinite(p) && p > 0.0) {
+                  rate = fmt::format("{:.2f}", p);
+                  extrapolated = fmt::format("{:.9g}", u.y() + (u.y() - probes[n - 2].second.y()) / (std::pow(ratio, p) - 1.0));
+                }
+              }
+              const std::string line = fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:>15.9e} {:>15.9e} {:>10} "
+                                                   "{:>6} {:>16} {:8.3f}",
+                                                   to_string(cloud), to_string(order), to_string(q), beta, h,
+                                                   2 * r.nodes.size(), u.x(), u.y(), change, rate, extrapolated, seconds);
+              table += line + "\n";
+              csv += fmt::format("{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e}\n", to_string(cloud),
+                                 to_string(order), to_string(q), beta, h, r.nodes.size(), 2 * r.nodes.size(),
+                                 r.quadrature.size(), u.y(), seconds, r.consistency_before, r.consistency_after);
+              std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+              continue;
+            }
+            const double probe_uy = probe ? r.displacement({*probe})[0].y() : std::nan("");
             const ElasticErrors& e = *r.errors;
             std::string rates;
             if (!series.empty()) {
@@ -160,26 +200,32 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
             const std::string line = fmt::format(
                 "{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:10.3e} {:10.3e} {:10.3e} {:17} {:11.7f} {:8.3f}",
                 to_string(cloud), to_string(order), to_string(q), beta, h, 2 * r.nodes.size(),
-                e.l2_displacement, e.energy, e.l2_stress, rates, probe, seconds);
+                e.l2_displacement, e.energy, e.l2_stress, rates, probe_uy, seconds);
             table += line + "\n";
             csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.3e},{:.3e}\n",
                                to_string(cloud), to_string(order), to_string(q), beta, h, r.nodes.size(),
                                2 * r.nodes.size(), r.quadrature.size(), e.l2_displacement, e.energy,
-                               e.l2_stress, probe, seconds, r.consistency_before, r.consistency_after);
+                               e.l2_stress, probe_uy, seconds, r.consistency_before, r.consistency_after);
             std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
           }
         }
   const std::filesystem::path csv_path = scene.output.folder / "convergence.csv";
   write_file_atomically(csv_path, csv);
-  std::cout << fmt::format(
-                   "\n{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n",
-                   "cloud", "order", "scheme", "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress",
-                   "rates (L2 E S)", st.probe ? "probe u_y" : "-", "time [s]")
-            << table;
+  if (exact)
+    std::cout << fmt::format(
+        "\n{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n", "cloud", "order", "scheme",
+        "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress", "rates (L2 E S)", probe ? "probe u_y" : "-", "time [s]");
+  else
+    std::cout << fmt::format("\nno exact solution: u^h at the probe ({:.6g}, {:.6g}), |change| from the level before, "
+                             "its observed rate and the Richardson-extrapolated u_y\n"
+                             "{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>15} {:>15} {:>10} {:>6} {:>16} {:>8}\n",
+                             probe->x(), probe->y(), "cloud", "order", "scheme", "beta", "h", "DOFs", "u_x", "u_y",
+                             "|change|", "rate", "extrapolated u_y", "time [s]");
+  std::cout << table;
   if (st.reference) std::cout << fmt::format("reference probe u_y: {:.7f}\n", *st.reference);
   std::cout << fmt::format("wrote {}\n", csv_path.string());
-  // Plots: error against spacing and against run time.
-  plot("plot_convergence.py", csv_path, scene.output.folder);
+  // Plots: error against spacing and against run time (errors need an exact solution).
+  if (exact) plot("plot_convergence.py", csv_path, scene.output.folder);
   return 0;
 }
 

@@ -12,6 +12,7 @@
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_output.hpp"
@@ -59,12 +60,19 @@ QuadratureRule error_rule(const ElasticityScene& scene) {
 int run_static(const ElasticityScene& scene) {
   std::cout << fmt::format("mfree run: {} (total-Lagrangian statics, {} material, {} thread(s))\n",
                            scene.file.string(), name(scene.material), thread_count());
+  std::cout << scene.describe_conditions();
   StageTimer timer;
   timer.report_to(&std::cout);
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
   const TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
                               disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
+  {
+    // Statics must be well posed: the reference tangent may leave no rigid-body motion free.
+    SparseMatrix k0 = model.zero_matrix();
+    model.tangent(Eigen::VectorXd::Zero(model.dofs()), {}, k0);
+    check_rigid_body_modes(k0, disc.nodes);
+  }
   std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points, consistency defect {:.2e} -> {:.2e}, {} tangent\n",
                            disc.nodes.size(), model.dofs(), disc.quadrature.size(), disc.consistency_before,
                            disc.consistency_after, model.symmetric() ? "symmetric" : "non-symmetric");
@@ -200,6 +208,7 @@ int run_dynamics(const ElasticityScene& scene) {
   const DynamicsSettings& s = scene.dynamics->settings;
   std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {} material, {} thread(s))\n",
                            scene.file.string(), to_string(s.scheme), name(scene.material), thread_count());
+  std::cout << scene.describe_conditions();
   const DynamicRun run = simulate(scene, s, true);
   const DynamicsResult& r = run.result;
   std::cout << fmt::format("  {} nodes ({} DOFs), {} steps of dt = {:.4e} s{}{}\n", run.nodes, 2 * run.nodes, r.steps,

@@ -1,5 +1,6 @@
 #include "mfree/galerkin/boundary_quadrature.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -8,23 +9,41 @@
 
 namespace mfree {
 
-BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, int gauss_points) {
+BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, int gauss_points,
+                                       const std::vector<BoundarySelection>& parts) {
   if (!(max_length > 0.0)) throw InputError(fmt::format("boundary quadrature: piece length must be positive, got {}", max_length));
   const GaussLegendre1D g = gauss_legendre(gauss_points);
   BoundaryQuadrature bq;
   const auto& segments = domain.boundary();
+  // Per segment, the parameters where a part begins or ends.
+  std::vector<std::vector<double>> breaks(segments.size(), std::vector<double>{0.0, 1.0});
+  for (const BoundarySelection& part : parts)
+    for (const BoundaryPiece& p : part) {
+      breaks[p.segment].push_back(p.t0);
+      breaks[p.segment].push_back(p.t1);
+    }
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const BoundarySegment& seg = segments[s];
-    const int pieces = std::max(1, static_cast<int>(std::ceil(seg.length / max_length - 1e-9)));
-    const double piece = seg.length / pieces;
-    for (int p = 0; p < pieces; ++p)
-      for (std::size_t k = 0; k < g.points.size(); ++k) {
-        const double t = (p + g.points[k]) / pieces;
-        bq.points.push_back(seg.a + t * (seg.b - seg.a));
-        bq.normals.push_back(seg.normal);
-        bq.weights.push_back(g.weights[k] * piece);
-        bq.segment.push_back(static_cast<Index>(s));
-      }
+    std::vector<double>& b = breaks[s];
+    std::sort(b.begin(), b.end());
+    // Breaks closer than round-off of the segment make no interval of their own.
+    b.erase(std::unique(b.begin(), b.end(), [](double x, double y) { return y - x < 1e-12; }), b.end());
+    b.back() = 1.0;
+    const Vec2 tangent = (seg.b - seg.a) / seg.length;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+      const double t0 = b[i], span = b[i + 1] - b[i];
+      const int pieces = std::max(1, static_cast<int>(std::ceil(span * seg.length / max_length - 1e-9)));
+      const double piece = span * seg.length / pieces;
+      for (int p = 0; p < pieces; ++p)
+        for (std::size_t k = 0; k < g.points.size(); ++k) {
+          const double t = t0 + span * ((p + g.points[k]) / pieces);
+          bq.points.push_back(seg.a + t * (seg.b - seg.a));
+          bq.normals.push_back(seg.normal);
+          bq.tangents.push_back(tangent);
+          bq.weights.push_back(g.weights[k] * piece);
+          bq.segment.push_back(static_cast<Index>(s));
+        }
+    }
   }
   return bq;
 }

@@ -1,5 +1,7 @@
 #include "mfree/galerkin/elasticity_solver.hpp"
 
+#include "mfree/galerkin/rigid_body_modes.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 
@@ -72,7 +74,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   });
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
-  res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3);
+  res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, condition_parts(s.problem.conditions));
   res.at_boundary = timer.time("boundary functions", [&] {
     return sample_shape_functions(*res.trial, res.boundary.points, true);
   });
@@ -109,6 +111,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
     return assemble_elasticity(problem, domain, res.node_count(), res.quadrature, res.test(), res.boundary,
                                res.at_boundary);
   });
+  check_rigid_body_modes(sys.stiffness, res.nodes);
   res.solver = s.solver.value_or(sys.symmetric ? SolverKind::cholmod : SolverKind::umfpack);
   if (res.solver == SolverKind::cholmod && !sys.symmetric)
     throw InputError("solver: CHOLMOD needs a symmetric system; VCI makes it non-symmetric (use umfpack)");

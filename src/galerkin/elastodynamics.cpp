@@ -28,7 +28,7 @@ Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
 
 double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d) {
   SparseMatrix k = model.zero_matrix();
-  model.tangent(d, k);
+  model.tangent(d, {}, k);
   const Eigen::VectorXd scale = lumped.cwiseSqrt().cwiseInverse();
   // Power iteration on S = M^-1/2 K M^-1/2 from a seeded random start: the Rayleigh
   // quotient rises to omega_max^2. It stops when it changes by less than 1e-4 relative.
@@ -92,7 +92,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
 
   // Forces: g = f_ext - f_c (the work term), and the acceleration they and f_int give.
   const auto applied = [&](const Eigen::VectorXd& x, double t) {
-    return timer.time("residual", [&] { return Eigen::VectorXd(model.external_force({1.0, t}) - model.constraint_force(x, {1.0, t})); });
+    return timer.time("residual", [&] { return Eigen::VectorXd(model.external_force({1.0, t}) - model.boundary_force(x, {1.0, t})); });
   };
   const auto internal = [&](const Eigen::VectorXd& x) { return timer.time("residual", [&] { return model.internal_force(x); }); };
   Eigen::VectorXd g = applied(d, 0.0);
@@ -149,10 +149,10 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       const NonlinearSystem system{
           [&](const Eigen::VectorXd& x) {
             const Eigen::VectorXd acc = c * (x - base);
-            return Eigen::VectorXd(mass * acc + model.internal_force(x) + model.constraint_force(x, {1.0, t}) - f_ext);
+            return Eigen::VectorXd(mass * acc + model.internal_force(x) + model.boundary_force(x, {1.0, t}) - f_ext);
           },
           [&](const Eigen::VectorXd& x, SparseMatrix& kt) {
-            model.tangent(x, kt);
+            model.tangent(x, {1.0, t}, kt);
             Eigen::Map<Eigen::VectorXd>(kt.valuePtr(), kt.nonZeros()) +=
                 c * Eigen::Map<const Eigen::VectorXd>(mass.valuePtr(), mass.nonZeros());
           }};
@@ -171,7 +171,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       v += 0.5 * dt * (a + a_new);
       a = a_new;
       d = std::move(x);
-      if (energy) g_new = f_ext - timer.time("residual", [&] { return model.constraint_force(d, {1.0, t}); });
+      if (energy) g_new = f_ext - timer.time("residual", [&] { return model.boundary_force(d, {1.0, t}); });
     }
     if (energy) {
       work += 0.5 * (g + g_new).dot(d - d_old);

@@ -150,9 +150,9 @@ StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& 
       if (s.log) *s.log << fmt::format("    load factor {:.6g}\n", factor);
       const NonlinearSystem system{
           [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
-            return model.internal_force(x) + model.constraint_force(x, {factor, 0.0}) - factor * f_unit;
+            return model.internal_force(x) + model.boundary_force(x, {factor, 0.0}) - factor * f_unit;
           },
-          [&](const Eigen::VectorXd& x, SparseMatrix& t) { model.tangent(x, t); }};
+          [&](const Eigen::VectorXd& x, SparseMatrix& t) { model.tangent(x, {factor, 0.0}, t); }};
       Eigen::VectorXd trial = d;
       const NewtonOutcome o = newton(system, trial, k, solver, s, timer);
       if (o.converged) {

@@ -41,8 +41,8 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
   ElasticitySystem sys;
   sys.symmetric = model.symmetric();
   sys.stiffness = model.zero_matrix();
-  model.tangent(zero, sys.stiffness);
-  sys.load = model.external_force({}) - model.constraint_force(zero, {});
+  model.tangent(zero, {}, sys.stiffness);
+  sys.load = model.external_force({}) - model.boundary_force(zero, {});
   return sys;
 }
 

@@ -21,22 +21,22 @@ auto at_point(const char* kind, const std::vector<Vec2>& points, Index k, F&& f)
   }
 }
 
-/// The condition of every boundary segment: the first whose region holds its midpoint.
-std::vector<const BoundaryCondition*> segment_conditions(const SolidProblem& p, const Domain& domain) {
-  const auto& segments = domain.boundary();
-  std::vector<const BoundaryCondition*> out(segments.size(), nullptr);
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    const Vec2 mid = 0.5 * (segments[s].a + segments[s].b);
-    for (const BoundaryCondition& c : p.conditions)
-      if (c.region.contains(mid)) {
-        out[s] = &c;
-        break;
-      }
-  }
-  return out;
+bool is_essential(const BoundaryCondition& c) {
+  return c.type == BoundaryCondition::Type::displacement || c.type == BoundaryCondition::Type::slip;
 }
 
-bool is_essential(const BoundaryCondition* c) { return c && c->type != BoundaryCondition::Type::traction; }
+/// The traction of a natural condition on the reference boundary: tbar, or -p N.
+Vec2 dead_traction(const BoundaryCondition& c, const Vec2& x, const Vec2& n, double t) {
+  return c.type == BoundaryCondition::Type::pressure ? Vec2(-c.pressure(x, t) * n) : c.value(x, n, t);
+}
+
+/// R (a, b) = (b, -a): the rotation by -90 degrees that turns a tangent (body on its left)
+/// into the outward normal.
+Mat2 rotation_minus_90() {
+  Mat2 r;
+  r << 0.0, 1.0, -1.0, 0.0;
+  return r;
+}
 
 /// Adds blocks sum over rows K of a 2 x 2 kernel to a block matrix on `pattern`, column by
 /// column: node J's two columns are written only by the thread that owns J, with the rows
@@ -127,6 +127,12 @@ Mat2 traction_operator(const Tangent& a, const Vec2& g, const Vec2& n) {
 
 }  // namespace
 
+std::vector<BoundarySelection> condition_parts(const std::vector<BoundaryCondition>& conditions) {
+  std::vector<BoundarySelection> parts;
+  for (const BoundaryCondition& c : conditions) parts.push_back(c.where);
+  return parts;
+}
+
 TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes,
                                  const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
                                  const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary)
@@ -141,13 +147,37 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   if (!(problem_.nitsche_beta > 0.0))
     throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
   reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
-  const std::vector<const BoundaryCondition*> condition = segment_conditions(problem_, domain);
+  const bool linear = is_linear(problem_.material);
   traction_of_point_.assign(bq.size(), nullptr);
   reference_traction_.resize(at_boundary.nodes.size());
+  std::vector<bool> seen(problem_.conditions.size(), false);
+  // Nitsche's terms and the follower pressures couple the nodes of a boundary point's row
+  // (outside the domain pattern when quadrature rows are narrower than the supports, as
+  // with Gauss cells).
+  const auto couple_row = [&](Index p) {
+    boundary_nodes_.insert(boundary_nodes_.end(), at_boundary.nodes.begin() + at_boundary.row_begin(p),
+                           at_boundary.nodes.begin() + at_boundary.row_end(p));
+    boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
+  };
+  const auto& segments = domain.boundary();
   for (Index p = 0; p < bq.size(); ++p) {
-    const BoundaryCondition* c = condition[bq.segment[p]];
+    const BoundarySegment& seg = segments[bq.segment[p]];
+    const double t = (bq.points[p] - seg.a).dot(seg.b - seg.a) / (seg.length * seg.length);
+    const BoundaryCondition* c = nullptr;
+    for (std::size_t k = 0; k < problem_.conditions.size() && !c; ++k)
+      for (const BoundaryPiece& piece : problem_.conditions[k].where)
+        if (piece.segment == bq.segment[p] && t >= piece.t0 && t <= piece.t1) {
+          c = &problem_.conditions[k];
+          seen[k] = true;
+          break;
+        }
     if (!c) continue;
-    if (!is_essential(c)) {
+    if (c->type == BoundaryCondition::Type::pressure && !linear) {
+      follower_.emplace_back(p, c);
+      couple_row(p);
+      continue;
+    }
+    if (!is_essential(*c)) {
       traction_of_point_[p] = c;
       continue;
     }
@@ -155,17 +185,19 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     nitsche_.push_back({p, c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(), c});
     for (Index s = at_boundary.row_begin(p); s < at_boundary.row_end(p); ++s)
       reference_traction_[s] = traction_operator(reference_tangent_, at_boundary.grad[s], n);
-    // Nitsche's terms couple the nodes of a boundary point's row (outside the domain pattern
-    // when quadrature rows are narrower than the supports, as with Gauss cells).
-    boundary_nodes_.insert(boundary_nodes_.end(), at_boundary.nodes.begin() + at_boundary.row_begin(p),
-                           at_boundary.nodes.begin() + at_boundary.row_end(p));
-    boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
+    couple_row(p);
   }
+  for (std::size_t c = 0; c < seen.size(); ++c)
+    if (!seen[c])
+      throw InputError(fmt::format("boundary condition '{}' holds at no boundary quadrature point (it selects {} of "
+                                   "the boundary, or only where an earlier condition holds)",
+                                   problem_.conditions[c].name,
+                                   problem_.conditions[c].where.empty() ? "none" : "a little"));
   boundary_rows_ = RowIncidence(boundary_offsets_, boundary_nodes_, nodes);
   const RowIncidence* const sets[] = {&domain_rows_, &boundary_rows_};
   pattern_ = node_pattern(sets);
   domain_symmetric_ = test_gradients == nullptr;
-  symmetric_ = domain_symmetric_ && (nitsche_.empty() || is_linear(problem_.material));
+  symmetric_ = domain_symmetric_ && (nitsche_.empty() || linear) && follower_.empty();
 }
 
 Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) const {
@@ -184,7 +216,7 @@ Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const 
   return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
 }
 
-Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, const LoadState& load) const {
+Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const LoadState& load) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
   for (const NitschePoint& p : nitsche_) {
@@ -198,7 +230,7 @@ Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, cons
     }
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
-    const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n));
+    const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n, load.time));
     const Vec2 traction =
         p.projection * (at_point("boundary", bq_.points, p.point, [&] { return stress(problem_.material, f_at); }) * n);
     for (Index s = begin; s < end; ++s) {
@@ -206,6 +238,16 @@ Eigen::VectorXd TotalLagrangian::constraint_force(const Eigen::VectorXd& d, cons
       f.segment<2>(2 * at_boundary_.nodes[s]) +=
           w * (-phi * traction - reference_traction_[s].transpose() * gap + penalty * phi * gap);
     }
+  }
+  // Follower pressures: -f_I = p int phi_I R x,S dS, x,S = T + sum_J d_J (grad phi_J . T).
+  const Mat2 r = rotation_minus_90();
+  for (const auto& [p, c] : follower_) {
+    const Index begin = at_boundary_.row_begin(p), end = at_boundary_.row_end(p);
+    const Vec2& t = bq_.tangents[p];
+    Vec2 dx = t;
+    for (Index s = begin; s < end; ++s) dx += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].dot(t);
+    const Vec2 load_at = bq_.weights[p] * load.factor * c->pressure(bq_.points[p], load.time) * (r * dx);
+    for (Index s = begin; s < end; ++s) f.segment<2>(2 * at_boundary_.nodes[s]) += at_boundary_.phi[s] * load_at;
   }
   return f;
 }
@@ -222,14 +264,14 @@ Eigen::VectorXd TotalLagrangian::external_force(const LoadState& load) const {
   for (Index p = 0; p < bq_.size(); ++p) {
     const BoundaryCondition* c = traction_of_point_[p];
     if (!c) continue;
-    const Vec2 t = bq_.weights[p] * load.factor * c->value(bq_.points[p], bq_.normals[p]);
+    const Vec2 t = bq_.weights[p] * load.factor * dead_traction(*c, bq_.points[p], bq_.normals[p], load.time);
     for (Index s = at_boundary_.row_begin(p); s < at_boundary_.row_end(p); ++s)
       f.segment<2>(2 * at_boundary_.nodes[s]) += at_boundary_.phi[s] * t;
   }
   return f;
 }
 
-void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
+void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, SparseMatrix& k) const {
   std::fill(k.valuePtr(), k.valuePtr() + k.nonZeros(), 0.0);
   double* values = k.valuePtr();
 
@@ -281,6 +323,20 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, SparseMatrix& k) const {
           for (int c = 0; c < 2; ++c) values[block_slot(pattern_, 2, i, j, r, c)] += kij(r, c);
       }
     }
+  }
+
+  // Follower pressures: K_IJ = w p phi_I (grad phi_J . T) R.
+  for (const auto& [p, c] : follower_) {
+    const Index begin = at_boundary_.row_begin(p), end = at_boundary_.row_end(p);
+    const Vec2& tangent = bq_.tangents[p];
+    const double wp = bq_.weights[p] * load.factor * c->pressure(bq_.points[p], load.time);
+    for (Index ai = begin; ai < end; ++ai)
+      for (Index bj = begin; bj < end; ++bj) {
+        const double c = wp * at_boundary_.phi[ai] * at_boundary_.grad[bj].dot(tangent);
+        const Index i = at_boundary_.nodes[ai], j = at_boundary_.nodes[bj];
+        values[block_slot(pattern_, 2, i, j, 0, 1)] += c;
+        values[block_slot(pattern_, 2, i, j, 1, 0)] -= c;
+      }
   }
 }
 

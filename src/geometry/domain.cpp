@@ -174,11 +174,13 @@ bool all_collinear(const Ring& r) {
   });
 }
 
-/// Validates raw rings from the input and orients them: outer CCW, holes CW. `parts`, when
-/// given, holds a part per edge of every ring and is reordered with its ring. `source` names
-/// the input in error messages.
-std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& source,
+/// Validates raw rings from the input and orients them: outer CCW, holes CW. `reversed`
+/// gets, per ring, whether it was reversed (edge numbers refer to the rings as given).
+/// `parts`, when given, holds a part per edge of every ring as given. `source` names the
+/// input in error messages.
+std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& source, std::vector<bool>& reversed,
                                    std::vector<std::vector<int>>* parts = nullptr) {
+  reversed.assign(rings.size(), false);
   for (std::size_t k = 0; k < rings.size(); ++k) {
     Ring& r = rings[k];
     if (r.size() > 1 && r.front() == r.back()) {
@@ -202,12 +204,7 @@ std::vector<Ring> normalised_rings(std::vector<Ring> rings, const std::string& s
     const bool ccw = p.orientation() == CGAL::COUNTERCLOCKWISE;
     if (ccw != (k == 0)) {
       std::reverse(r.begin(), r.end());
-      if (parts) {
-        // Edge j of the reversed ring is edge n - 2 - j (mod n) of the given one.
-        const std::vector<int> given = (*parts)[k];
-        const std::size_t n = r.size();
-        for (std::size_t j = 0; j < n; ++j) (*parts)[k][j] = given[(2 * n - 2 - j) % n];
-      }
+      reversed[k] = true;
     }
   }
 
@@ -263,9 +260,10 @@ struct Domain::Impl {
 
   std::vector<std::string> part_names;
 
-  explicit Impl(std::vector<Ring> oriented, const std::vector<std::vector<int>>& parts = {},
-                std::vector<std::string> names = {})
-      : rings(std::move(oriented)), segments(make_segments(rings, parts)), grid(segments), part_names(std::move(names)) {
+  explicit Impl(std::vector<Ring> oriented, const std::vector<bool>& reversed,
+                const std::vector<std::vector<int>>& parts = {}, std::vector<std::string> names = {})
+      : rings(std::move(oriented)), segments(make_segments(rings, reversed, parts)), grid(segments),
+        part_names(std::move(names)) {
     for (const Ring& r : rings) {
       fast_rings.push_back(fast_polygon(r));
       ring_boxes.push_back(ring_bounding_box(r));
@@ -276,7 +274,7 @@ struct Domain::Impl {
     box = ring_boxes[0];
   }
 
-  static std::vector<BoundarySegment> make_segments(const std::vector<Ring>& rings,
+  static std::vector<BoundarySegment> make_segments(const std::vector<Ring>& rings, const std::vector<bool>& reversed,
                                                     const std::vector<std::vector<int>>& parts) {
     std::vector<BoundarySegment> out;
     for (std::size_t k = 0; k < rings.size(); ++k) {
@@ -287,8 +285,10 @@ struct Domain::Impl {
         const double length = (b - a).norm();
         const Vec2 t = (b - a) / length;
         // The domain lies to the left of a -> b, so the outward normal is t turned clockwise.
-        const int part = parts.empty() ? -1 : parts[k][i];
-        out.push_back(BoundarySegment{a, b, Vec2(t.y(), -t.x()), length, static_cast<int>(k), static_cast<int>(i), part});
+        // Edge i of a reversed ring runs backwards along edge n - 2 - i (mod n) as given.
+        const std::size_t n = r.size(), given = reversed[k] ? (2 * n - 2 - i) % n : i;
+        const int part = parts.empty() ? -1 : parts[k][given];
+        out.push_back(BoundarySegment{a, b, Vec2(t.y(), -t.x()), length, static_cast<int>(k), static_cast<int>(given), part});
       }
     }
     return out;
@@ -312,7 +312,8 @@ Domain Domain::rectangle(Vec2 lo, Vec2 hi) {
         lo.x(), lo.y(), hi.x(), hi.y()));
   }
   Ring r{lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
-  return Domain(std::make_unique<Impl>(std::vector<Ring>{std::move(r)}, std::vector<std::vector<int>>{{0, 1, 2, 3}},
+  return Domain(std::make_unique<Impl>(std::vector<Ring>{std::move(r)}, std::vector<bool>{false},
+                                       std::vector<std::vector<int>>{{0, 1, 2, 3}},
                                        std::vector<std::string>{"bottom", "right", "top", "left"}));
 }
 
@@ -325,13 +326,16 @@ Domain Domain::from_rings(std::vector<Ring> rings, std::vector<std::vector<int>>
     for (int p : ring)
       if (p < -1 || p >= static_cast<int>(part_names.size()))
         throw InputError(fmt::format("{}: edge part {} is not a named part (there are {})", source, p, part_names.size()));
-  std::vector<Ring> oriented = normalised_rings(std::move(rings), source, &edge_parts);
-  return Domain(std::make_unique<Impl>(std::move(oriented), edge_parts, std::move(part_names)));
+  std::vector<bool> reversed;
+  std::vector<Ring> oriented = normalised_rings(std::move(rings), source, reversed, &edge_parts);
+  return Domain(std::make_unique<Impl>(std::move(oriented), reversed, edge_parts, std::move(part_names)));
 }
 
 Domain Domain::from_wkt(std::string_view wkt, const std::string& source) {
   WktReader reader(wkt, source);
-  return Domain(std::make_unique<Impl>(normalised_rings(reader.polygon(), source)));
+  std::vector<bool> reversed;
+  std::vector<Ring> oriented = normalised_rings(reader.polygon(), source, reversed);
+  return Domain(std::make_unique<Impl>(std::move(oriented), reversed));
 }
 
 Domain Domain::from_file(const std::filesystem::path& path) {

@@ -4,23 +4,77 @@
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/io/choice_table.hpp"
 #include "mfree/io/scene_sections.hpp"
 
 namespace mfree {
 
 namespace {
 
-CloudKind cloud_kind(const std::string& s) {
-  return s == "lattice" ? CloudKind::lattice : s == "perturbed" ? CloudKind::perturbed : CloudKind::random;
+const ChoiceTable<CloudKind> cloud_table{
+    {"lattice", CloudKind::lattice}, {"perturbed", CloudKind::perturbed}, {"random", CloudKind::random}};
+const ChoiceTable<RKOrder> order_table{{"linear", RKOrder::linear}, {"quadratic", RKOrder::quadratic}};
+const ChoiceTable<QuadratureScheme> scheme_table{{"projected", QuadratureScheme::projected},
+                                                 {"gauss_cells", QuadratureScheme::gauss_cells},
+                                                 {"nodal", QuadratureScheme::nodal}};
+const ChoiceTable<Window> window_table{{"cubic_bspline", Window::cubic_bspline},
+                                       {"quadratic_spline", Window::quadratic_spline}};
+const ChoiceTable<SupportShape> support_table{{"circular", SupportShape::circular}, {"tensor", SupportShape::tensor}};
+const ChoiceTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
+const ChoiceTable<Consistency> consistency_table{
+    {"symmetric", Consistency::symmetric}, {"vci", Consistency::vci}, {"none", Consistency::none}};
+const ChoiceTable<std::optional<SolverKind>> solver_table{
+    {"auto", std::nullopt}, {"cholmod", SolverKind::cholmod}, {"umfpack", SolverKind::umfpack}};
+const ChoiceTable<TimeScheme> time_scheme_table{{"central_difference", TimeScheme::central_difference},
+                                                {"newmark", TimeScheme::newmark}};
+using ConditionType = BoundaryCondition::Type;
+const ChoiceTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
+                                                 {"slip", ConditionType::slip},
+                                                 {"traction", ConditionType::traction},
+                                                 {"pressure", ConditionType::pressure}};
+
+/// The selector keys of a [[boundary]] table: exactly one of part, ring (alone or with
+/// edges), edges (of the outer ring) and region.
+BoundarySelection read_selection(const SceneTable& t, const Domain& domain, std::string& key, std::string& what) {
+  const int given = t.has("part") + (t.has("ring") || t.has("edges")) + t.has("region");
+  if (given != 1) t.error("name", "give exactly one selector: part, ring (with or without edges), edges or region");
+  try {
+    if (t.has("part")) {
+      key = "part";
+      what = fmt::format("part '{}'", t.string("part"));
+      return select_part(domain, t.string("part"));
+    }
+    if (t.has("region")) {
+      key = "region";
+      const Box b = read_box(t, "region");
+      what = fmt::format("region [[{}, {}], [{}, {}]]", b.lo.x(), b.lo.y(), b.hi.x(), b.hi.y());
+      return select_box(domain, b);
+    }
+    key = t.has("edges") ? "edges" : "ring";
+    const int ring = static_cast<int>(t.integer_or("ring", 0, 0, 1 << 30));
+    if (!t.has("edges")) {
+      what = ring == 0 ? std::string("the outer ring") : fmt::format("hole {}", ring);
+      return select_ring(domain, ring);
+    }
+    std::vector<int> edges;
+    for (const double e : t.numbers("edges", 0, 0, 1 << 30)) {
+      if (e != std::floor(e)) t.error("edges", "edge numbers are whole numbers");
+      edges.push_back(static_cast<int>(e));
+    }
+    what = fmt::format("{} edge(s) of ring {}", edges.size(), ring);
+    return select_edges(domain, ring, edges);
+  } catch (const InputError& e) {
+    t.error(key, e.what());
+  }
 }
-RKOrder rk_order(const std::string& s) { return s == "linear" ? RKOrder::linear : RKOrder::quadratic; }
-QuadratureScheme scheme(const std::string& s) {
-  return s == "projected" ? QuadratureScheme::projected
-                          : s == "gauss_cells" ? QuadratureScheme::gauss_cells : QuadratureScheme::nodal;
+
+/// No formula of a static run may use t: it would be evaluated at t = 0 only.
+void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics) {
+  if (f.depends_on_time() && !dynamics)
+    t.error(key, fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales loads by "
+                             "its load factor)",
+                             f.expression()));
 }
-const std::vector<std::string> cloud_names{"lattice", "perturbed", "random"};
-const std::vector<std::string> order_names{"linear", "quadratic"};
-const std::vector<std::string> scheme_names{"projected", "gauss_cells", "nodal"};
 
 }  // namespace
 
@@ -28,7 +82,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
                                       const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
-  ElasticityScene out{file, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {}, {}, {}, {}};
+  ElasticityScene out{file, {}, {}, {}, {}, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
 
   {
@@ -45,7 +99,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("nodes");
-    s.nodes.kind = cloud_kind(t.choice("cloud", cloud_names));
+    s.nodes.kind = cloud_table.read(t, "cloud");
     s.nodes.spacing = t.number("spacing", 1e-12, 1e12);
     s.nodes.perturbation = t.number_or("perturbation", 0.3, 0.0, 1.0);
     s.nodes.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
@@ -53,25 +107,22 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("kernel");
-    s.order = rk_order(t.choice("order", order_names));
-    s.window = t.choice_or("window", "cubic_bspline", {"cubic_bspline", "quadratic_spline"}) == "cubic_bspline"
-                   ? Window::cubic_bspline : Window::quadratic_spline;
-    s.support = t.choice_or("support", "circular", {"circular", "tensor"}) == "circular" ? SupportShape::circular
-                                                                                           : SupportShape::tensor;
+    s.order = order_table.read(t, "order");
+    s.window = window_table.read_or(t, "window", Window::cubic_bspline);
+    s.support = support_table.read_or(t, "support", SupportShape::circular);
     s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
     t.finish();
   }
   {
     const SceneTable t = root.table("quadrature");
-    s.scheme = scheme(t.choice("scheme", scheme_names));
+    s.scheme = scheme_table.read(t, "scheme");
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
-    s.quadrature_lattice = t.choice_or("cloud", "lattice", {"lattice", "like_nodes"}) == "lattice";
-    s.quadrature_order = rk_order(t.choice_or("order", "linear", order_names));
+    s.quadrature_lattice = quadrature_cloud_table.read_or(t, "cloud", true);
+    s.quadrature_order = order_table.read_or(t, "order", RKOrder::linear);
     s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
-    const std::string c = t.choice_or("consistency", "symmetric", {"symmetric", "vci", "none"});
-    s.consistency = c == "symmetric" ? Consistency::symmetric : c == "vci" ? Consistency::vci : Consistency::none;
+    s.consistency = consistency_table.read_or(t, "consistency", Consistency::symmetric);
     s.gauss_points = static_cast<int>(t.integer_or("gauss_points", s.order == RKOrder::linear ? 4 : 6, 1, 12));
     t.finish();
   }
@@ -81,17 +132,59 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     out.material = m.material;
     out.density = m.density;
   }
+  out.constants = read_constants(root);
+  const bool dynamics = root.has("dynamics");
+  if (root.has("loads")) {
+    const SceneTable t = root.table("loads");
+    if (t.has("body_force")) {
+      out.body_force = read_vector_formula(t, "body_force", out.constants);
+      check_static(t, "body_force", out.body_force->x, dynamics);
+      check_static(t, "body_force", out.body_force->y, dynamics);
+    }
+    if (t.has("gravity")) {
+      const auto g = t.numbers("gravity", 2, -1e300, 1e300);
+      if (!(out.density > 0.0)) t.error("gravity", "gravity needs [material] density");
+      out.gravity = Vec2(g[0], g[1]);
+    }
+    if (!t.has("body_force") && !t.has("gravity")) t.error("body_force", "give body_force or gravity (or both)");
+    t.finish();
+  }
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
     ExactSpec e;
-    e.solution = t.choice("solution", {"timoshenko_beam", "linear", "quadratic", "vibration"});
+    if (t.has("solution") == t.has("displacement"))
+      t.error("solution", "give a built-in solution, or the exact displacement as formulas (displacement = [ux, uy])");
+    if (t.has("displacement")) {
+      e.solution = "formulas";
+      ExactFormulas f{read_vector_formula(t, "displacement", out.constants), {}, {}};
+      if (t.has("stress") == t.has("gradient"))
+        t.error("displacement", "give the exact stress = [sxx, syy, sxy] or the displacement gradient = "
+                                "[dux/dx, dux/dy, duy/dx, duy/dy] as formulas (one of them)");
+      const std::string key = t.has("stress") ? "stress" : "gradient";
+      const std::vector<std::string> texts = t.expressions(key, key == "stress" ? 3 : 4);
+      std::vector<Formula> parts;
+      for (std::size_t i = 0; i < texts.size(); ++i)
+        parts.emplace_back(texts[i], out.constants, t.where(key, static_cast<int>(i)));
+      (key == "stress" ? f.stress : f.gradient) = std::move(parts);
+      if (!dynamics) {
+        check_static(t, "displacement", f.displacement.x, false);
+        check_static(t, "displacement", f.displacement.y, false);
+        for (const Formula& g : key == "stress" ? f.stress : f.gradient) check_static(t, key, g, false);
+      } else {
+        t.error("displacement", "exact solutions given as formulas are for statics; dynamics has the built-in "
+                                "vibration solution");
+      }
+      e.formulas = std::move(f);
+    } else {
+      e.solution = t.choice("solution", {"timoshenko_beam", "linear", "quadratic", "vibration"});
+    }
     if (e.solution == "timoshenko_beam") {
       e.load = t.number("load", -1e300, 1e300);
     } else if (e.solution == "vibration") {
       e.amplitude = t.number("amplitude", 0.0, 1e300);
       if (!std::holds_alternative<NeoHookean>(out.material)) t.error("solution", "the vibration solution needs [material] model = \"neo_hookean\"");
       if (!(out.density > 0.0)) t.error("solution", "the vibration solution needs [material] density");
-    } else {
+    } else if (e.solution != "formulas") {
       const auto a = t.numbers("offset", 2, -1e300, 1e300);
       const auto g = t.pairs("gradient", 2);
       e.offset = Vec2(a[0], a[1]);
@@ -105,35 +198,56 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
         }
       }
     }
+    // A built-in solution comes with the body force that makes it exact; another one would not.
+    if (e.solution != "formulas" && (out.body_force || out.gravity))
+      t.error("solution", fmt::format("the {} solution sets the body force: remove [loads]", e.solution));
     t.finish();
-    out.exact_spec = e;
+    out.exact_spec = std::move(e);
   }
   const std::optional<ExactElasticity> exact = out.exact();
-  for (const SceneTable& t : root.tables("boundary")) {
+  const std::vector<SceneTable> boundaries = root.tables("boundary");
+  std::vector<std::string> selector_keys;
+  for (const SceneTable& t : boundaries) {
     BoundaryCondition c;
     c.name = t.string("name");
-    const std::string type = t.choice("type", {"displacement", "slip", "traction"});
-    c.type = type == "displacement" ? BoundaryCondition::Type::displacement
-             : type == "slip"       ? BoundaryCondition::Type::slip
-                                    : BoundaryCondition::Type::traction;
-    c.region = read_box(t, "region");
-    if (t.is_string("value")) {
+    c.type = condition_table.read(t, "type");
+    std::string key, what;
+    c.where = read_selection(t, out.domain, key, what);
+    const double length = selection_length(out.domain, c.where);
+    if (c.where.empty() || !(length > 0.0))
+      t.error(key, fmt::format("{} selects no part of the boundary (the domain's bounding box is [[{}, {}], [{}, {}]])",
+                               what, out.domain.bounding_box().lo.x(), out.domain.bounding_box().lo.y(),
+                               out.domain.bounding_box().hi.x(), out.domain.bounding_box().hi.y()));
+    for (std::size_t k = 0; k < s.problem.conditions.size(); ++k) {
+      const double shared = overlap_length(out.domain, c.where, s.problem.conditions[k].where);
+      if (shared > 1e-12 * length)
+        t.error(key, fmt::format("{} overlaps boundary '{}' over a length of {:.6g}: each part of the boundary takes "
+                                 "one condition",
+                                 what, s.problem.conditions[k].name, shared));
+    }
+    out.selected.push_back({c.name, condition_table.name_of(c.type), what, length});
+    if (c.type == ConditionType::pressure) {
+      const Formula p = read_formula(t, "value", out.constants);
+      check_static(t, "value", p, dynamics);
+      c.pressure = [p](const Vec2& x, double time) { return p(x, time); };
+    } else if (t.is_string("value")) {
       (void)t.choice("value", {"exact"});
-      if (!exact) t.error("value", "'exact' needs a static [exact] solution (timoshenko_beam, linear or quadratic)");
+      if (!exact) t.error("value", "'exact' needs a static [exact] solution (built-in or formulas)");
       const ExactElasticity ex = *exact;
-      if (c.type != BoundaryCondition::Type::traction)
-        c.value = [ex](const Vec2& x, const Vec2&) { return ex.displacement(x); };
+      if (c.type != ConditionType::traction)
+        c.value = [ex](const Vec2& x, const Vec2&, double) { return ex.displacement(x); };
       else
-        c.value = [ex](const Vec2& x, const Vec2& n) { return ex.traction(x, n); };
+        c.value = [ex](const Vec2& x, const Vec2& n, double) { return ex.traction(x, n); };
     } else {
-      const auto v = t.numbers("value", 2, -1e300, 1e300);
-      const Vec2 value(v[0], v[1]);
-      c.value = [value](const Vec2&, const Vec2&) { return value; };
+      const VectorFormula v = read_vector_formula(t, "value", out.constants);
+      check_static(t, "value", v.x, dynamics);
+      check_static(t, "value", v.y, dynamics);
+      c.value = [v](const Vec2& x, const Vec2&, double time) { return v(x, time); };
     }
     t.finish();
     s.problem.conditions.push_back(c);
   }
-  if (exact) s.problem.body_force = exact->body_force;
+  s.problem.body_force = out.static_body_force();
   if (root.has("nitsche")) {
     const SceneTable t = root.table("nitsche");
     s.problem.nitsche_beta = t.number_or("beta", s.problem.nitsche_beta, 1e-6, 1e12);
@@ -141,8 +255,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   if (root.has("solver")) {
     const SceneTable t = root.table("solver");
-    const std::string k = t.choice_or("kind", "auto", {"auto", "cholmod", "umfpack"});
-    if (k != "auto") s.solver = k == "cholmod" ? SolverKind::cholmod : SolverKind::umfpack;
+    s.solver = solver_table.read_or(t, "kind", std::nullopt);
     t.finish();
   }
   if (root.has("newton")) {
@@ -167,8 +280,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("dynamics");
     DynamicsScene dyn;
     DynamicsSettings& d = dyn.settings;
-    d.scheme = t.choice("scheme", {"central_difference", "newmark"}) == "newmark" ? TimeScheme::newmark
-                                                                                 : TimeScheme::central_difference;
+    d.scheme = time_scheme_table.read(t, "scheme");
     d.end_time = t.number("end_time", 1e-300, 1e300);
     if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
     if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
@@ -194,6 +306,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (t.has("probe")) {
       const auto p = t.numbers("probe", 2, -1e300, 1e300);
       out.output.probe = Vec2(p[0], p[1]);
+      if (!out.domain.contains(*out.output.probe)) t.error("probe", "the probe lies outside the domain");
     }
     if (out.output.wants("error") && !exact && !out.vibration()) t.error("fields", "'error' needs an [exact] section");
     out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
@@ -209,22 +322,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     st.clouds = {s.nodes.kind};
     st.orders = {s.order};
     st.schemes = {s.scheme};
-    if (t.has("clouds")) {
-      st.clouds.clear();
-      for (const auto& c : t.choices("clouds", cloud_names)) st.clouds.push_back(cloud_kind(c));
-    }
-    if (t.has("orders")) {
-      st.orders.clear();
-      for (const auto& o : t.choices("orders", order_names)) st.orders.push_back(rk_order(o));
-    }
-    if (t.has("schemes")) {
-      st.schemes.clear();
-      for (const auto& q : t.choices("schemes", scheme_names)) st.schemes.push_back(scheme(q));
-    }
+    if (t.has("clouds")) st.clouds = cloud_table.read_list(t, "clouds");
+    if (t.has("orders")) st.orders = order_table.read_list(t, "orders");
+    if (t.has("schemes")) st.schemes = scheme_table.read_list(t, "schemes");
     if (t.has("time_schemes")) {
       if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
-      for (const auto& q : t.choices("time_schemes", {"central_difference", "newmark"}))
-        st.time_schemes.push_back(q == "newmark" ? TimeScheme::newmark : TimeScheme::central_difference);
+      st.time_schemes = time_scheme_table.read_list(t, "time_schemes");
     } else if (out.dynamics) {
       st.time_schemes = {out.dynamics->settings.scheme};
     }
@@ -242,6 +345,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (t.has("probe")) {
       const auto p = t.numbers("probe", 2, -1e300, 1e300);
       st.probe = Vec2(p[0], p[1]);
+      if (!out.domain.contains(*st.probe)) t.error("probe", "the probe lies outside the domain");
     }
     if (t.has("reference")) st.reference = t.number("reference", -1e300, 1e300);
     st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
@@ -269,11 +373,54 @@ SolidProblem ElasticityScene::solid_problem() const {
   p.material = material;
   if (const auto v = vibration())
     p.body_force = [v = *v](const Vec2& x, double t) -> Vec2 { return v.density * v.body_force(x, t); };
+  else if (body_force || gravity)
+    p.body_force = [f = body_force, g = gravity, rho = density](const Vec2& x, double t) -> Vec2 {
+      Vec2 b = Vec2::Zero();
+      if (f) b += (*f)(x, t);
+      if (g) b += rho * *g;
+      return b;
+    };
   return p;
+}
+
+VectorField ElasticityScene::static_body_force() const {
+  if (body_force || gravity)
+    return [f = body_force, g = gravity, rho = density](const Vec2& x) -> Vec2 {
+      Vec2 b = Vec2::Zero();
+      if (f) b += (*f)(x, 0.0);
+      if (g) b += rho * *g;
+      return b;
+    };
+  if (exact_spec && exact_spec->formulas) return {};  // the loads are the scene's: none
+  const std::optional<ExactElasticity> e = exact();
+  return e ? e->body_force : VectorField{};
+}
+
+std::string ElasticityScene::describe_conditions() const {
+  std::string out;
+  for (const SelectedPart& p : selected)
+    out += fmt::format("  boundary '{}' ({}): {}, length {:.6g}\n", p.name, p.type, p.selector, p.length);
+  return out;
 }
 
 std::optional<ExactElasticity> ElasticityScene::exact() const {
   if (!exact_spec || exact_spec->solution == "vibration") return std::nullopt;
+  if (const auto& f = exact_spec->formulas) {
+    // Strain from the gradient, or from the stress by the compliance of the small-strain law.
+    const LinearElastic m = settings.problem.material;
+    ExactElasticity e;
+    e.displacement = [u = f->displacement](const Vec2& x) { return u(x); };
+    if (!f->stress.empty())
+      e.stress = [sg = f->stress](const Vec2& x) { return Eigen::Vector3d(sg[0](x), sg[1](x), sg[2](x)); };
+    else
+      e.stress = [g = f->gradient, d = m.voigt_tangent()](const Vec2& x) {
+        const double a = g[0](x), b = g[1](x), c = g[2](x), dd = g[3](x);
+        return Eigen::Vector3d(d * Eigen::Vector3d(a, dd, b + c));
+      };
+    e.body_force = static_body_force();
+    if (!e.body_force) e.body_force = [](const Vec2&) { return Vec2::Zero(); };
+    return e;
+  }
   if (exact_spec->solution == "linear") return linear_field(exact_spec->offset, exact_spec->gradient, settings.problem.material);
   if (exact_spec->solution == "quadratic")
     return quadratic_field(exact_spec->offset, exact_spec->gradient, exact_spec->hessians[0], exact_spec->hessians[1],

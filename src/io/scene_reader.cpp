@@ -318,11 +318,14 @@ std::vector<std::string> SceneTable::keys() const {
   return out;
 }
 
-std::string SceneTable::where(std::string_view key) const {
+std::string SceneTable::where(std::string_view key, int index) const {
   const toml::node* n = table_->get(key);
+  if (index >= 0 && n && n->is_array() && static_cast<std::size_t>(index) < n->as_array()->size())
+    n = n->as_array()->get(static_cast<std::size_t>(index));
   const toml::source_region& region = n ? n->source() : table_->source();
   const std::string& file = region.path && region.path->starts_with("--set ") ? *region.path : *file_;
-  return fmt::format("{}:{}:{}: key '{}{}'", file, region.begin.line, region.begin.column, prefix_, key);
+  return fmt::format("{}:{}:{}: key '{}{}{}'", file, region.begin.line, region.begin.column, prefix_, key,
+                     index >= 0 ? fmt::format("[{}]", index) : "");
 }
 
 void SceneTable::error(std::string_view key, const std::string& what) const { fail(table_->get(key), key, what); }

@@ -1,6 +1,11 @@
 #include "mfree/io/scene_sections.hpp"
 
 #include <algorithm>
+#include <fmt/format.h>
+#include <map>
+#include <optional>
+
+#include "mfree/core/error.hpp"
 
 namespace mfree {
 
@@ -33,10 +38,41 @@ Constants read_constants(const SceneTable& root) {
   Constants c;
   if (!root.has("constants")) return c;
   const SceneTable t = root.table("constants");
-  for (const std::string& k : t.keys()) c[k] = t.number(k, -1e300, 1e300);
-  // Names are checked where formulas are built; check them here too, so that a scene
-  // without formulas still refuses a bad [constants] table.
-  (void)Formula("0", c, t.where(c.empty() ? "" : c.begin()->first));
+  // A constant is a number or a formula of other constants (no x, y, t): resolved in as many
+  // passes as the chain of references is long.
+  std::map<std::string, std::string> pending;
+  for (const std::string& k : t.keys()) pending[k] = t.expression(k);
+  for (const auto& [name, text] : pending) (void)Formula("0", Constants{{name, 0.0}}, t.where(name));  // valid names
+  while (!pending.empty()) {
+    std::size_t resolved = 0;
+    for (auto it = pending.begin(); it != pending.end();) {
+      bool ready = true;
+      std::optional<Formula> f;
+      try {
+        f.emplace(it->second, c, t.where(it->first));
+      } catch (const InputError&) {
+        ready = false;  // names a constant not resolved yet, or is wrong: the last pass says which
+      }
+      if (ready && !f->is_constant())
+        t.error(it->first, fmt::format("a constant may use other constants, not x, y, X, Y or t: '{}'", it->second));
+      if (!ready) {
+        ++it;
+        continue;
+      }
+      c[it->first] = (*f)(Vec2::Zero());
+      it = pending.erase(it);
+      ++resolved;
+    }
+    if (resolved == 0) {
+      // No progress: a formula that is wrong, names an unknown constant, or a cycle. The
+      // parser's message for the first of them says which.
+      const auto& [name, text] = *pending.begin();
+      Constants all = c;
+      for (const auto& [n, v] : pending) all[n] = 0.0;
+      (void)Formula(text, all, t.where(name));
+      t.error(name, fmt::format("'{}' refers to itself through other constants", text));
+    }
+  }
   t.finish();
   return c;
 }
@@ -47,8 +83,7 @@ Formula read_formula(const SceneTable& t, const std::string& key, const Constant
 
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
   const std::vector<std::string> e = t.expressions(key, 2);
-  const std::string at = t.where(key);
-  return {Formula(e[0], constants, at + "[0]"), Formula(e[1], constants, at + "[1]")};
+  return {Formula(e[0], constants, t.where(key, 0)), Formula(e[1], constants, t.where(key, 1))};
 }
 
 }  // namespace mfree

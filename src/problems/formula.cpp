@@ -4,6 +4,7 @@
 #include <muParser.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -23,6 +24,15 @@ bool is_identifier(const std::string& s) {
   for (char c : s)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
+}
+
+/// Position of `name` as a whole word in `text` (text.size() if absent).
+std::size_t token_position(const std::string& text, const std::string& name) {
+  const auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1))
+    if ((at == 0 || !word(text[at - 1])) && (at + name.size() == text.size() || !word(text[at + name.size()])))
+      return at;
+  return text.size();
 }
 
 /// One parser with its own variables: a thread evaluates through its own copy.
@@ -77,7 +87,18 @@ Formula::Formula(const std::string& expression, const Constants& constants, std:
   impl->constants = constants;
   try {
     Evaluator& e = impl->mine();
-    const mu::varmap_type used = e.parser.GetUsedVar();  // parses the expression
+    // GetUsedVar parses the expression and lists every name it takes for a variable,
+    // defined or not.
+    const mu::varmap_type used = e.parser.GetUsedVar();
+    for (const auto& [name, where] : used)
+      if (std::find(variable_names.begin(), variable_names.end(), name) == variable_names.end()) {
+        const std::size_t at = token_position(expression, name);
+        throw InputError(fmt::format("{}: formula '{}' names \"{}\" (at character {}), which is no variable and no "
+                                     "constant; variables are x, y, X, Y, t, constants pi, e{}",
+                                     impl->key, expression, name, at + 1,
+                                     constants.empty() ? std::string(" (the scene has no [constants])")
+                                                       : " and those of [constants]"));
+      }
     impl->time = used.count("t") > 0;
     if (used.empty()) {
       const double v = e.parser.Eval();

@@ -31,11 +31,11 @@ struct VibrationCase {
     p.penalty_modulus = exact.youngs_modulus;
     p.spacing = h;
     if (walls) {
-      const auto zero = [](const Vec2&, const Vec2&) { return Vec2(0.0, 0.0); };
-      p.conditions = {{BoundaryCondition::Type::slip, Box{Vec2(-0.1, -0.1), Vec2(1.1, 0.001)}, zero, "bottom"},
-                      {BoundaryCondition::Type::slip, Box{Vec2(-0.1, 0.999), Vec2(1.1, 1.1)}, zero, "top"},
-                      {BoundaryCondition::Type::slip, Box{Vec2(-0.1, -0.1), Vec2(0.001, 1.1)}, zero, "left"},
-                      {BoundaryCondition::Type::slip, Box{Vec2(0.999, -0.1), Vec2(1.1, 1.1)}, zero, "right"}};
+      const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
+      p.conditions = {{BoundaryCondition::Type::slip, select_part(domain, "bottom"), zero, "bottom"},
+                      {BoundaryCondition::Type::slip, select_part(domain, "top"), zero, "top"},
+                      {BoundaryCondition::Type::slip, select_part(domain, "left"), zero, "left"},
+                      {BoundaryCondition::Type::slip, select_part(domain, "right"), zero, "right"}};
     }
     if (body_force)
       p.body_force = [e = exact](const Vec2& x, double t) { return e.density * e.body_force(x, t); };

@@ -54,7 +54,7 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
              Catch::Contains("no/such.wkt"));
   CHECK_THAT(scene_error(replace(replace(good, "\\[exact\\]\nsolution = \"timoshenko_beam\"\nload = 1000.0\n", ""), "\"error\", ", "")),
              Catch::Contains("boundary[0].value") && Catch::Contains("needs a static [exact] solution"));
-  CHECK_THAT(scene_error(replace(good, "region = \\[\\[-0.001, -6.001\\], \\[0.001, 6.001\\]\\]", "region = [[-0.001, -6.001]]")),
+  CHECK_THAT(scene_error(replace(good, "part = \"left\"", "region = [[-0.001, -6.001]]")),
              Catch::Contains("boundary[0].region") && Catch::Contains("2 points"));
   // Total-Lagrangian keys.
   const std::string dyn = good + "\n[dynamics]\nscheme = \"newmark\"\nend_time = 0.01\n";

@@ -23,8 +23,14 @@
 // linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is
 // not symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
 //
-// Loads: `LoadState` scales body force, tractions and prescribed displacements by `factor`
-// (the load factor of a static solve) and evaluates the body force at `time` (dynamics).
+// Pressure p (positive into the body, SPEC section 9): with the small-strain law the dead
+// traction -p N on the reference boundary; with a finite-strain law a follower load on the
+// current boundary, f_I = -p int phi_I R x,S dS (x = X + u^h, S the reference arc length,
+// R (a, b) = (b, -a) the rotation by -90 degrees), linear in the coefficients, with the load
+// stiffness dF_I / dd_J = -p int phi_I (grad phi_J . T) R dS in the tangent (not symmetric).
+//
+// Loads: `LoadState` scales body force, tractions, pressures and prescribed displacements by
+// `factor` (the load factor of a static solve) and evaluates them at `time` (dynamics).
 // Units: as the material's E; forces per unit thickness.
 
 #include <functional>
@@ -32,6 +38,7 @@
 #include <vector>
 
 #include "mfree/galerkin/boundary_quadrature.hpp"
+#include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/linalg/node_pattern.hpp"
 #include "mfree/linalg/sparse_solver.hpp"
@@ -39,8 +46,10 @@
 
 namespace mfree {
 
-/// A boundary value at a point X of a segment with outward unit normal N.
-using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n)>;
+/// A boundary value at a point X of a segment with outward unit normal N, at time t.
+using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n, double t)>;
+/// A scalar field at reference position X and time t.
+using ScalarField = std::function<double(const Vec2& x, double t)>;
 /// Body force per reference volume (rho0 b) at reference position X and time t.
 using BodyForce = std::function<Vec2(const Vec2& x, double t)>;
 
@@ -49,12 +58,16 @@ struct BoundaryCondition {
     displacement,  ///< u = ubar
     slip,          ///< u . N = ubar . N, tangential traction free
     traction,      ///< P N = tbar
+    pressure,      ///< P N = -p n (dead at small strain, follower at finite strain)
   };
   Type type = Type::traction;
-  Box region;          ///< segments whose midpoint lies in this box
-  BoundaryValue value; ///< ubar(X, N) or tbar(X, N)
-  std::string name;    ///< for messages
+  BoundarySelection where;  ///< the part of the boundary it holds on
+  BoundaryValue value;      ///< ubar(X, N, t) or tbar(X, N, t); empty for pressure
+  std::string name;         ///< for messages
+  ScalarField pressure;     ///< p(X, t), positive into the body; only for pressure
 };
+/// The parts of the conditions, in order (the boundary quadrature is cut at their ends).
+std::vector<BoundarySelection> condition_parts(const std::vector<BoundaryCondition>& conditions);
 
 struct LoadState {
   double factor = 1.0;  ///< multiplies every load and prescribed displacement
@@ -64,7 +77,7 @@ struct LoadState {
 struct SolidProblem {
   Material material = LinearElastic{};
   BodyForce body_force;                       ///< empty: none
-  std::vector<BoundaryCondition> conditions;  ///< each segment takes the first whose box holds its midpoint
+  std::vector<BoundaryCondition> conditions;  ///< on disjoint parts of the boundary; the rest is traction free
   double nitsche_beta = 100.0;                ///< dimensionless beta of the penalty beta E / h
   double penalty_modulus = 1.0;               ///< E of the penalty
   double spacing = 1.0;                       ///< h of the penalty: nodal spacing
@@ -73,7 +86,10 @@ struct SolidProblem {
 class TotalLagrangian {
  public:
   /// Views q, test gradients (same layout as q.grad; null: q.grad), bq and at_boundary (the
-  /// trial functions with gradients at bq's points): they must outlive this object.
+  /// trial functions with gradients at bq's points): they must outlive this object. A
+  /// boundary point takes the first condition whose part holds it; bq cut at the conditions'
+  /// parts (boundary_quadrature(..., condition_parts(conditions)), as discretise() does)
+  /// integrates each condition over exactly its part.
   TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes, const GalerkinQuadrature& q,
                   const std::vector<Vec2>* test_gradients, const BoundaryQuadrature& bq,
                   const GalerkinQuadrature& at_boundary);
@@ -92,13 +108,14 @@ class TotalLagrangian {
   [[nodiscard]] Mat2 deformation_gradient(Index k, const Eigen::VectorXd& d) const;
   /// sum_K w_K P(F_K) t_I: the domain term. Throws NumericalError when J <= 0 somewhere.
   [[nodiscard]] Eigen::VectorXd internal_force(const Eigen::VectorXd& d) const;
-  /// Nitsche's terms N(u; phi_I e_i) of the essential conditions.
-  [[nodiscard]] Eigen::VectorXd constraint_force(const Eigen::VectorXd& d, const LoadState& load) const;
-  /// Body force and tractions against phi_I.
+  /// The boundary terms that depend on the state: Nitsche's terms N(u; phi_I e_i) of the
+  /// essential conditions, minus the follower pressure loads (finite strain).
+  [[nodiscard]] Eigen::VectorXd boundary_force(const Eigen::VectorXd& d, const LoadState& load) const;
+  /// Body force, tractions and dead pressures against phi_I.
   [[nodiscard]] Eigen::VectorXd external_force(const LoadState& load) const;
   /// Overwrites k's values (k from zero_matrix()) with the tangent of internal_force +
-  /// constraint_force at d.
-  void tangent(const Eigen::VectorXd& d, SparseMatrix& k) const;
+  /// boundary_force at d.
+  void tangent(const Eigen::VectorXd& d, const LoadState& load, SparseMatrix& k) const;
   /// sum_K w_K W(F_K).
   [[nodiscard]] double strain_energy(const Eigen::VectorXd& d) const;
 
@@ -124,6 +141,7 @@ class TotalLagrangian {
   const GalerkinQuadrature& at_boundary_;
   std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
   std::vector<NitschePoint> nitsche_;
+  std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures
   std::vector<Index> boundary_offsets_{0}, boundary_nodes_;
   RowIncidence domain_rows_;
   RowIncidence boundary_rows_;

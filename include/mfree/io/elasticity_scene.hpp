@@ -10,11 +10,21 @@
 //                 RK order: quadratic RK gets quadratic VCI), gauss_points
 //   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
 //                 youngs_modulus, poisson_ratio, density (dynamics)
+//   [constants]   name = number: constants for every formula of the scene
+//   [loads]       body_force = [fx, fy] (per unit volume; numbers or formulas in X, Y, t),
+//                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
 //   [exact]       solution (timoshenko_beam: load; linear: offset, gradient; quadratic:
 //                 offset, gradient, hessian_x, hessian_y (symmetric, of u_x and u_y);
-//                 vibration: amplitude)   optional
-//   [[boundary]]  name, type (displacement | slip | traction), region = [[x0, y0], [x1, y1]],
-//                 value = "exact" or [vx, vy]
+//                 vibration: amplitude), or the formulas displacement = [ux, uy] with
+//                 stress = [sxx, syy, sxy] or gradient = [dux/dx, dux/dy, duy/dx, duy/dy]
+//                 (statics; the body force is [loads]')   optional
+//   [[boundary]]  name, type (displacement | slip | traction | pressure), one selector:
+//                 part = "name" (a named part: gmsh physical curve, rectangle bottom | right |
+//                 top | left), ring = k (0 outer, k hole k), edges = [i, ...] (of ring, default
+//                 0; numbered as written), region = [[x0, y0], [x1, y1]] (clips segments);
+//                 value = "exact", [vx, vy] (numbers or formulas in X, Y, t), or for pressure
+//                 p (a number or formula, positive into the body). A selector that selects
+//                 nothing, and two conditions on one part of the boundary, are errors.
 //   [nitsche]     beta (default 100: penalty beta E / h)
 //   [solver]      kind (auto | cholmod | umfpack)
 //   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance,
@@ -44,11 +54,21 @@
 #include "mfree/materials/vibration_solution.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/io/scene_reader.hpp"
+#include "mfree/problems/formula.hpp"
 
 namespace mfree {
 
+/// An exact static solution given as formulas in X, Y: u and either sigma (Voigt xx, yy,
+/// xy) or grad u (du_x/dx, du_x/dy, du_y/dx, du_y/dy, stress by the small-strain law).
+struct ExactFormulas {
+  VectorFormula displacement;
+  std::vector<Formula> stress;    ///< 3 formulas, or empty
+  std::vector<Formula> gradient;  ///< 4 formulas, or empty
+};
+
 struct ExactSpec {
-  std::string solution;  ///< timoshenko_beam | linear | quadratic | vibration
+  std::string solution;  ///< timoshenko_beam | linear | quadratic | vibration | formulas
+  std::optional<ExactFormulas> formulas;
   double load = 0.0;
   double amplitude = 0.0;
   Vec2 offset = Vec2::Zero();
@@ -86,8 +106,18 @@ struct DynamicsScene {
   std::vector<double> error_times;  ///< fractions of end_time
 };
 
+/// What a [[boundary]] table selected, for the run's report.
+struct SelectedPart {
+  std::string name, type, selector;
+  double length = 0.0;
+};
+
 struct ElasticityScene {
   std::filesystem::path file;
+  Constants constants;                   ///< [constants]
+  std::optional<VectorFormula> body_force;  ///< [loads] body_force, per unit volume
+  std::optional<Vec2> gravity;           ///< [loads] gravity, per unit mass (times density)
+  std::vector<SelectedPart> selected;    ///< per [[boundary]], in order
   Domain domain;
   ElasticitySettings settings;  ///< settings.problem.material: the small-strain law (or the linearisation)
   Material material;             ///< the law of [material] model
@@ -105,6 +135,10 @@ struct ElasticityScene {
   /// The finite-strain (or small-strain) problem of the scene; loads are those of statics
   /// with the exact body force, or the vibration's body force rho0 b(X, t).
   [[nodiscard]] SolidProblem solid_problem() const;
+  /// The body force of statics: [loads], or the one a built-in exact solution needs.
+  [[nodiscard]] VectorField static_body_force() const;
+  /// A line per [[boundary]]: name, type, what it selects and the length selected.
+  [[nodiscard]] std::string describe_conditions() const;
   /// True when the scene is solved by the total-Lagrangian path (Newton or dynamics).
   [[nodiscard]] bool nonlinear() const { return newton || dynamics || !is_linear(material); }
 };

@@ -60,7 +60,8 @@ class SceneTable {
   std::vector<std::string> keys() const;
   /// "FILE:LINE:COLUMN: key 'section.key'" of a key, for messages raised later (a formula
   /// that evaluates to NaN during a run names the key it came from).
-  std::string where(std::string_view key) const;
+  /// With index >= 0: the entry key[index] of an array.
+  std::string where(std::string_view key, int index = -1) const;
   /// Array of tables ([[name]] sections); empty when the key is absent.
   std::vector<SceneTable> tables(std::string_view key) const;
   /// Throws an InputError at this key's position (for checks across several keys).

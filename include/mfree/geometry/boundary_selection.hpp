@@ -1,0 +1,48 @@
+#pragma once
+// Parts of a domain's boundary picked by a scene's [[boundary]] selectors: pieces of the
+// boundary segments (Domain::boundary()), each a parameter interval [t0, t1] of one segment
+// a -> b (the points a + t (b - a)).
+//
+// Selectors:
+//   part    the segments of a named part (gmsh physical curves; a rectangle's bottom, right,
+//           top, left)
+//   ring    every segment of ring k (0: the outer boundary, k >= 1: hole k)
+//   edges   edges i of ring k, numbered as in the input: edge i runs from vertex i to vertex
+//           i + 1 of the ring as written (WKT) or built
+//   box     the parts of the segments inside a closed axis-aligned box: a segment is clipped
+//           to the box, so a segment half inside counts half
+// A selection may be empty; the caller decides that this is an error (it is, in scenes).
+
+#include <string>
+#include <vector>
+
+#include "mfree/geometry/domain.hpp"
+
+namespace mfree {
+
+struct BoundaryPiece {
+  Index segment = 0;  ///< index into Domain::boundary()
+  double t0 = 0.0;    ///< 0 <= t0 < t1 <= 1
+  double t1 = 1.0;
+};
+
+/// Pieces of the boundary, in segment order, no two overlapping.
+using BoundarySelection = std::vector<BoundaryPiece>;
+
+/// Total length of the pieces.
+double selection_length(const Domain& domain, const BoundarySelection& s);
+
+/// The segments of the part named `name`; throws InputError when the domain has no part of
+/// that name (the message lists the names it has).
+BoundarySelection select_part(const Domain& domain, const std::string& name);
+/// Every segment of ring k; throws InputError when there is no ring k.
+BoundarySelection select_ring(const Domain& domain, int ring);
+/// Edges `edges` of ring k; throws InputError for a ring or edge that does not exist.
+BoundarySelection select_edges(const Domain& domain, int ring, const std::vector<int>& edges);
+/// The parts of the segments inside the closed box (Liang–Barsky clipping).
+BoundarySelection select_box(const Domain& domain, const Box& box);
+
+/// Length of the boundary that two selections share.
+double overlap_length(const Domain& domain, const BoundarySelection& a, const BoundarySelection& b);
+
+}  // namespace mfree

@@ -1,0 +1,96 @@
+#include "mfree/geometry/boundary_selection.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// Whole segments s for which keep(s) holds.
+template <class Keep>
+BoundarySelection whole_segments(const Domain& domain, Keep&& keep) {
+  BoundarySelection out;
+  const auto& segments = domain.boundary();
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    if (keep(segments[s])) out.push_back({static_cast<Index>(s), 0.0, 1.0});
+  return out;
+}
+
+int ring_count(const Domain& domain) { return static_cast<int>(domain.rings().size()); }
+
+}  // namespace
+
+double selection_length(const Domain& domain, const BoundarySelection& s) {
+  double length = 0.0;
+  for (const BoundaryPiece& p : s) length += (p.t1 - p.t0) * domain.boundary()[p.segment].length;
+  return length;
+}
+
+BoundarySelection select_part(const Domain& domain, const std::string& name) {
+  const auto& names = domain.part_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw InputError(names.empty() ? fmt::format("the domain has no named boundary parts (no part '{}'): select by "
+                                                 "ring, edges or region",
+                                                 name)
+                                   : fmt::format("the domain has no boundary part '{}'; its parts are: {}", name,
+                                                 fmt::join(names, ", ")));
+  const int part = static_cast<int>(it - names.begin());
+  return whole_segments(domain, [&](const BoundarySegment& s) { return s.part == part; });
+}
+
+BoundarySelection select_ring(const Domain& domain, int ring) {
+  if (ring < 0 || ring >= ring_count(domain))
+    throw InputError(fmt::format("the domain has no ring {} (rings 0 to {}: 0 the outer boundary, then the holes)", ring,
+                                 ring_count(domain) - 1));
+  return whole_segments(domain, [&](const BoundarySegment& s) { return s.ring == ring; });
+}
+
+BoundarySelection select_edges(const Domain& domain, int ring, const std::vector<int>& edges) {
+  (void)select_ring(domain, ring);  // checks the ring
+  const int n = static_cast<int>(domain.rings()[ring].size());
+  for (int e : edges)
+    if (e < 0 || e >= n) throw InputError(fmt::format("ring {} has no edge {} (edges 0 to {})", ring, e, n - 1));
+  return whole_segments(domain, [&](const BoundarySegment& s) {
+    return s.ring == ring && std::find(edges.begin(), edges.end(), s.edge) != edges.end();
+  });
+}
+
+BoundarySelection select_box(const Domain& domain, const Box& box) {
+  BoundarySelection out;
+  const auto& segments = domain.boundary();
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    // Liang–Barsky: a + t d inside the box for t in [t0, t1].
+    const Vec2 a = segments[s].a, d = segments[s].b - segments[s].a;
+    double t0 = 0.0, t1 = 1.0;
+    bool inside = true;
+    for (int c = 0; c < 2 && inside; ++c) {
+      if (d[c] == 0.0) {
+        inside = a[c] >= box.lo[c] && a[c] <= box.hi[c];
+        continue;
+      }
+      double lo = (box.lo[c] - a[c]) / d[c], hi = (box.hi[c] - a[c]) / d[c];
+      if (lo > hi) std::swap(lo, hi);
+      t0 = std::max(t0, lo);
+      t1 = std::min(t1, hi);
+      inside = t1 > t0;
+    }
+    if (inside && t1 > t0) out.push_back({static_cast<Index>(s), t0, t1});
+  }
+  return out;
+}
+
+double overlap_length(const Domain& domain, const BoundarySelection& a, const BoundarySelection& b) {
+  double length = 0.0;
+  for (const BoundaryPiece& p : a)
+    for (const BoundaryPiece& q : b)
+      if (p.segment == q.segment)
+        length += std::max(0.0, std::min(p.t1, q.t1) - std::max(p.t0, q.t0)) * domain.boundary()[p.segment].length;
+  return length;
+}
+
+}  // namespace mfree

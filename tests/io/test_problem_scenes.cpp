@@ -1,0 +1,154 @@
+// Problems written as scenes: formulas, named boundary parts, clipping selectors, pressure
+// and body-force loads, exact solutions as formulas, and the checks that refuse ill-posed
+// or silently empty input.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <regex>
+
+#include "../test_support.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/io/elasticity_scene.hpp"
+
+using namespace mfree;
+
+namespace {
+
+std::string cantilever_text() {
+  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/cantilever/cantilever.toml");
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  return std::regex_replace(text, std::regex(from), to);
+}
+
+ElasticityScene read_text(const std::string& text, const std::string& name) {
+  static const testing::ScratchFolder folder("problem_scenes");  // one per test process
+  const auto path = folder.path / (name + ".toml");
+  std::ofstream(path) << text;
+  return read_elasticity_scene(path, false);
+}
+
+std::string scene_error(const std::string& text) {
+  return testing::message_of<InputError>([&] { (void)read_text(text, "bad"); });
+}
+
+/// The cantilever at h = 3 with its loaded end given by `loaded` (a [[boundary]] body).
+std::string cantilever_with(const std::string& loaded, const std::string& extra = "") {
+  std::string text = replace(cantilever_text(), "spacing = 1.5", "spacing = 3.0");
+  text = replace(text, "name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\"",
+                 loaded);
+  return extra + text;
+}
+
+}  // namespace
+
+TEST_CASE("problem scenes: a traction formula reproduces the built-in exact traction to round-off", "[io][problems]") {
+  const ElasticityScene exact = read_text(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\""), "exact");
+  // t = (0, P / (2 I) (D^2 / 4 - y^2)) on x = L, I = D^3 / 12 (SPEC section 4).
+  const ElasticityScene formula = read_text(
+      cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, \"P / (2 * I) * (D^2 / 4 - y^2)\"]",
+                      "[constants]\nP = 1000.0\nD = 12.0\nI = \"D^3 / 12\"\n"),
+      "formula");
+  REQUIRE(formula.constants.at("I") == 144.0);
+  const ExactElasticity e = *exact.exact();
+  const ElasticityResult a = solve_elasticity(exact.domain, exact.settings, &e);
+  const ElasticityResult b = solve_elasticity(formula.domain, formula.settings, &e);
+  CHECK((a.coefficients - b.coefficients).norm() <= 1e-12 * a.coefficients.norm());
+  CHECK(b.errors->l2_displacement == Approx(a.errors->l2_displacement).epsilon(1e-10));
+  // The run reports what each condition selected.
+  REQUIRE(formula.selected.size() == 2);
+  CHECK(formula.selected[1].length == 12.0);
+  CHECK_THAT(formula.describe_conditions(), Catch::Contains("boundary 'loaded end' (traction): part 'right', length 12"));
+}
+
+TEST_CASE("problem scenes: an exact solution given as formulas measures the same errors as the built-in one", "[io][problems]") {
+  // The Timoshenko beam of SPEC section 4 as formulas (plane stress, P = 1000, L = 48, D = 12).
+  const std::string constants =
+      "[constants]\nP = 1000.0\nL = 48.0\nD = 12.0\nE = 3.0e7\nnu = 0.3\nI = \"D^3 / 12\"\n";
+  const std::string formulas =
+      "displacement = [\"-P * y / (6 * E * I) * ((6 * L - 3 * x) * x + (2 + nu) * (y^2 - D^2 / 4))\",\n"
+      "                \"P / (6 * E * I) * (3 * nu * y^2 * (L - x) + (4 + 5 * nu) * D^2 * x / 4 + (3 * L - x) * x^2)\"]\n"
+      "stress = [\"-P * (L - x) * y / I\", 0, \"P / (2 * I) * (D^2 / 4 - y^2)\"]";
+  const std::string text = replace(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\"", constants),
+                                   "solution = \"timoshenko_beam\"\nload = 1000.0", formulas);
+  const ElasticityScene scene = read_text(text, "exact_formulas");
+  const ElasticityScene builtin = read_text(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\""), "builtin");
+  const ExactElasticity e = *scene.exact(), b = *builtin.exact();
+  for (const Vec2& x : {Vec2(3.0, 1.0), Vec2(48.0, -6.0), Vec2(17.5, 2.25)}) {
+    CHECK((e.displacement(x) - b.displacement(x)).norm() <= 1e-14 * b.displacement(Vec2(48.0, 0.0)).norm());
+    CHECK((e.stress(x) - b.stress(x)).norm() <= 1e-12 * 1000.0);
+  }
+  const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, &e);
+  const ElasticityResult rb = solve_elasticity(builtin.domain, builtin.settings, &b);
+  CHECK(r.errors->energy == Approx(rb.errors->energy).epsilon(1e-9));
+  CHECK(r.errors->l2_displacement == Approx(rb.errors->l2_displacement).epsilon(1e-9));
+}
+
+TEST_CASE("problem scenes: selectors that select nothing, overlap, or name no part are refused", "[io][problems]") {
+  // A box that misses the boundary by 1e-3 used to apply no load silently.
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\nregion = [[48.001, -7], [49, 7]]\nvalue = \"exact\"")),
+             Catch::Contains("boundary[1].region") && Catch::Contains("selects no part of the boundary"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"tip\"\nvalue = \"exact\"")),
+             Catch::Contains("boundary[1].part") && Catch::Contains("no boundary part 'tip'") &&
+                 Catch::Contains("bottom, right, top, left"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\nregion = [[-1, -7], [1, 0]]\nvalue = [0, 1]")),
+             Catch::Contains("boundary[1].region") && Catch::Contains("overlaps boundary 'clamped end' over a length of 6"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nring = 0\nvalue = [0, 1]")),
+             Catch::Contains("give exactly one selector"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\nedges = [7]\nvalue = [0, 1]")),
+             Catch::Contains("boundary[1].edges") && Catch::Contains("no edge 7"));
+}
+
+TEST_CASE("problem scenes: formulas are checked where they are read", "[io][problems]") {
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, \"3 * z\"]")),
+             Catch::Contains("boundary[1].value[1]") && Catch::Contains("'3 * z' names \"z\" (at character 5)"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, \"y * t\"]")),
+             Catch::Contains("boundary[1].value") && Catch::Contains("uses t, but only [dynamics] runs have a time"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"pressure\"\npart = \"right\"\nvalue = [0, 1]")),
+             Catch::Contains("boundary[1].value") && Catch::Contains("expected a finite number or a formula"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, 1]",
+                                         "[constants]\na = \"b + 1\"\nb = \"a * 2\"\n")),
+             Catch::Contains("constants.a") && Catch::Contains("refers to itself"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, 1]",
+                                         "[constants]\nx0 = \"2 * x\"\n")),
+             Catch::Contains("constants.x0") && Catch::Contains("not x, y"));
+  CHECK_THAT(scene_error(replace(cantilever_text(), "probe = \\[48.0, 0.0\\]", "probe = [48.5, 0.0]")),
+             Catch::Contains("study.probe") && Catch::Contains("outside the domain"));
+}
+
+TEST_CASE("problem scenes: a problem with a free rigid-body motion is refused before it is solved", "[io][problems]") {
+  // A block on a slip wall (bottom) pulled sideways at its top: nothing stops x translation.
+  const std::string block =
+      "[domain]\nrectangle = [[0, 0], [4, 1]]\n[nodes]\ncloud = \"lattice\"\nspacing = 0.25\n[kernel]\norder = \"linear\"\n"
+      "[quadrature]\nscheme = \"projected\"\n[material]\nmodel = \"plane_strain\"\nyoungs_modulus = 1000\npoisson_ratio = 0.3\n"
+      "[[boundary]]\nname = \"floor\"\ntype = \"slip\"\npart = \"bottom\"\nvalue = [0, 0]\n"
+      "[[boundary]]\nname = \"pull\"\ntype = \"traction\"\npart = \"top\"\nvalue = [1, 0]\n"
+      "[output]\nfolder = \"unused\"\n";
+  const ElasticityScene scene = read_text(block, "free_mode");
+  CHECK_THAT(testing::message_of<InputError>([&] { (void)solve_elasticity(scene.domain, scene.settings, nullptr); }),
+             Catch::Contains("not well posed") && Catch::Contains("translation in x"));
+  // A slip wall on the left edge too makes it well posed.
+  const ElasticityScene posed = read_text(
+      replace(block, "\\[output\\]", "[[boundary]]\nname = \"side\"\ntype = \"slip\"\npart = \"left\"\nvalue = [0, 0]\n[output]"),
+      "posed");
+  const ElasticityResult r = solve_elasticity(posed.domain, posed.settings, nullptr);
+  CHECK(r.coefficients.allFinite());
+  CHECK(r.coefficients.norm() < 1.0);
+}
+
+TEST_CASE("problem scenes: gravity and a body-force formula load the body", "[io][problems]") {
+  const std::string text = cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = [0, 0]",
+                                           "[loads]\ngravity = [0, -9.81]\nbody_force = [\"x\", 0]\n");
+  const std::string with_density = replace(replace(text, "poisson_ratio = 0.3", "poisson_ratio = 0.3\ndensity = 2.0"),
+                                           "\\[exact\\]\nsolution = \"timoshenko_beam\"\nload = 1000.0\n", "");
+  const std::string no_error = replace(replace(with_density, "\"error\", ", ""), "value = \"exact\"", "value = [0, 0]");
+  const ElasticityScene scene = read_text(no_error, "gravity");
+  const Vec2 b = scene.settings.problem.body_force(Vec2(3.0, 1.0));
+  CHECK(b.x() == 3.0);
+  CHECK(b.y() == -2.0 * 9.81);
+  CHECK_THAT(scene_error(replace(no_error, "density = 2.0", "")), Catch::Contains("loads.gravity") && Catch::Contains("density"));
+  CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\"",
+                                         "[loads]\nbody_force = [0, 1]\n")),
+             Catch::Contains("exact.solution") && Catch::Contains("sets the body force"));
+}
