@@ -300,13 +300,15 @@ void MPMSolver::grid_to_particles() {
   for (std::size_t i = 0; i < mass_.size(); ++i)
     acceleration_[i] = mass_[i] > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
   grid_velocities(momentum_);
-  // Work of the body forces per thread and body, summed in thread order (reproducible).
+  // Work of the body forces per thread and body, summed in thread order (reproducible). The
+  // threads' rows lie at least a cache line (8 doubles) apart: every particle adds to its row.
   const auto bodies = static_cast<std::size_t>(bodies_);
-  std::vector<double> work(static_cast<std::size_t>(thread_count()) * bodies, 0.0);
+  const std::size_t row = (bodies + 7) / 8 * 8 + 8;
+  std::vector<double> work(static_cast<std::size_t>(thread_count()) * row, 0.0);
   const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
   const Vec2* velocity = velocity_.data();
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
-    double* w = work.data() + static_cast<std::size_t>(t) * bodies;
+    double* w = work.data() + static_cast<std::size_t>(t) * row;
     for (Index p = begin; p < end; ++p) {
       Vec2 a = Vec2::Zero(), v = Vec2::Zero();
       weights_.for_each(p, [&](Index i, double S, const Vec2&) {
@@ -319,7 +321,8 @@ void MPMSolver::grid_to_particles() {
       w[P.body[p]] += P.mass[p] * body_[p].dot(dx);
     }
   });
-  for (std::size_t k = 0; k < work.size(); ++k) external_work_[k % bodies] += work[k];
+  for (std::size_t t = 0; t < work.size() / row; ++t)
+    for (std::size_t b = 0; b < bodies; ++b) external_work_[b] += work[t * row + b];
 }
 
 void MPMSolver::extrapolate_updated_momenta() {
