@@ -131,7 +131,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   if (verbose) print_bodies(scene.problem, settings, solver.particles());
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
-                         scene.fields.von_mises || scene.fields.error || scene.fields.grid;
+                         scene.fields.von_mises || scene.fields.body || scene.fields.error || scene.fields.grid;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
     frames.emplace(scene.folder, scene.fields, scene.vibration ? &*scene.vibration : nullptr, scene.problem.materials);
     frames->write(solver);

@@ -142,10 +142,12 @@ TEST_CASE("MPM frames: only the fields asked for; errors need an exact solution"
   MPMFrameFields fields;
   fields.velocity = true;
   fields.von_mises = true;
+  fields.body = true;
   MPMFrames frames(folder.path, fields, nullptr, material);
   frames.write(solver);
-  CHECK(read_vtu(folder.path / "particles_0000.vtu").array_names ==
-        std::vector<std::string>{"velocity", "von_mises"});
+  const VtuContents some = read_vtu(folder.path / "particles_0000.vtu");
+  CHECK(some.array_names == std::vector<std::string>{"velocity", "von_mises", "body"});
+  CHECK(some.arrays.at("body") == std::vector<double>(static_cast<std::size_t>(solver.particles().size()), 0.0));
 
   // No fields at all: the particles alone.
   MPMFrames bare(folder.path / "bare", MPMFrameFields{}, nullptr, material);

@@ -28,7 +28,7 @@
 //                 the grid box [0, L] x [0, L], with no velocity of its own and no gravity
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
-//   [output]      folder, fields (displacement, velocity, stress, von_mises, error, grid), vtk,
+//   [output]      folder, fields (displacement, velocity, stress, von_mises, body, error, grid), vtk,
 //                 particles_csv (true: particles.csv of the end state, mpm_output.hpp)
 //   [study]       for `mfree converge`: cells, methods, updates, particles_per_cell
 //
