@@ -34,23 +34,84 @@ void check_finite(const MPMSolver& solver) {
                                        p, P.reference[p].x(), P.reference[p].y(), solver.time()));
 }
 
+/// max_t |E(t) - E(0)| / max_t (kinetic + strain), E = kinetic + strain - work of the body
+/// forces of all the particles.
 double energy_drift(const std::vector<MPMEnergy>& energy) {
   if (energy.empty()) return 0.0;
-  const auto total = [](const MPMEnergy& e) { return e.kinetic + e.strain - e.external; };
   double drift = 0.0, scale = 0.0;
   for (const MPMEnergy& e : energy) {
-    drift = std::max(drift, std::abs(total(e) - total(energy.front())));
-    scale = std::max(scale, e.kinetic + e.strain);
+    drift = std::max(drift, std::abs(e.sum.total() - energy.front().sum.total()));
+    scale = std::max(scale, e.sum.kinetic + e.sum.strain);
   }
   return drift / scale;
 }
 
+/// The largest |total momentum| over the records.
+double largest_momentum(const std::vector<MPMEnergy>& energy) {
+  double m = 0.0;
+  for (const MPMEnergy& e : energy) m = std::max(m, e.sum.momentum.norm());
+  return m;
+}
+
+/// kinetic, strain, external_work, total (the columns of a study's mpm_energy.csv) ...
+std::string energy_columns(const BodyEnergy& e) {
+  return fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}", e.kinetic, e.strain, e.external, e.total());
+}
+/// ... and the momentum, for every body of a run's energy.csv.
+std::string energy_and_momentum(const BodyEnergy& e) {
+  return fmt::format("{},{:.9e},{:.9e}", energy_columns(e), e.momentum.x(), e.momentum.y());
+}
+
 std::string energy_csv_rows(const std::string& prefix, const std::vector<MPMEnergy>& energy) {
   std::string out;
-  for (const MPMEnergy& e : energy)
-    out += fmt::format("{}{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", prefix, e.time, e.kinetic, e.strain, e.external,
-                       e.kinetic + e.strain - e.external);
+  for (const MPMEnergy& e : energy) out += fmt::format("{}{:.9e},{}\n", prefix, e.time, energy_columns(e.sum));
   return out;
+}
+
+/// energy.csv of a run: time, the totals over every particle (the columns of mpm_energy.csv,
+/// then momentum_x, momentum_y), then the same per body, prefixed "NAME.".
+std::string energy_csv(const MPMProblem& problem, const std::vector<MPMEnergy>& energy) {
+  const auto columns = {"kinetic", "strain", "external_work", "total", "momentum_x", "momentum_y"};
+  std::string out = "time";
+  for (const char* c : columns) out += fmt::format(",{}", c);
+  for (const MPMBody& b : problem.bodies)
+    for (const char* c : columns) out += fmt::format(",{}.{}", b.name, c);
+  out += "\n";
+  for (const MPMEnergy& e : energy) {
+    out += fmt::format("{:.9e},{}", e.time, energy_and_momentum(e.sum));
+    for (const BodyEnergy& b : e.bodies) out += fmt::format(",{}", energy_and_momentum(b));
+    out += "\n";
+  }
+  return out;
+}
+
+/// Per body (and in total) at the first and last record: kinetic, strain, work, momentum.
+void print_energy(const MPMProblem& problem, const std::vector<MPMEnergy>& energy) {
+  const MPMEnergy &first = energy.front(), &last = energy.back();
+  std::cout << fmt::format("  {:<16} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}   (0: t = {:.4g} s, T: t = {:.4g} s)\n",
+                           "body", "kinetic(0)", "kinetic(T)", "strain(0)", "strain(T)", "work(T)", "|momentum(T)|",
+                           first.time, last.time);
+  const auto row = [](const std::string& name, const BodyEnergy& a, const BodyEnergy& b) {
+    std::cout << fmt::format("  {:<16} {:11.4e} {:11.4e} {:11.4e} {:11.4e} {:11.4e} {:11.4e}\n", name, a.kinetic,
+                             b.kinetic, a.strain, b.strain, b.external, b.momentum.norm());
+  };
+  for (std::size_t k = 0; k < first.bodies.size(); ++k) row(problem.bodies[k].name, first.bodies[k], last.bodies[k]);
+  if (first.bodies.size() > 1) row("total", first.sum, last.sum);
+}
+
+/// The bodies and walls of a run, as the scene names them.
+void print_bodies(const MPMProblem& problem, const MPMSettings& s, const Particles& P) {
+  std::vector<Index> count(problem.bodies.size(), 0);
+  for (Index p = 0; p < P.size(); ++p) ++count[P.body[p]];
+  for (std::size_t k = 0; k < problem.bodies.size(); ++k) {
+    const MPMBody& b = problem.bodies[k];
+    std::cout << fmt::format("  body '{}': {}, material '{}', {} particles\n", b.name, shape_names().name(b.shape),
+                             problem.materials[b.material].name, count[k]);
+  }
+  std::string walls;
+  for (const std::string& side : side_names().names())
+    walls += fmt::format(" {} {}", side, wall_names().name(s.walls[static_cast<std::size_t>(side_names().value(side))]));
+  std::cout << fmt::format("  walls:{}{}\n", walls, s.damping > 0.0 ? fmt::format("; damping {:.4g} 1/s", s.damping) : "");
 }
 
 }  // namespace
@@ -67,11 +128,12 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
                              "(Courant number {:.3f})\n",
                              run.particles, solver.grid().nx(), solver.grid().ny(), solver.grid().spacing(), run.steps,
                              run.time_step, run.time_step / solver.courant_limit());
+  if (verbose) print_bodies(scene.problem, settings, solver.particles());
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
-                         scene.fields.von_mises || scene.fields.error || scene.fields.grid;
+                         scene.fields.von_mises || scene.fields.body || scene.fields.error || scene.fields.grid;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
-    frames.emplace(scene.folder, scene.fields, scene.vibration ? &*scene.vibration : nullptr, scene.problem.material);
+    frames.emplace(scene.folder, scene.fields, scene.vibration ? &*scene.vibration : nullptr, scene.problem.materials);
     frames->write(solver);
   }
   const std::vector<int> at = error_steps(scene, run.steps);
@@ -101,6 +163,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
     if (verbose) throw;
     run.failure = e.what();
   }
+  if (verbose && scene.particles_csv && !run.failure) run.particle_table = particle_table(solver.particles(), scene.problem.bodies);
   run.timer = solver.timer();
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (verbose && frames) std::cout << fmt::format("  wrote {} frames, {} (open in ParaView)\n", frames->frames(), frames->series().string());
@@ -110,7 +173,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
 int run_mpm(const MPMScene& scene) {
   const MPMSettings& s = scene.settings;
   std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} thread(s))\n", scene.file.string(),
-                           method_name({s.method, is_bspline(s.method) ? s.degree : 1}), to_string(s.update),
+                           method_name(method_of(s)), to_string(s.update),
                            thread_count());
   const MPMRun run = simulate_mpm(scene, s, true);
   if (!run.errors.empty()) {
@@ -132,21 +195,45 @@ int run_mpm(const MPMScene& scene) {
   if (!run.energy.empty()) {
     std::cout << fmt::format("  energy: kinetic + strain - work of body forces drifts by {:.3e} of the largest "
                              "kinetic + strain\n", energy_drift(run.energy));
-    write_file_atomically(scene.folder / "energy.csv", "time,kinetic,strain,external_work,total\n" + energy_csv_rows("", run.energy));
+    print_energy(scene.problem, run.energy);
+    std::cout << fmt::format("  total momentum: largest |sum m_p v_p| {:.3e} kg m/s\n", largest_momentum(run.energy));
+    write_file_atomically(scene.folder / "energy.csv", energy_csv(scene.problem, run.energy));
     std::cout << fmt::format("  wrote {}\n", (scene.folder / "energy.csv").string());
+  }
+  if (scene.particles_csv) {
+    write_file_atomically(scene.folder / "particles.csv", run.particle_table);
+    std::cout << fmt::format("  wrote {}\n", (scene.folder / "particles.csv").string());
   }
   const double throughput = run.particles * static_cast<double>(run.steps) / run.timer.total();
   std::cout << fmt::format("  {:.3e} particle-steps per second\n", throughput);
   print_stages(run.timer);
   RunSummary summary("mpm", scene.file);
-  summary.text("method", method_name({s.method, is_bspline(s.method) ? s.degree : 1}));
+  summary.text("method", method_name(method_of(s)));
   summary.text("update", std::string(to_string(s.update)));
   summary.number("particles", static_cast<double>(run.particles));
   summary.number("steps", run.steps);
   summary.number("time_step", run.time_step);
   summary.number("particle_steps_per_second", throughput);
   summary.number("mass_defect", run.max_mass_defect);
-  if (!run.energy.empty()) summary.number("energy_drift", energy_drift(run.energy));
+  if (!run.energy.empty()) {
+    summary.number("energy_drift", energy_drift(run.energy));
+    summary.number("largest_momentum", largest_momentum(run.energy));
+    // Per body and in total, at the last record.
+    std::vector<RunSummary::Record> bodies;
+    const MPMEnergy& last = run.energy.back();
+    const auto record = [&](const BodyEnergy& e) -> RunSummary::Record {
+      return {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.external}, {"total", e.total()},
+              {"momentum_x", e.momentum.x()}, {"momentum_y", e.momentum.y()}};
+    };
+    std::string names;
+    for (std::size_t k = 0; k < last.bodies.size(); ++k) {
+      bodies.push_back(record(last.bodies[k]));
+      names += fmt::format("{}{}", k ? "," : "", scene.problem.bodies[k].name);
+    }
+    summary.text("bodies", names);  // the order of body_energy
+    summary.records("body_energy", bodies);
+    summary.records("total_energy", {record(last.sum)});
+  }
   std::vector<RunSummary::Record> errors;
   for (const ParticleErrors& e : run.errors)
     errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity},
@@ -179,7 +266,7 @@ int converge_mpm(const MPMScene& scene) {
           s.cells = cells;
           s.particles_per_side = side;
           const MPMRun run = simulate_mpm(scene, s, false);
-          const double h = scene.problem.domain.size().x() / cells;
+          const double h = scene.problem.box.size().x() / cells;
           const std::string name = fmt::format("{},{},{}", method_name(m), to_string(u), side * side);
           const std::string status = run.failure ? "failed: " + *run.failure : "ok";
           const double drift = energy_drift(run.energy);

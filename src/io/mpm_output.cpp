@@ -33,9 +33,23 @@ void append_step(const std::filesystem::path& pvd, std::vector<std::pair<double,
 
 }  // namespace
 
+std::string particle_table(const Particles& P, const std::vector<MPMBody>& bodies) {
+  std::string out = "body,X,Y,x,y,vx,vy,sxx,syy,sxy\n";
+  for (Index p = 0; p < P.size(); ++p) {
+    const Mat2& s = P.stress[p];
+    if (!P.position[p].allFinite() || !P.velocity[p].allFinite() || !s.allFinite())
+      throw NumericalError(fmt::format("particle table: particle {} has a non-finite position, velocity or stress", p));
+    out += fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n",
+                       bodies.at(static_cast<std::size_t>(P.body[p])).name, P.reference[p].x(), P.reference[p].y(),
+                       P.position[p].x(), P.position[p].y(), P.velocity[p].x(), P.velocity[p].y(), s(0, 0), s(1, 1),
+                       s(0, 1));
+  }
+  return out;
+}
+
 MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
-                     Material material)
-    : folder_(std::move(folder)), fields_(fields), exact_(exact), material_(std::move(material)) {
+                     std::vector<MPMMaterial> materials)
+    : folder_(std::move(folder)), fields_(fields), exact_(exact), materials_(std::move(materials)) {
   if (fields_.error && exact_ == nullptr)
     throw InputError(fmt::format("MPM output to {}: the error fields need an exact solution, and this problem has none",
                                  folder_.string()));
@@ -47,14 +61,15 @@ MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const 
 void MPMFrames::write(const MPMSolver& solver) {
   const Particles& P = solver.particles();
   const double t = solver.time();
-  std::vector<double> u, v, sigma, vm, ue, se;
+  std::vector<double> u, v, sigma, vm, body, ue, se;
   for (Index p = 0; p < P.size(); ++p) {
     const Vec2 up = P.position[p] - P.reference[p];
     const Mat2& s = P.stress[p];
     if (fields_.displacement) u.insert(u.end(), {up.x(), up.y()});
     if (fields_.velocity) v.insert(v.end(), {P.velocity[p].x(), P.velocity[p].y()});
     if (fields_.stress) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
-    if (fields_.von_mises) vm.push_back(von_mises(s, out_of_plane_stress(material_, P.deformation[p])));
+    if (fields_.von_mises) vm.push_back(von_mises(s, out_of_plane_stress(materials_[P.material[p]].law, P.deformation[p])));
+    if (fields_.body) body.push_back(P.body[p]);
     if (fields_.error) {
       // Errors at the particle's reference position: the exact motion is Lagrangian.
       const Vec2 eu = up - exact_->displacement(P.reference[p], t);
@@ -68,6 +83,7 @@ void MPMFrames::write(const MPMSolver& solver) {
   if (fields_.velocity) fields.push_back({"velocity", 2, std::move(v)});
   if (fields_.stress) fields.push_back({"stress", 3, std::move(sigma)});
   if (fields_.von_mises) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (fields_.body) fields.push_back({"body", 1, std::move(body)});
   if (fields_.error) {
     fields.push_back({"displacement_error", 2, std::move(ue)});
     fields.push_back({"stress_error", 3, std::move(se)});

@@ -2,28 +2,25 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <memory>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/name_table.hpp"
+#include "mfree/geometry/domain.hpp"
 #include "mfree/io/scene_sections.hpp"
 
 namespace mfree {
 
 namespace {
 
-const std::vector<std::string> method_names{"classic", "ugimp", "cpdi", "bspline", "bspline_cubic", "bspline_mls"};
-const std::vector<std::string> update_names{"usf", "usl", "szs", "usavg"};
+const NameTable<MPMMethodChoice>& method_names() {
+  static const NameTable<MPMMethodChoice> table{
+      {"classic", {MPMMethod::classic, 1}},  {"ugimp", {MPMMethod::ugimp, 1}},
+      {"cpdi", {MPMMethod::cpdi, 1}},        {"bspline", {MPMMethod::bspline, 2}},
+      {"bspline_cubic", {MPMMethod::bspline, 3}}, {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
+  return table;
+}
 
-MPMMethodChoice method_of(const std::string& s) {
-  if (s == "classic") return {MPMMethod::classic, 1};
-  if (s == "ugimp") return {MPMMethod::ugimp, 1};
-  if (s == "cpdi") return {MPMMethod::cpdi, 1};
-  if (s == "bspline_cubic") return {MPMMethod::bspline, 3};
-  if (s == "bspline_mls") return {MPMMethod::bspline_mls, 2};
-  return {MPMMethod::bspline, 2};
-}
-UpdateScheme update_of(const std::string& s) {
-  return s == "usf" ? UpdateScheme::usf : s == "usl" ? UpdateScheme::usl : s == "szs" ? UpdateScheme::szs : UpdateScheme::usavg;
-}
 /// Particles per cell (a square number) -> per side.
 int per_side(const SceneTable& t, const std::string& key, long long n) {
   const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
@@ -34,12 +31,110 @@ Vec2 pair_of(const SceneTable& t, const std::string& key) {
   const auto v = t.numbers(key, 2, -1e300, 1e300);
   return {v[0], v[1]};
 }
+/// A vector formula that is constant becomes its value: no parser runs per particle.
+template <class... Args>
+std::function<Vec2(const Vec2&, Args...)> vector_field(const VectorFormula& f) {
+  if (f.x.is_constant() && f.y.is_constant()) {
+    const Vec2 c = f(Vec2::Zero());
+    return [c](const Vec2&, Args...) { return c; };
+  }
+  return [f](const Vec2& X, Args... t) { return f(X, t...); };
+}
+
+/// Walls per side of the grid box from [mpm] walls = {side = kind, ...}; open where unlisted.
+Walls read_walls(const SceneTable& mpm) {
+  Walls walls{Wall::open, Wall::open, Wall::open, Wall::open};
+  if (!mpm.has("walls")) return walls;
+  const SceneTable t = mpm.table("walls");
+  for (const std::string& side : side_names().names())
+    walls[static_cast<std::size_t>(side_names().value(side))] =
+        wall_names().value(t.choice_or(side, "open", wall_names().names()));
+  t.finish();
+  return walls;
+}
+
+/// [[material]] tables, in order; names distinct.
+std::vector<MPMMaterial> read_materials(const std::vector<SceneTable>& tables, std::vector<MaterialSection>& sections) {
+  std::vector<MPMMaterial> out;
+  for (const SceneTable& t : tables) {
+    const std::string name = t.string("name");
+    for (const MPMMaterial& m : out)
+      if (m.name == name) t.error("name", fmt::format("a second material named '{}'", name));
+    const MaterialSection s = read_material_keys(t);
+    if (!(s.density > 0.0)) t.error("model", "an MPM material needs a density");
+    out.push_back({name, s.material, s.density});
+    sections.push_back(s);
+  }
+  return out;
+}
+
+/// One [[body]] table: name, shape and its keys, material (index into `materials`),
+/// velocity, particles per cell.
+MPMBody read_body(const SceneTable& t, const std::vector<MPMMaterial>& materials, const Constants& constants) {
+  MPMBody b;
+  b.name = t.string("name");
+  b.shape = shape_names().value(t.choice("shape", shape_names().names()));
+  std::string key;  // the key of the shape's geometry, named by messages about the body
+  switch (b.shape) {
+    case Shape::rectangle: {
+      key = "box";
+      const Box box = read_box(t, key);
+      if (!(box.hi.array() > box.lo.array()).all()) t.error(key, "the corners must differ in x and y");
+      const MPMBody r = rectangle_body(b.name, box);
+      b.bounds = r.bounds;
+      b.contains = r.contains;
+      break;
+    }
+    case Shape::circle: {
+      key = "centre";
+      const Vec2 c = pair_of(t, key);
+      const double r = t.number("radius", 0.0, 1e300);
+      if (!(r > 0.0)) t.error("radius", "must be positive");
+      b.bounds = {c - Vec2(r, r), c + Vec2(r, r)};
+      b.contains = [c, r](const Vec2& x) { return (x - c).squaredNorm() <= r * r; };
+      break;
+    }
+    case Shape::polygon: {
+      key = "wkt";
+      const std::filesystem::path file = t.folder() / t.string(key);
+      std::shared_ptr<const Domain> domain;
+      try {
+        domain = std::make_shared<const Domain>(Domain::from_file(file));
+      } catch (const InputError& e) {
+        t.error(key, e.what());
+      }
+      b.bounds = domain->bounding_box();
+      b.contains = [domain](const Vec2& x) { return domain->contains(x); };
+      break;
+    }
+  }
+  b.where = t.where(key);
+  const std::string material = t.string("material");
+  std::string defined;
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    if (materials[k].name == material) b.material = static_cast<int>(k);
+    defined += fmt::format("{}'{}'", k ? ", " : "", materials[k].name);
+  }
+  if (materials.empty() || materials[b.material].name != material)
+    t.error("material", fmt::format("no [[material]] is named '{}' (defined: {})", material,
+                                    materials.empty() ? "none" : defined));
+  if (t.has("velocity")) {
+    const VectorFormula v = read_vector_formula(t, "velocity", constants);
+    if (v.depends_on_time()) t.error("velocity", "an initial velocity is a field in X and Y, not t");
+    b.initial_velocity = vector_field<>(v);
+  }
+  if (t.has("particles_per_cell"))
+    b.particles_per_side = per_side(t, "particles_per_cell", t.integer("particles_per_cell", 1, 25));
+  t.finish();
+  return b;
+}
 
 }  // namespace
 
-std::string method_name(const MPMMethodChoice& m) {
-  if (m.method == MPMMethod::bspline && m.degree == 3) return "bspline_cubic";
-  return std::string(to_string(m.method));
+std::string method_name(const MPMMethodChoice& m) { return method_names().name(m); }
+
+MPMMethodChoice method_of(const MPMSettings& s) {
+  return {s.method, s.method == MPMMethod::bspline ? s.degree : is_bspline(s.method) ? 2 : 1};
 }
 
 bool is_mpm_scene(const std::filesystem::path& file) { return Scene::load(file).root().has("mpm"); }
@@ -51,60 +146,74 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
   out.file = file;
   MPMProblem& pr = out.problem;
   MPMSettings& s = out.settings;
-  {
-    const SceneTable t = root.table("domain");
-    pr.domain = read_box(t, "rectangle");
-    if (!(pr.domain.hi.array() > pr.domain.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
-    t.finish();
+  const Constants constants = read_constants(root);
+  const SceneTable mpm = root.table("mpm");
+  pr.box = read_box(mpm, "box");
+  if (!(pr.box.hi.array() > pr.box.lo.array()).all()) mpm.error("box", "the corners must differ in x and y");
+
+  std::vector<MaterialSection> sections;
+  const std::vector<SceneTable> material_tables = root.tables("material");
+  if (material_tables.empty()) root.error("mpm", "an MPM scene needs [[material]] tables (name, model, ..., density)");
+  pr.materials = read_materials(material_tables, sections);
+  const std::vector<SceneTable> body_tables = root.tables("body");
+  if (body_tables.empty()) root.error("mpm", "an MPM scene needs at least one [[body]]");
+  for (const SceneTable& t : body_tables) {
+    pr.bodies.push_back(read_body(t, pr.materials, constants));
+    for (std::size_t k = 0; k + 1 < pr.bodies.size(); ++k)
+      if (pr.bodies[k].name == pr.bodies.back().name)
+        t.error("name", fmt::format("a second body named '{}'", pr.bodies.back().name));
   }
-  const MaterialSection material = read_material(root);
-  pr.material = material.material;
-  pr.density = material.density;
-  if (!(pr.density > 0.0)) root.error("material", "an MPM scene needs [material] density");
+  for (std::size_t k = 0; k < pr.materials.size(); ++k) {
+    bool used = false;
+    for (const MPMBody& b : pr.bodies) used = used || b.material == static_cast<int>(k);
+    if (!used) material_tables[k].error("name", fmt::format("material '{}' is used by no [[body]]", pr.materials[k].name));
+  }
+
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
     (void)t.choice("solution", {"vibration"});
     const double amplitude = t.number("amplitude", 0.0, 1e300);
-    if (!std::holds_alternative<NeoHookean>(pr.material))
-      t.error("solution", "the vibration solution needs [material] model = \"neo_hookean\"");
-    const Box& d = pr.domain;
+    if (pr.bodies.size() != 1) t.error("solution", "the vibration solution needs a single [[body]]");
+    const MPMBody& body = pr.bodies.front();
+    const SceneTable& bt = body_tables.front();
+    const Box& d = pr.box;
     if (d.lo.norm() > 1e-12 * d.size().norm() || std::abs(d.size().x() - d.size().y()) > 1e-12 * d.size().x())
-      t.error("solution", "the vibration solution needs the square domain [0, L] x [0, L]");
+      t.error("solution", "the vibration solution needs the square grid box [0, L] x [0, L]");
+    if (body.shape != Shape::rectangle || (body.bounds.lo - d.lo).norm() > 1e-12 * d.size().norm() ||
+        (body.bounds.hi - d.hi).norm() > 1e-12 * d.size().norm())
+      t.error("solution", "the vibration solution needs the body to be the rectangle filling the grid box");
+    if (body.initial_velocity) bt.error("velocity", "the [exact] solution sets the initial velocity");
+    const MaterialSection& material = sections[static_cast<std::size_t>(body.material)];
+    if (!std::holds_alternative<NeoHookean>(material.material))
+      t.error("solution", "the vibration solution needs a material with model = \"neo_hookean\"");
     const AxisAlignedVibration v{amplitude, d.size().x(), material.linear.youngs_modulus, material.linear.poisson_ratio,
-                                 pr.density};
+                                 material.density};
     out.vibration = v;
     pr.body_force = [v](const Vec2& X, double t) { return v.body_force(X, t); };
-    pr.initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
+    pr.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
     t.finish();
   }
   {
-    const SceneTable t = root.table("mpm");
-    const MPMMethodChoice m = method_of(t.choice("method", method_names));
+    const SceneTable& t = mpm;
+    const MPMMethodChoice m = method_names().value(t.choice("method", method_names().names()));
     s.method = m.method;
     s.degree = m.degree == 1 ? 2 : m.degree;
-    s.update = update_of(t.choice_or("update", "usf", update_names));
+    s.update = update_names().value(t.choice_or("update", "usf", update_names().names()));
     s.cells = static_cast<int>(t.integer("cells", 1, 100000));
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
     if (t.has("mls_support") && s.method != MPMMethod::bspline_mls) t.error("mls_support", "only bspline_mls reconstructs");
     s.deformation_terms = static_cast<int>(t.integer_or("deformation_terms", 2, 1, 10));
-    if (t.has("slip_walls") && !t.is_array_empty("slip_walls"))
-      for (const auto& w : t.choices("slip_walls", {"left", "right", "bottom", "top"}))
-        s.walls.push_back(w == "left" ? Wall::left : w == "right" ? Wall::right : w == "bottom" ? Wall::bottom : Wall::top);
+    s.walls = read_walls(t);
+    s.damping = t.number_or("damping", 0.0, 0.0, 1e300);
     if (t.has("gravity")) {
       if (out.vibration) t.error("gravity", "the [exact] solution sets the body force");
-      const Vec2 g = pair_of(t, "gravity");
-      pr.body_force = [g](const Vec2&, double) { return g; };
+      pr.body_force = vector_field<double>(read_vector_formula(t, "gravity", constants));
     }
-    if (t.has("initial_velocity")) {
-      if (out.vibration) t.error("initial_velocity", "the [exact] solution sets the initial velocity");
-      const Vec2 v = pair_of(t, "initial_velocity");
-      pr.initial_velocity = [v](const Vec2&) { return v; };
-    }
-    const double h = pr.domain.size().x() / s.cells;
-    const double rows = pr.domain.size().y() / h;
+    const double h = pr.box.size().x() / s.cells;
+    const double rows = pr.box.size().y() / h;
     if (std::abs(rows - std::round(rows)) > 1e-9 * rows)
-      t.error("cells", fmt::format("the domain height {} is not a whole number of cells of size {}", pr.domain.size().y(), h));
+      t.error("cells", fmt::format("the grid box height {} is not a whole number of cells of size {}", pr.box.size().y(), h));
     t.finish();
   }
   {
@@ -127,16 +236,18 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     const SceneTable t = root.table("output");
     out.folder = t.string("folder");
     if (t.has("fields") && !t.is_array_empty("fields"))
-      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "error", "grid"})) {
+      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "body", "error", "grid"})) {
         if (f == "displacement") out.fields.displacement = true;
         if (f == "velocity") out.fields.velocity = true;
         if (f == "stress") out.fields.stress = true;
         if (f == "von_mises") out.fields.von_mises = true;
+        if (f == "body") out.fields.body = true;
         if (f == "error") out.fields.error = true;
         if (f == "grid") out.fields.grid = true;
       }
     if (out.fields.error && !out.vibration) t.error("fields", "'error' needs an [exact] section");
     out.vtk = t.boolean_or("vtk", true);
+    out.particles_csv = t.boolean_or("particles_csv", false);
     t.finish();
   }
   if (want_study || root.has("study")) {
@@ -146,18 +257,21 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       if (c != std::round(c)) t.error("cells", "must be whole numbers");
       st.cells.push_back(static_cast<int>(c));
     }
-    st.methods = {MPMMethodChoice{s.method, s.method == MPMMethod::bspline ? s.degree : (is_bspline(s.method) ? 2 : 1)}};
+    st.methods = {method_of(s)};
     if (t.has("methods")) {
       st.methods.clear();
-      for (const auto& m : t.choices("methods", method_names)) st.methods.push_back(method_of(m));
+      for (const auto& m : t.choices("methods", method_names().names())) st.methods.push_back(method_names().value(m));
     }
     st.updates = {s.update};
     if (t.has("updates")) {
       st.updates.clear();
-      for (const auto& u : t.choices("updates", update_names)) st.updates.push_back(update_of(u));
+      for (const auto& u : t.choices("updates", update_names().names())) st.updates.push_back(update_names().value(u));
     }
     st.particles_per_side = {s.particles_per_side};
     if (t.has("particles_per_cell")) {
+      for (const MPMBody& b : pr.bodies)
+        if (b.particles_per_side > 0)
+          t.error("particles_per_cell", fmt::format("body '{}' sets its own particles_per_cell", b.name));
       st.particles_per_side.clear();
       for (const double n : t.numbers("particles_per_cell", 0, 1, 25)) st.particles_per_side.push_back(per_side(t, "particles_per_cell", std::lround(n)));
     }

@@ -9,8 +9,9 @@
 
 namespace mfree {
 
-MaterialSection read_material(const SceneTable& root) {
-  const SceneTable t = root.table("material");
+MaterialSection read_material(const SceneTable& root) { return read_material_keys(root.table("material")); }
+
+MaterialSection read_material_keys(const SceneTable& t) {
   MaterialSection m;
   m.model = t.choice("model", {"plane_stress", "plane_strain", "neo_hookean", "st_venant_kirchhoff"});
   m.linear.model = m.model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;

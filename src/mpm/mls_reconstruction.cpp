@@ -20,7 +20,7 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
   const int nx = grid_.cells_x(), ny = grid_.cells_y();
   std::vector<unsigned char> active(static_cast<std::size_t>(nx) * ny, 0);
   for (const Vec2& x : positions) {
-    const Vec2 c = (x - grid_.domain().lo) / h;
+    const Vec2 c = (x - grid_.box().lo) / h;
     const int i = std::clamp(static_cast<int>(std::floor(c.x())), 0, nx - 1);
     const int j = std::clamp(static_cast<int>(std::floor(c.y())), 0, ny - 1);
     active[i + static_cast<std::size_t>(nx) * j] = 1;
@@ -32,7 +32,7 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         if (!active_[i + static_cast<std::size_t>(nx) * j]) continue;
-        const Vec2 centre = grid_.domain().lo + h * Vec2(i + 0.5, j + 0.5);
+        const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
         for (const double sy : {-offset, offset})
           for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
       }

@@ -8,15 +8,13 @@
 
 namespace mfree {
 
-std::string_view to_string(UpdateScheme s) {
-  switch (s) {
-    case UpdateScheme::usf: return "usf";
-    case UpdateScheme::usl: return "usl";
-    case UpdateScheme::szs: return "szs";
-    case UpdateScheme::usavg: return "usavg";
-  }
-  return "?";
+const NameTable<UpdateScheme>& update_names() {
+  static const NameTable<UpdateScheme> table{
+      {"usf", UpdateScheme::usf}, {"usl", UpdateScheme::usl}, {"szs", UpdateScheme::szs}, {"usavg", UpdateScheme::usavg}};
+  return table;
 }
+
+std::string_view to_string(UpdateScheme s) { return update_names().name(s); }
 
 namespace {
 
@@ -32,7 +30,11 @@ void at_time(double t, F&& f) {
 }
 
 const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
-  if (!(p.density > 0.0)) throw InputError(fmt::format("MPM: the density must be positive (got {})", p.density));
+  if (p.materials.empty()) throw InputError("MPM: the problem has no material");
+  for (const MPMMaterial& m : p.materials)
+    if (!(m.density > 0.0))
+      throw InputError(fmt::format("MPM: the density of material '{}' must be positive (got {})", m.name, m.density));
+  if (!(s.damping >= 0.0)) throw InputError(fmt::format("MPM: damping must be zero or positive (got {})", s.damping));
   if (!(s.end_time > 0.0)) throw InputError(fmt::format("MPM: end_time must be positive (got {})", s.end_time));
   if (s.cells < 1) throw InputError(fmt::format("MPM: needs at least one cell (got {})", s.cells));
   if (is_bspline(s.method) && (s.degree < 2 || s.degree > 3))
@@ -70,25 +72,31 @@ Mat2 exp_series(const Mat2& L, double dt, int kmax) {
 
 MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings)
     : MPMSolver(problem, settings,
-                fill_box(problem.domain, problem.domain.size().x() / std::max(settings.cells, 1),
-                         settings.particles_per_side, problem.density,
-                         settings.method == MPMMethod::ugimp || settings.method == MPMMethod::cpdi)) {
-  if (problem_.initial_velocity)
-    for (Index p = 0; p < particles_.size(); ++p) particles_.velocity[p] = problem_.initial_velocity(particles_.reference[p]);
-}
+                seed_bodies(problem.bodies, problem.materials, problem.box,
+                            problem.box.size().x() / std::max(settings.cells, 1), settings.particles_per_side,
+                            settings.method == MPMMethod::ugimp || settings.method == MPMMethod::cpdi)) {}
 
 MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles)
     : problem_(std::move(problem)),
       settings_(checked(settings, problem_)),
-      grid_(problem_.domain, settings_.cells, is_bspline(settings_.method) ? settings_.degree : 1,
+      grid_(problem_.box, settings_.cells, is_bspline(settings_.method) ? settings_.degree : 1,
             grid_padding(settings_.method)),
       basis_(settings_.method, grid_),
       particles_(std::move(particles)) {
   if ((settings_.method == MPMMethod::ugimp || settings_.method == MPMMethod::cpdi) &&
       particles_.half_size.size() != particles_.mass.size())
     throw InputError(fmt::format("MPM: method {} needs the particle domains", to_string(settings_.method)));
-  for (Index p = 0; p < particles_.size(); ++p)
-    particles_.stress[p] = cauchy_stress(problem_.material, particles_.deformation[p]);
+  if (particles_.size() == 0) throw InputError("MPM: the problem has no particles");
+  if (particles_.material.size() != particles_.mass.size() || particles_.body.size() != particles_.mass.size())
+    throw InputError("MPM: every particle needs a body and a material");
+  for (Index p = 0; p < particles_.size(); ++p) {
+    if (particles_.material[p] < 0 || particles_.material[p] >= static_cast<int>(problem_.materials.size()))
+      throw InputError(fmt::format("MPM: particle {} has material {}, not one of the problem's {}", p,
+                                   particles_.material[p], problem_.materials.size()));
+    bodies_ = std::max(bodies_, particles_.body[p] + 1);
+    particles_.stress[p] = cauchy_stress(problem_.materials[particles_.material[p]].law, particles_.deformation[p]);
+  }
+  external_work_.assign(static_cast<std::size_t>(bodies_), 0.0);
   walls_ = grid_.wall_mask(settings_.walls);
   for (double m : particles_.mass) particle_mass_ += m;
   body_.assign(particles_.mass.size(), Vec2::Zero());
@@ -96,8 +104,10 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
     mls_ = std::make_unique<MLSReconstruction>(grid_, basis_, settings_.mls_support);
 
   // Time step (seed 002, "Theory: MPM Time Step"): dt = C h / c with C < 1, or a fixed step,
-  // whichever is smaller.
-  h_over_c_ = grid_.spacing() / wave_speed(problem_.material, problem_.density);
+  // whichever is smaller; c the fastest of the materials' wave speeds.
+  double c = 0.0;
+  for (const MPMMaterial& m : problem_.materials) c = std::max(c, wave_speed(m.law, m.density));
+  h_over_c_ = grid_.spacing() / c;
   const bool allowed = settings_.allow_unstable_time_step;
   if (settings_.courant > 1.0 && !allowed)
     throw InputError(fmt::format(
@@ -204,6 +214,8 @@ void MPMSolver::update_stress(double dt) {
   // the members would be loaded again after every store.
   const double* mass = mass_.data();
   const Vec2* velocity = velocity_.data();
+  const MPMMaterial* materials = problem_.materials.data();
+  const int* material = P.material.data();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p) {
       const Vec2 vp = P.velocity[p];
@@ -229,7 +241,7 @@ void MPMSolver::update_stress(double dt) {
       F.col(0) = f0;
       F.col(1) = f1;
       P.volume[p] = J * P.volume0[p];                      // eq. (36)
-      P.stress[p] = cauchy_stress(problem_.material, F);  // eqs. (37) and (41)
+      P.stress[p] = cauchy_stress(materials[material[p]].law, F);  // eqs. (37) and (41)
     }
   });
 }
@@ -270,6 +282,10 @@ void MPMSolver::compute_grid_forces() {
 }
 
 void MPMSolver::update_grid_momentum() {
+  // Mass-proportional damping, -alpha m_i v_i = -alpha (mv)_i, joins the force, so that the
+  // particles' accelerations (grid_to_particles) see it too.
+  if (settings_.damping > 0.0)
+    for (std::size_t i = 0; i < momentum_.size(); ++i) force_[i] -= settings_.damping * momentum_[i];
   for (std::size_t i = 0; i < momentum_.size(); ++i) {
     if (walls_[i] & 1) force_[i].x() = momentum_[i].x() = 0.0;
     if (walls_[i] & 2) force_[i].y() = momentum_[i].y() = 0.0;
@@ -284,11 +300,15 @@ void MPMSolver::grid_to_particles() {
   for (std::size_t i = 0; i < mass_.size(); ++i)
     acceleration_[i] = mass_[i] > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
   grid_velocities(momentum_);
-  std::vector<double> work(static_cast<std::size_t>(thread_count()), 0.0);
+  // Work of the body forces per thread and body, summed in thread order (reproducible). The
+  // threads' rows lie at least a cache line (8 doubles) apart: every particle adds to its row.
+  const auto bodies = static_cast<std::size_t>(bodies_);
+  const std::size_t row = (bodies + 7) / 8 * 8 + 8;
+  std::vector<double> work(static_cast<std::size_t>(thread_count()) * row, 0.0);
   const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
   const Vec2* velocity = velocity_.data();
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
-    double w = 0.0;
+    double* w = work.data() + static_cast<std::size_t>(t) * row;
     for (Index p = begin; p < end; ++p) {
       Vec2 a = Vec2::Zero(), v = Vec2::Zero();
       weights_.for_each(p, [&](Index i, double S, const Vec2&) {
@@ -298,11 +318,11 @@ void MPMSolver::grid_to_particles() {
       P.velocity[p] += dt_ * a;  // eq. (29)
       const Vec2 dx = dt_ * v;   // eq. (30)
       P.position[p] += dx;
-      w += P.mass[p] * body_[p].dot(dx);
+      w[P.body[p]] += P.mass[p] * body_[p].dot(dx);
     }
-    work[t] = w;
   });
-  for (double w : work) external_work_ += w;
+  for (std::size_t t = 0; t < work.size() / row; ++t)
+    for (std::size_t b = 0; b < bodies; ++b) external_work_[b] += work[t * row + b];
 }
 
 void MPMSolver::extrapolate_updated_momenta() {
@@ -343,11 +363,24 @@ MPMEnergy MPMSolver::energy() const {
   const Particles& P = particles_;
   MPMEnergy e;
   e.time = time_;
+  e.bodies.resize(static_cast<std::size_t>(bodies_));
   for (Index p = 0; p < P.size(); ++p) {
-    e.kinetic += 0.5 * P.mass[p] * P.velocity[p].squaredNorm();
-    e.strain += P.volume0[p] * mfree::energy(problem_.material, P.deformation[p]);
+    BodyEnergy& b = e.bodies[P.body[p]];
+    const double kinetic = 0.5 * P.mass[p] * P.velocity[p].squaredNorm();
+    const double strain = P.volume0[p] * mfree::energy(problem_.materials[P.material[p]].law, P.deformation[p]);
+    b.kinetic += kinetic;
+    b.strain += strain;
+    b.momentum += P.mass[p] * P.velocity[p];
+    // The sum in particle order, as one body's would be: a single body's figures are the same
+    // bits in both.
+    e.sum.kinetic += kinetic;
+    e.sum.strain += strain;
+    e.sum.momentum += P.mass[p] * P.velocity[p];
   }
-  e.external = external_work_;
+  for (int b = 0; b < bodies_; ++b) {
+    e.bodies[b].external = external_work_[b];
+    e.sum.external += external_work_[b];
+  }
   return e;
 }
 

@@ -69,7 +69,7 @@ ParticleBasis::ParticleBasis(MPMMethod method, const Grid& grid) : method_(metho
   const int p = grid.x_axis().degree();
   if (is_bspline(method) != (p >= 2))
     throw InputError(fmt::format("MPM: method {} does not use degree-{} functions", to_string(method), p));
-  if (grid_padding(method) > 0 && grid.extent().lo.x() >= grid.domain().lo.x())
+  if (grid_padding(method) > 0 && grid.extent().lo.x() >= grid.box().lo.x())
     throw InputError(fmt::format("MPM: method {} needs a grid padded by one cell", to_string(method)));
   axis_ = method == MPMMethod::ugimp ? 3 : method == MPMMethod::cpdi ? 0 : p + 1;
   stride_ = method == MPMMethod::cpdi ? 16 : axis_ * axis_;

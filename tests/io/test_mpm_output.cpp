@@ -28,14 +28,16 @@ namespace {
 
 
 const AxisAlignedVibration vibration{0.05, 1.0, 1e7, 0.3, 1000.0};
+const Walls open_walls{Wall::open, Wall::open, Wall::open, Wall::open};
 
 /// The small vibration run of the unit square: quadratic B-splines, 4 x 4 cells, 2 x 2
 /// particles per cell, before its first step.
-MPMSolver small_solver(MPMMethod method, int degree, std::vector<Wall> walls) {
-  MPMProblem problem{Box{Vec2(0, 0), Vec2(1, 1)}, make_material("neo_hookean", 1e7, 0.3), 1000.0, {}, {}};
+MPMSolver small_solver(MPMMethod method, int degree, Walls walls) {
+  const Box unit{Vec2(0, 0), Vec2(1, 1)};
+  MPMProblem problem{unit, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}}, {rectangle_body("block", unit)}, {}};
   const AxisAlignedVibration v = vibration;
   problem.body_force = [v](const Vec2& X, double t) { return v.body_force(X, t); };
-  problem.initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
+  problem.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
   MPMSettings s;
   s.method = method;
   s.degree = degree;
@@ -43,7 +45,7 @@ MPMSolver small_solver(MPMMethod method, int degree, std::vector<Wall> walls) {
   s.particles_per_side = 2;
   s.end_time = 1e-4;
   s.time_step = 1e-5;
-  s.walls = std::move(walls);
+  s.walls = walls;
   return MPMSolver(problem, s);
 }
 
@@ -76,8 +78,8 @@ std::size_t mismatches(const std::vector<double>& read, const std::vector<double
 TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lists the frames",
           "[io][mpm_output]") {
   ScratchFolder folder("mpm_frames", false);
-  MPMSolver solver = small_solver(MPMMethod::bspline, 2, {});
-  const Material material = make_material("neo_hookean", 1e7, 0.3);
+  MPMSolver solver = small_solver(MPMMethod::bspline, 2, open_walls);
+  const std::vector<MPMMaterial> material{{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}};
   MPMFrameFields fields;
   fields.displacement = fields.velocity = fields.stress = fields.von_mises = fields.error = true;
   MPMFrames frames(folder.path, fields, &vibration, material);
@@ -118,7 +120,7 @@ TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lis
     u.insert(u.end(), {up.x(), up.y(), 0.0});
     v.insert(v.end(), {P.velocity[p].x(), P.velocity[p].y(), 0.0});
     sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
-    vm.push_back(von_mises(s, out_of_plane_stress(material, P.deformation[p])));
+    vm.push_back(von_mises(s, out_of_plane_stress(material[P.material[p]].law, P.deformation[p])));
     ue.insert(ue.end(), {eu.x(), eu.y(), 0.0});
     se.insert(se.end(), {es(0, 0), es(1, 1), es(0, 1)});
   }
@@ -135,15 +137,17 @@ TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lis
 
 TEST_CASE("MPM frames: only the fields asked for; errors need an exact solution", "[io][mpm_output]") {
   ScratchFolder folder("mpm_frames_some", false);
-  MPMSolver solver = small_solver(MPMMethod::bspline, 2, {});
-  const Material material = make_material("neo_hookean", 1e7, 0.3);
+  MPMSolver solver = small_solver(MPMMethod::bspline, 2, open_walls);
+  const std::vector<MPMMaterial> material{{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}};
   MPMFrameFields fields;
   fields.velocity = true;
   fields.von_mises = true;
+  fields.body = true;
   MPMFrames frames(folder.path, fields, nullptr, material);
   frames.write(solver);
-  CHECK(read_vtu(folder.path / "particles_0000.vtu").array_names ==
-        std::vector<std::string>{"velocity", "von_mises"});
+  const VtuContents some = read_vtu(folder.path / "particles_0000.vtu");
+  CHECK(some.array_names == std::vector<std::string>{"velocity", "von_mises", "body"});
+  CHECK(some.arrays.at("body") == std::vector<double>(static_cast<std::size_t>(solver.particles().size()), 0.0));
 
   // No fields at all: the particles alone.
   MPMFrames bare(folder.path / "bare", MPMFrameFields{}, nullptr, material);
@@ -161,10 +165,10 @@ TEST_CASE("MPM frames: only the fields asked for; errors need an exact solution"
 
 TEST_CASE("MPM frames: grid velocity field and mass at the cell corners", "[io][mpm_output]") {
   ScratchFolder folder("mpm_frames_grid", false);
-  MPMSolver solver = small_solver(MPMMethod::bspline, 2, {Wall::left, Wall::bottom});
+  MPMSolver solver = small_solver(MPMMethod::bspline, 2, {Wall::slip, Wall::open, Wall::slip, Wall::open});
   MPMFrameFields fields;
   fields.grid = true;
-  MPMFrames frames(folder.path, fields, nullptr, make_material("neo_hookean", 1e7, 0.3));
+  MPMFrames frames(folder.path, fields, nullptr, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}});
   // Before the first step the grid holds nothing: no grid file for frame 0.
   frames.write(solver);
   CHECK_FALSE(fs::exists(folder.path / "grid_0000.vti"));
@@ -218,11 +222,11 @@ TEST_CASE("MPM frames: grid velocity field and mass at the cell corners", "[io][
 
 TEST_CASE("MPM frames: the grid image spans the padding of hat-function grids", "[io][mpm_output]") {
   ScratchFolder folder("mpm_frames_padded", false);
-  MPMSolver solver = small_solver(MPMMethod::ugimp, 1, {});
+  MPMSolver solver = small_solver(MPMMethod::ugimp, 1, open_walls);
   solver.step();
   MPMFrameFields fields;
   fields.grid = true;
-  MPMFrames frames(folder.path, fields, nullptr, make_material("neo_hookean", 1e7, 0.3));
+  MPMFrames frames(folder.path, fields, nullptr, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}});
   frames.write(solver);
   const VtiContents read = read_vti(folder.path / "grid_0000.vti");
   // One cell of padding on every side: 6 cells, 7 corners per side, from (-h, -h).

@@ -24,7 +24,9 @@ const UpdateScheme schemes[] = {UpdateScheme::usf, UpdateScheme::usl, UpdateSche
 
 const Box unit{Vec2(0.0, 0.0), Vec2(1.0, 1.0)};
 
-MPMProblem block_problem() { return {unit, make_material("neo_hookean", 1e7, 0.3), 1000.0, {}, {}}; }
+MPMProblem block_problem() {
+  return {unit, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}}, {rectangle_body("block", unit)}, {}};
+}
 
 MPMSettings settings_for(const Method& m, UpdateScheme s, int cells) {
   MPMSettings st;
@@ -120,13 +122,14 @@ namespace {
 /// RMS displacement error at t = T/4, where u peaks, of the vibration problem (SPEC section 6).
 ParticleErrors quarter_period_errors(const Method& m, int cells) {
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
-  MPMProblem problem{unit, v.material(), v.density, [v](const Vec2& X, double t) { return v.body_force(X, t); },
-                     [v](const Vec2& X) { return v.velocity(X, 0.0); }};
+  MPMProblem problem{unit, {{"rubber", v.material(), v.density}}, {rectangle_body("block", unit)},
+                     [v](const Vec2& X, double t) { return v.body_force(X, t); }};
+  problem.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
   MPMSettings s = settings_for(m, UpdateScheme::usf, cells);
   s.particles_per_side = 3;
   s.end_time = 0.25 * v.period();
   s.time_step = 1e-5;  // seed 000's step: the time error stays well below the space error
-  s.walls = {Wall::left, Wall::right, Wall::bottom, Wall::top};
+  s.walls = {Wall::slip, Wall::slip, Wall::slip, Wall::slip};
   MPMSolver solver(problem, s);
   for (int n = 0; n < solver.steps(); ++n) solver.step();
   return particle_errors(solver, v);
@@ -149,7 +152,7 @@ TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration
 
 TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]") {
   MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 16);
-  const double limit = (1.0 / 16.0) / wave_speed(block_problem().material, 1000.0);
+  const double limit = (1.0 / 16.0) / wave_speed(block_problem().materials.front().law, 1000.0);
   s.time_step = 1.2 * limit;
   const std::string what = testing::message_of<InputError>([&] { MPMSolver(block_problem(), s); });
   CHECK_THAT(what, Catch::Contains("above the Courant limit h / c"));

@@ -77,8 +77,9 @@ def scene_table(path: Path) -> dict:
 
 
 def dilatational_wave_speed(scene: dict) -> float:
-    """c_d = sqrt((lambda + 2 mu) / rho0) of the scene's material: the MPM Courant limit is h / c_d."""
-    m = scene["material"]
+    """c_d = sqrt((lambda + 2 mu) / rho0) of the scene's material (an MPM scene's first [[material]]):
+    the MPM Courant limit is h / c_d."""
+    m = scene["material"][0] if isinstance(scene["material"], list) else scene["material"]
     e, nu, rho = m["youngs_modulus"], m["poisson_ratio"], m["density"]
     return math.sqrt(e * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho)
 

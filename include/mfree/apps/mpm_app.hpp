@@ -28,6 +28,7 @@ struct MPMRun {
   std::vector<MPMEnergy> energy;       ///< every energy_every steps (and t = 0)
   double max_mass_defect = 0.0;
   std::optional<std::string> failure;  ///< what stopped the run early
+  std::string particle_table;          ///< particles.csv of the end state (when the scene asks)
   StageTimer timer;
 };
 

@@ -9,7 +9,8 @@
 //   displacement        x_p - X_p
 //   velocity            v_p
 //   stress              Cauchy stress sigma_p (xx, yy, xy)
-//   von_mises           of sigma_p with the law's sigma_zz at F_p
+//   von_mises           of sigma_p with the particle's law's sigma_zz at F_p
+//   body                the index of the particle's body (0, 1, ... in the scene's order)
 //   displacement_error  (x_p - X_p) - u(X_p, t)    } against the exact motion ("error";
 //   stress_error        sigma_p - sigma(X_p, t)     } needs one)
 //
@@ -36,12 +37,18 @@
 
 namespace mfree {
 
+/// The particles as a CSV table for scripts, one row per particle:
+/// body (name), X, Y (reference position), x, y, vx, vy, sxx, syy, sxy (Cauchy stress).
+/// NumericalError for a non-finite value (never written).
+std::string particle_table(const Particles& particles, const std::vector<MPMBody>& bodies);
+
 /// Which fields MPMFrames writes (see above).
 struct MPMFrameFields {
   bool displacement = false;
   bool velocity = false;
   bool stress = false;
   bool von_mises = false;
+  bool body = false;   ///< the body index per particle
   bool error = false;  ///< displacement_error and stress_error
   bool grid = false;   ///< grid_NNNN.vti with velocity and mass
 };
@@ -50,9 +57,9 @@ class MPMFrames {
  public:
   /// Frames into `folder`, created if missing (Error when it cannot be). exact: the motion
   /// errors are measured against; may be null, but then fields.error is an InputError.
-  /// material: the solver's law, for sigma_zz in von_mises.
+  /// materials: the problem's (particles index them), for sigma_zz in von_mises.
   MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
-            Material material);
+            std::vector<MPMMaterial> materials);
 
   /// Writes frame number frames() at solver.time() and rewrites the series. Errors as the
   /// writers of vtk_output.hpp (NumericalError for a non-finite value, naming the field).
@@ -68,7 +75,7 @@ class MPMFrames {
   std::filesystem::path folder_;
   MPMFrameFields fields_;
   const AxisAlignedVibration* exact_;
-  Material material_;
+  std::vector<MPMMaterial> materials_;
   std::vector<std::pair<double, std::string>> steps_, grid_steps_;
 };
 

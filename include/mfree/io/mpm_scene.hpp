@@ -1,21 +1,35 @@
 #pragma once
 // MPM scenes: the scene format of elasticity scenes with an [mpm] section in place of
-// [nodes], [kernel] and [quadrature] (see verification/mpm-vibration/*.toml):
+// [domain], [nodes], [kernel] and [quadrature] (see verification/mpm-*/*.toml):
 //
-//   [domain]      rectangle = [[x0, y0], [x1, y1]]: the body fills it at t = 0; the grid
-//                 covers it with square cells
-//   [material]    as elasticity scenes; density is required
-//   [exact]       solution = "vibration", amplitude (optional): initial velocity, body force
-//                 and the errors come from it
 //   [mpm]         method (classic | ugimp | cpdi | bspline | bspline_cubic | bspline_mls),
-//                 update (usf | usl | szs | usavg), cells (across the width),
-//                 particles_per_cell (1, 4, 9, 16, 25), mls_support (kernel half width in cells,
-//                 bspline_mls), deformation_terms (kmax of the dF series, default 2),
-//                 slip_walls (left, right, bottom, top), gravity = [gx, gy] and
-//                 initial_velocity = [vx, vy] (without [exact])
+//                 update (usf | usl | szs | usavg),
+//                 box = [[x0, y0], [x1, y1]] (the grid box), cells (across its width; square
+//                 cells, the height a whole number of them),
+//                 particles_per_cell (1, 4, 9, 16, 25; default 4, for bodies stating none),
+//                 walls = {left = "slip", right = "open", bottom = "fixed", top = "open"}
+//                 (open | slip | fixed per side; a side not listed is open),
+//                 gravity = [gx, gy] (body force per unit mass [m/s^2]; numbers or formulas
+//                 in X, Y, t), damping (alpha [1/s] of the mass-proportional grid damping
+//                 -alpha m_i v_i; default 0), mls_support (kernel half width in cells,
+//                 bspline_mls), deformation_terms (kmax of the dF series, default 2)
+//   [constants]   names for the formulas (optional)
+//   [[material]]  name, and the keys of an elasticity scene's [material]; density required.
+//                 Every material must be used by a body.
+//   [[body]]      name (distinct), material (a [[material]] name), shape:
+//                   rectangle: box = [[x0, y0], [x1, y1]]
+//                   circle:    centre = [x, y], radius
+//                   polygon:   wkt = a WKT file, relative to the scene (geometry/domain.hpp)
+//                 velocity = [vx, vy] (numbers or formulas in X, Y; default at rest),
+//                 particles_per_cell (default [mpm]'s). Bodies lie in the grid box and do not
+//                 overlap (mpm/body.hpp); each must get particles.
+//   [exact]       solution = "vibration", amplitude (optional): initial velocity, body force
+//                 and the errors come from it; needs one Neo-Hookean rectangle body filling
+//                 the grid box [0, L] x [0, L], with no velocity of its own and no gravity
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
-//   [output]      folder, fields (displacement, velocity, stress, von_mises, error, grid), vtk
+//   [output]      folder, fields (displacement, velocity, stress, von_mises, body, error, grid), vtk,
+//                 particles_csv (true: particles.csv of the end state, mpm_output.hpp)
 //   [study]       for `mfree converge`: cells, methods, updates, particles_per_cell
 //
 // Every key is type- and range-checked; unknown keys are errors (scene_reader.hpp).
@@ -35,10 +49,13 @@ namespace mfree {
 /// One method as a scene names it: the weights and, for B-splines, the degree.
 struct MPMMethodChoice {
   MPMMethod method = MPMMethod::bspline;
-  int degree = 2;
+  int degree = 2;  ///< 1 for the hat-function methods
+  bool operator==(const MPMMethodChoice&) const = default;
 };
 /// classic, ugimp, cpdi, bspline (quadratic), bspline_cubic, bspline_mls.
 std::string method_name(const MPMMethodChoice& m);
+/// The method of a run's settings, as a scene names it.
+MPMMethodChoice method_of(const MPMSettings& s);
 
 struct MPMStudy {
   std::vector<int> cells;
@@ -58,6 +75,7 @@ struct MPMScene {
   std::filesystem::path folder;
   MPMFrameFields fields;
   bool vtk = true;
+  bool particles_csv = false;  ///< particles.csv at the end
   std::optional<MPMStudy> study;
 };
 

@@ -26,6 +26,9 @@ struct MaterialSection {
 
 /// Reads [material] (every key range-checked, unknown keys refused).
 MaterialSection read_material(const SceneTable& root);
+/// The keys of [material] from a table holding them (e.g. one of [[material]]), then
+/// t.finish(): read any other key of t first.
+MaterialSection read_material_keys(const SceneTable& t);
 
 /// The box of two corners under `key`.
 Box read_box(const SceneTable& t, const std::string& key);

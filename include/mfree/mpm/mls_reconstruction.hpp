@@ -10,7 +10,7 @@
 // particles as nodes: the same code serves the Galerkin solver.
 //
 // The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
-// particle (all cells while the body fills the domain), each with weight h^2 / 4 (omega_g),
+// particle (cells the bodies leave empty have none), each with weight h^2 / 4 (omega_g),
 // and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces 1, x and y but does not conserve
 // mass (SPEC section 7); the solver reports the grid mass against the particles'.
 
@@ -56,7 +56,7 @@ class MLSReconstruction {
  private:
   const Grid& grid_;
   const ParticleBasis& basis_;
-  std::vector<unsigned char> active_;  ///< per domain cell: holds a particle
+  std::vector<unsigned char> active_;  ///< per cell of the grid box: holds a particle
   std::vector<Vec2> points_;
   double omega_ = 0.0;
   WeightTable weights_;

@@ -10,7 +10,8 @@
 //   3. USF, USAVG: stress update from v_i = (mv)_i / m_i (USAVG over dt / 2)
 //   4. grid forces f_i = -sum sigma_p V_p G_ip + sum S_ip m_p b_p (eqs. 24-26 for MLS, which
 //        reconstructs rho b, SPEC section 7)
-//   5. grid momentum (mv)_i += dt f_i (eq. 28); slip walls zero the normal components
+//   5. grid momentum (mv)_i += dt (f_i - alpha (mv)_i) (eq. 28, with the optional mass-
+//      proportional damping alpha); walls zero the components they hold (grid.hpp)
 //   6. grid to particles: v_p += dt sum S_ip f_i / m_i, x_p += dt sum S_ip (mv)_i / m_i
 //        (eqs. 29-30)
 //   7. USL: stress update from the updated grid velocities;
@@ -20,11 +21,15 @@
 // The stress update (eqs. 34-37): L_p = sum_i (v_i - v_p) G_ip^T (the same as sum v_i G_ip^T,
 // since sum_i G_ip = 0, but exactly zero for a uniform velocity), the incremental deformation
 // gradient dF = sum_{k=0..kmax} (dt L_p)^k / k! (seed 002), F_p <- dF F_p, V_p = J V_p0 and
-// sigma_p from the material (materials/, the laws the Galerkin solver uses). J <= 0 stops
-// the run with a NumericalError naming the particle, where it is and the time.
+// sigma_p from the particle's material (materials/, the laws the Galerkin solver uses). J <= 0
+// stops the run with a NumericalError naming the particle, where it is and the time.
 //
-// Time step: dt = min(time_step, courant h / c), c the material's dilatational wave speed in
-// the reference state, then shortened so that a whole number of steps reaches end_time. A
+// Bodies (body.hpp) share the grid: one velocity field, so bodies that meet stick (the
+// usual no-slip contact of MPM). Nodes without mass (empty cells) carry no velocity.
+//
+// Time step: dt = min(time_step, courant h / c), c the largest dilatational wave speed of the
+// materials in the reference state (each with its own density), then shortened so that a
+// whole number of steps reaches end_time. A
 // Courant number above 1 (a time_step or courant beyond h / c) is refused unless the settings
 // allow it (stability studies).
 
@@ -36,6 +41,7 @@
 
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/materials/material.hpp"
+#include "mfree/mpm/body.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
 #include "mfree/mpm/mls_reconstruction.hpp"
 #include "mfree/mpm/particle_basis.hpp"
@@ -44,44 +50,58 @@
 namespace mfree {
 
 enum class UpdateScheme { usf, usl, szs, usavg };
+/// The schemes by name: usf, usl, szs, usavg.
+const NameTable<UpdateScheme>& update_names();
 std::string_view to_string(UpdateScheme s);
 
 struct MPMSettings {
   MPMMethod method = MPMMethod::bspline;
   int degree = 2;  ///< B-spline degree (2 or 3); the other methods use hats
   UpdateScheme update = UpdateScheme::usf;
-  int cells = 16;                      ///< cells across the domain's width
-  int particles_per_side = 3;          ///< per cell side: 9 particles per cell
+  int cells = 16;                      ///< cells across the grid box's width
+  int particles_per_side = 3;          ///< per cell side (9 per cell), for bodies stating none
   double mls_support = 3.0;            ///< bspline_mls: kernel half width in cells
   int deformation_terms = 2;           ///< kmax of the dF series
   double end_time = 0.0;
   double courant = 0.5;
   std::optional<double> time_step;     ///< fixed step; dt = min(time_step, courant h / c)
   bool allow_unstable_time_step = false;
-  std::vector<Wall> walls;             ///< slip walls on the domain's edges
+  Walls walls{Wall::open, Wall::open, Wall::open, Wall::open};  ///< per side of the grid box
+  double damping = 0.0;                ///< alpha [1/s] of the grid force -alpha (mv)_i (0: none)
 };
 
 struct MPMProblem {
-  Box domain;
-  Material material;
-  double density = 0.0;                                ///< rho0 [kg/m^3]
-  std::function<Vec2(const Vec2& X, double t)> body_force;  ///< per unit mass, at reference positions; may be empty
-  std::function<Vec2(const Vec2& X)> initial_velocity;      ///< may be empty (at rest)
+  Box box;                               ///< the grid box
+  std::vector<MPMMaterial> materials;    ///< every one used by some body
+  std::vector<MPMBody> bodies;           ///< inside the box, not overlapping
+  /// Body force per unit mass [m/s^2], at reference positions X_p and time t; may be empty.
+  std::function<Vec2(const Vec2& X, double t)> body_force;
+};
+
+/// Energies [J per unit thickness] and momentum [kg m/s per unit thickness] of a set of
+/// particles (one body, or all).
+struct BodyEnergy {
+  double kinetic = 0.0;   ///< sum 1/2 m_p |v_p|^2
+  double strain = 0.0;    ///< sum V_p0 W(F_p), W of the particle's material
+  double external = 0.0;  ///< work of the body forces, sum over steps of m_p b_p . dx_p
+  Vec2 momentum = Vec2::Zero();  ///< sum m_p v_p
+  /// kinetic + strain - external: constant for an elastic, undamped, conservative motion.
+  [[nodiscard]] double total() const { return kinetic + strain - external; }
 };
 
 struct MPMEnergy {
   double time = 0.0;
-  double kinetic = 0.0;   ///< sum 1/2 m_p |v_p|^2
-  double strain = 0.0;    ///< sum V_p0 W(F_p)
-  double external = 0.0;  ///< work of the body forces, sum over steps of m_p b_p . dx_p
+  std::vector<BodyEnergy> bodies;  ///< per body, in the problem's order
+  BodyEnergy sum;                  ///< over every particle
 };
 
 class MPMSolver {
  public:
-  /// Builds grid, particles (filling the domain) and weights; throws InputError for bad
-  /// settings, among them a time step over the Courant limit.
+  /// Builds grid, particles (seeded in the bodies) and weights; throws InputError for bad
+  /// settings, among them a time step over the Courant limit, and bad bodies (body.hpp).
   MPMSolver(MPMProblem problem, MPMSettings settings);
-  /// Tests: start from the given particles instead of filling the domain.
+  /// Tests: start from the given particles (their body and material indices into the
+  /// problem's lists; problem.bodies may be empty) instead of seeding the bodies.
   MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles);
   ~MPMSolver();
 
@@ -102,6 +122,7 @@ class MPMSolver {
   /// |sum_i m_i - sum_p m_p| / sum_p m_p of the last step (0 to round-off unless MLS).
   [[nodiscard]] double mass_defect() const { return mass_defect_; }
   [[nodiscard]] MPMEnergy energy() const;
+  [[nodiscard]] int bodies() const { return bodies_; }  ///< bodies the particles belong to
   [[nodiscard]] StageTimer& timer() { return timer_; }
 
  private:
@@ -139,8 +160,9 @@ class MPMSolver {
   std::vector<Vec2> gauss_momentum_;                     ///< rho v omega_g of the updated velocities
   std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b omega_g | sigma omega_g]
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
-  double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, external_work_ = 0.0;
-  int steps_ = 0;
+  std::vector<double> external_work_;  ///< per body
+  double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0;
+  int steps_ = 0, bodies_ = 0;
   StageTimer timer_;
 };
 

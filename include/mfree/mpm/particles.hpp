@@ -3,7 +3,8 @@
 // time step each touch a few fields of every particle.
 //
 // Units: mass [kg per unit thickness], volume [m^2 per unit thickness], positions [m],
-// velocity [m/s], F dimensionless, Cauchy stress [Pa] (tension positive).
+// velocity [m/s], F dimensionless, Cauchy stress [Pa] (tension positive). Each particle
+// belongs to one body and is made of one material (indices into the problem's lists).
 
 #include <vector>
 
@@ -23,13 +24,17 @@ struct Particles {
   /// Reference half sizes (l_x, l_y) of the particle domain: only for uGIMP and CPDI, whose
   /// weights need the domain (empty otherwise).
   std::vector<Vec2> half_size;
+  std::vector<int> body;      ///< index of the particle's body
+  std::vector<int> material;  ///< index of the particle's material
 
   [[nodiscard]] Index size() const { return static_cast<Index>(mass.size()); }
 };
 
 /// per_side^2 particles in every cell of size h of the box, at the centres of a regular
 /// per_side x per_side subdivision of the cell; mass density * volume, F = I, zero velocity
-/// and stress. with_domains fills half_size = (h / (2 per_side), h / (2 per_side)).
+/// and stress, body 0 of material 0. with_domains fills half_size = (h / (2 per_side),
+/// h / (2 per_side)). (Tests place blocks off the grid with it; scenes seed bodies,
+/// mpm/body.hpp.)
 /// Throws InputError for per_side outside [1, 5] or a box that is not a whole number of cells.
 Particles fill_box(const Box& box, double h, int per_side, double density, bool with_domains);
 

@@ -1,0 +1,126 @@
+// The MPM verification cases of verification/mpm-*/, each read from its own scene (shortened
+// where the full run is long) and checked against what its README states: the colliding
+// disks conserve momentum, the bar vibrates with its period, the damped column settles at the
+// oedometric stress, the collapsing block keeps its energy balance.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "mfree/io/mpm_scene.hpp"
+
+using namespace mfree;
+
+namespace {
+
+MPMScene case_scene(const std::string& file, const std::vector<std::string>& overrides = {}) {
+  return read_mpm_scene(std::string(MFREE_SOURCE_DIR) + "/verification/" + file, false, overrides);
+}
+
+double total_mass(const Particles& P) {
+  double m = 0.0;
+  for (double mp : P.mass) m += mp;
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("colliding disks: the total momentum stays zero to round-off through the impact", "[mpm][cases]") {
+  // To t = 2: the disks meet at t = 1.4 and are in full contact by 2.
+  for (const char* method : {"classic", "ugimp", "cpdi", "bspline"}) {
+    const MPMScene scene = case_scene("mpm-disks/disks.toml", {"dynamics.end_time=2.0", fmt::format("mpm.method={}", method)});
+    MPMSolver solver(scene.problem, scene.settings);
+    REQUIRE(solver.bodies() == 2);
+    const MPMEnergy start = solver.energy();
+    const double one_disk = start.bodies[0].momentum.norm();
+    CHECK(one_disk == Approx(total_mass(solver.particles()) / 2 * 0.1 * std::sqrt(2.0)).epsilon(1e-12));
+    double worst = start.sum.momentum.norm();
+    for (int n = 0; n < solver.steps(); ++n) {
+      solver.step();
+      if (n % 50 == 0) worst = std::max(worst, solver.energy().sum.momentum.norm());
+    }
+    const MPMEnergy end = solver.energy();
+    worst = std::max(worst, end.sum.momentum.norm());
+    // The total is the sum of the bodies'.
+    CHECK(end.sum.kinetic == Approx(end.bodies[0].kinetic + end.bodies[1].kinetic).epsilon(1e-13));
+    CHECK(end.sum.strain == Approx(end.bodies[0].strain + end.bodies[1].strain).epsilon(1e-13));
+    std::cout << fmt::format("disks, {}: largest |total momentum| / one disk's {:.2e}; kinetic {:.4e} -> {:.4e}\n", method,
+                             worst / one_disk, start.sum.kinetic, end.sum.kinetic);
+    INFO(method);
+    CHECK(worst <= 1e-12 * one_disk);
+    // The impact happened: each disk has lost most of its momentum to the other.
+    CHECK(end.bodies[0].momentum.norm() < 0.5 * one_disk);
+    CHECK(end.sum.strain > 0.1 * start.sum.kinetic);
+  }
+}
+
+TEST_CASE("vibrating bar: the period of v_cm within 1 % at 16 cells along the bar", "[mpm][cases]") {
+  // Two periods of the scene's run (16 cells along the bar). The period is read from the zero
+  // crossings of v_cm(t) (linear interpolation between steps): v_cm = v0 / (beta L)
+  // cos(omega t) crosses zero at T/4, 3T/4, ..., T/2 apart.
+  for (const char* method : {"classic", "ugimp", "cpdi", "bspline", "bspline_cubic"}) {
+    const MPMScene scene = case_scene("mpm-bar/bar.toml", {"dynamics.end_time=20.0", fmt::format("mpm.method={}", method)});
+    MPMSolver solver(scene.problem, scene.settings);
+    const double mass = total_mass(solver.particles());
+    const double L = 25.0, beta = M_PI / (2 * L), omega = beta * 10.0, amplitude = 0.1 / (beta * L);
+    std::vector<double> crossings;
+    double previous = solver.energy().sum.momentum.x() / mass, worst = 0.0;
+    for (int n = 0; n < solver.steps(); ++n) {
+      const double t0 = solver.time();
+      solver.step();
+      const double v = solver.energy().sum.momentum.x() / mass;
+      worst = std::max(worst, std::abs(v - amplitude * std::cos(omega * solver.time())));
+      if ((previous > 0.0) != (v > 0.0)) crossings.push_back(t0 + (solver.time() - t0) * previous / (previous - v));
+      previous = v;
+    }
+    INFO(method);
+    REQUIRE(crossings.size() == 4);
+    const double period = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
+    const double exact = 2 * M_PI / omega;
+    std::cout << fmt::format("bar, {}, 16 cells: period {:.5f} (exact {:.5f}, error {:+.3f} %), largest v_cm error {:.2e} "
+                             "of {:.4f}\n",
+                             method, period, exact, 100 * (period / exact - 1), worst, amplitude);
+    CHECK(std::abs(period / exact - 1) <= 0.01);
+    CHECK(worst <= 0.05 * amplitude);
+  }
+}
+
+TEST_CASE("column under gravity: the damped column settles at sigma_yy = -rho g (H - y)", "[mpm][cases]") {
+  const MPMScene scene = case_scene("mpm-column/column.toml");
+  MPMSolver solver(scene.problem, scene.settings);
+  for (int n = 0; n < solver.steps(); ++n) solver.step();
+  const double rho = 1000.0, g = 10.0, H = 1.0;
+  const Particles& P = solver.particles();
+  double worst = 0.0, kinetic = 0.0;
+  int inner = 0;
+  for (Index p = 0; p < P.size(); ++p) {
+    const double Y = P.reference[p].y();
+    kinetic += 0.5 * P.mass[p] * P.velocity[p].squaredNorm();
+    if (Y < 0.1 * H || Y > 0.9 * H) continue;
+    worst = std::max(worst, std::abs(P.stress[p](1, 1) + rho * g * (H - Y)));
+    ++inner;
+  }
+  std::cout << fmt::format("column: largest |sigma_yy - exact| {:.3e} of rho g H = {:.0f} ({:.2f} %), kinetic {:.2e}\n",
+                           worst, rho * g * H, 100 * worst / (rho * g * H), kinetic);
+  CHECK(inner > 200);
+  CHECK(worst <= 0.02 * rho * g * H);
+}
+
+TEST_CASE("collapsing block: kinetic + strain - work of gravity stays constant", "[mpm][cases]") {
+  const MPMScene scene = case_scene("mpm-block-collapse/block.toml", {"dynamics.end_time=0.5"});
+  MPMSolver solver(scene.problem, scene.settings);
+  const double E0 = solver.energy().sum.total();
+  double drift = 0.0, scale = 0.0, work = 0.0;
+  for (int n = 0; n < solver.steps(); ++n) {
+    solver.step();  // a particle leaving the grid would throw here
+    const MPMEnergy e = solver.energy();
+    drift = std::max(drift, std::abs(e.sum.total() - E0));
+    scale = std::max(scale, e.sum.kinetic + e.sum.strain);
+    work = e.sum.external;
+  }
+  std::cout << fmt::format("block: energy drift {:.3e} of the largest kinetic + strain {:.3e} (work of gravity {:.3e})\n",
+                           drift / scale, scale, work);
+  CHECK(work > 0.0);
+  CHECK(drift <= 0.02 * scale);
+}
