@@ -7,9 +7,12 @@
 //
 // Mesh size: constant, chosen so that the outer arc (length pi b / 2) splits into
 // `pieces` straight pieces of equal length; the inner arc then gets pieces * a / b.
-// Change `pieces` to refine; everything else follows.
+// Change `pieces` to refine; everything else follows. A file that sets `pieces` and then
+// includes this one refines it (verification/lame/quarter_annulus_1024.geo).
 
-pieces = 64;  // straight pieces per quarter arc on the outer circle
+If (!Exists(pieces))
+  pieces = 64;  // straight pieces per quarter arc on the outer circle
+EndIf
 a = 1;        // inner radius
 b = 2;        // outer radius
 h = (Pi * b / 2) / pieces;

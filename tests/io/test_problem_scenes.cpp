@@ -2,11 +2,13 @@
 // and body-force loads, exact solutions as formulas, and the checks that refuse ill-posed
 // or silently empty input.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
 #include <regex>
 
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/galerkin/small_strain_elasticity.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
 using namespace mfree;
@@ -151,4 +153,42 @@ TEST_CASE("problem scenes: gravity and a body-force formula load the body", "[io
   CHECK_THAT(scene_error(cantilever_with("name = \"loaded end\"\ntype = \"traction\"\npart = \"right\"\nvalue = \"exact\"",
                                          "[loads]\nbody_force = [0, 1]\n")),
              Catch::Contains("exact.solution") && Catch::Contains("sets the body force"));
+}
+
+namespace {
+ElasticityScene verification_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  return read_elasticity_scene(std::string(MFREE_SOURCE_DIR) + "/verification/" + file, false, overrides);
+}
+}  // namespace
+
+TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of linear RK at least 1.8", "[io][problems]") {
+  std::vector<double> errors;
+  for (const char* h : {"0.2", "0.1"}) {
+    const ElasticityScene scene = verification_scene("lame/lame.toml", {std::string("nodes.spacing=") + h});
+    REQUIRE(scene.selected[0].length == Approx(M_PI / 2).epsilon(1e-5));  // the inner arc, 512 chords
+    const ExactElasticity exact = *scene.exact();
+    errors.push_back(solve_elasticity(scene.domain, scene.settings, &exact).errors->l2_displacement);
+  }
+  const double rate = std::log(errors[0] / errors[1]) / std::log(2.0);
+  INFO("L2 errors " << errors[0] << ", " << errors[1] << ": rate " << rate);
+  CHECK(rate >= 1.8);
+  CHECK(errors[1] < 3e-3);
+}
+
+TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away from the ends", "[io][problems]") {
+  const ElasticityScene scene = verification_scene("gravity-column/column.toml", {});
+  const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, nullptr);
+  std::vector<Vec2> points;
+  for (int k = 1; k <= 9; ++k)
+    for (double x : {0.25, 1.0, 1.75}) points.emplace_back(x, k * 1.0);
+  const GalerkinQuadrature at = sample_shape_functions(*r.trial, points, true);
+  const Eigen::Matrix3d d = scene.settings.problem.material.voigt_tangent();
+  const double rho_g_h = 2000.0 * 10.0 * 10.0;
+  double worst = 0.0;
+  for (Index k = 0; k < at.size(); ++k) {
+    const double syy = (d * strain_at(at, k, r.coefficients))[1];
+    worst = std::max(worst, std::abs(syy + 2000.0 * 10.0 * (10.0 - points[k].y())) / rho_g_h);
+  }
+  INFO("largest sigma_yy error / (rho g H) over 0.1 H ... 0.9 H: " << worst);
+  CHECK(worst <= 0.02);
 }
