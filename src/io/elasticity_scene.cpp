@@ -4,31 +4,31 @@
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
-#include "mfree/io/choice_table.hpp"
+#include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_sections.hpp"
 
 namespace mfree {
 
 namespace {
 
-const ChoiceTable<CloudKind> cloud_table{
+const NameTable<CloudKind> cloud_table{
     {"lattice", CloudKind::lattice}, {"perturbed", CloudKind::perturbed}, {"random", CloudKind::random}};
-const ChoiceTable<RKOrder> order_table{{"linear", RKOrder::linear}, {"quadratic", RKOrder::quadratic}};
-const ChoiceTable<QuadratureScheme> scheme_table{{"projected", QuadratureScheme::projected},
+const NameTable<RKOrder> order_table{{"linear", RKOrder::linear}, {"quadratic", RKOrder::quadratic}};
+const NameTable<QuadratureScheme> scheme_table{{"projected", QuadratureScheme::projected},
                                                  {"gauss_cells", QuadratureScheme::gauss_cells},
                                                  {"nodal", QuadratureScheme::nodal}};
-const ChoiceTable<Window> window_table{{"cubic_bspline", Window::cubic_bspline},
+const NameTable<Window> window_table{{"cubic_bspline", Window::cubic_bspline},
                                        {"quadratic_spline", Window::quadratic_spline}};
-const ChoiceTable<SupportShape> support_table{{"circular", SupportShape::circular}, {"tensor", SupportShape::tensor}};
-const ChoiceTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
-const ChoiceTable<Consistency> consistency_table{
+const NameTable<SupportShape> support_table{{"circular", SupportShape::circular}, {"tensor", SupportShape::tensor}};
+const NameTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
+const NameTable<Consistency> consistency_table{
     {"symmetric", Consistency::symmetric}, {"vci", Consistency::vci}, {"none", Consistency::none}};
-const ChoiceTable<std::optional<SolverKind>> solver_table{
+const NameTable<std::optional<SolverKind>> solver_table{
     {"auto", std::nullopt}, {"cholmod", SolverKind::cholmod}, {"umfpack", SolverKind::umfpack}};
-const ChoiceTable<TimeScheme> time_scheme_table{{"central_difference", TimeScheme::central_difference},
+const NameTable<TimeScheme> time_scheme_table{{"central_difference", TimeScheme::central_difference},
                                                 {"newmark", TimeScheme::newmark}};
 using ConditionType = BoundaryCondition::Type;
-const ChoiceTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
+const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
                                                  {"slip", ConditionType::slip},
                                                  {"traction", ConditionType::traction},
                                                  {"pressure", ConditionType::pressure}};
@@ -99,7 +99,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("nodes");
-    s.nodes.kind = cloud_table.read(t, "cloud");
+    s.nodes.kind = read_choice(t, "cloud", cloud_table);
     s.nodes.spacing = t.number("spacing", 1e-12, 1e12);
     s.nodes.perturbation = t.number_or("perturbation", 0.3, 0.0, 1.0);
     s.nodes.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
@@ -107,22 +107,22 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("kernel");
-    s.order = order_table.read(t, "order");
-    s.window = window_table.read_or(t, "window", Window::cubic_bspline);
-    s.support = support_table.read_or(t, "support", SupportShape::circular);
+    s.order = read_choice(t, "order", order_table);
+    s.window = read_choice_or(t, "window", window_table, Window::cubic_bspline);
+    s.support = read_choice_or(t, "support", support_table, SupportShape::circular);
     s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
     t.finish();
   }
   {
     const SceneTable t = root.table("quadrature");
-    s.scheme = scheme_table.read(t, "scheme");
+    s.scheme = read_choice(t, "scheme", scheme_table);
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
-    s.quadrature_lattice = quadrature_cloud_table.read_or(t, "cloud", true);
-    s.quadrature_order = order_table.read_or(t, "order", RKOrder::linear);
+    s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
+    s.quadrature_order = read_choice_or(t, "order", order_table, RKOrder::linear);
     s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
-    s.consistency = consistency_table.read_or(t, "consistency", Consistency::symmetric);
+    s.consistency = read_choice_or(t, "consistency", consistency_table, Consistency::symmetric);
     s.gauss_points = static_cast<int>(t.integer_or("gauss_points", s.order == RKOrder::linear ? 4 : 6, 1, 12));
     t.finish();
   }
@@ -210,7 +210,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   for (const SceneTable& t : boundaries) {
     BoundaryCondition c;
     c.name = t.string("name");
-    c.type = condition_table.read(t, "type");
+    c.type = read_choice(t, "type", condition_table);
     std::string key, what;
     c.where = read_selection(t, out.domain, key, what);
     const double length = selection_length(out.domain, c.where);
@@ -225,7 +225,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
                                  "one condition",
                                  what, s.problem.conditions[k].name, shared));
     }
-    out.selected.push_back({c.name, condition_table.name_of(c.type), what, length});
+    out.selected.push_back({c.name, condition_table.name(c.type), what, length});
     if (c.type == ConditionType::pressure) {
       const Formula p = read_formula(t, "value", out.constants);
       check_static(t, "value", p, dynamics);
@@ -255,7 +255,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   if (root.has("solver")) {
     const SceneTable t = root.table("solver");
-    s.solver = solver_table.read_or(t, "kind", std::nullopt);
+    s.solver = read_choice_or(t, "kind", solver_table, std::optional<SolverKind>{});
     t.finish();
   }
   if (root.has("newton")) {
@@ -280,7 +280,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("dynamics");
     DynamicsScene dyn;
     DynamicsSettings& d = dyn.settings;
-    d.scheme = time_scheme_table.read(t, "scheme");
+    d.scheme = read_choice(t, "scheme", time_scheme_table);
     d.end_time = t.number("end_time", 1e-300, 1e300);
     if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
     if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
@@ -322,12 +322,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     st.clouds = {s.nodes.kind};
     st.orders = {s.order};
     st.schemes = {s.scheme};
-    if (t.has("clouds")) st.clouds = cloud_table.read_list(t, "clouds");
-    if (t.has("orders")) st.orders = order_table.read_list(t, "orders");
-    if (t.has("schemes")) st.schemes = scheme_table.read_list(t, "schemes");
+    if (t.has("clouds")) st.clouds = read_choices(t, "clouds", cloud_table);
+    if (t.has("orders")) st.orders = read_choices(t, "orders", order_table);
+    if (t.has("schemes")) st.schemes = read_choices(t, "schemes", scheme_table);
     if (t.has("time_schemes")) {
       if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
-      st.time_schemes = time_scheme_table.read_list(t, "time_schemes");
+      st.time_schemes = read_choices(t, "time_schemes", time_scheme_table);
     } else if (out.dynamics) {
       st.time_schemes = {out.dynamics->settings.scheme};
     }

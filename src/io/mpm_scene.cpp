@@ -7,6 +7,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/name_table.hpp"
 #include "mfree/geometry/domain.hpp"
+#include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_sections.hpp"
 
 namespace mfree {
@@ -73,7 +74,7 @@ std::vector<MPMMaterial> read_materials(const std::vector<SceneTable>& tables, s
 MPMBody read_body(const SceneTable& t, const std::vector<MPMMaterial>& materials, const Constants& constants) {
   MPMBody b;
   b.name = t.string("name");
-  b.shape = shape_names().value(t.choice("shape", shape_names().names()));
+  b.shape = read_choice(t, "shape", shape_names());
   std::string key;  // the key of the shape's geometry, named by messages about the body
   switch (b.shape) {
     case Shape::rectangle: {
@@ -195,10 +196,10 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
   }
   {
     const SceneTable& t = mpm;
-    const MPMMethodChoice m = method_names().value(t.choice("method", method_names().names()));
+    const MPMMethodChoice m = read_choice(t, "method", method_names());
     s.method = m.method;
     s.degree = m.degree == 1 ? 2 : m.degree;
-    s.update = update_names().value(t.choice_or("update", "usf", update_names().names()));
+    s.update = read_choice_or(t, "update", update_names(), UpdateScheme::usf);
     s.cells = static_cast<int>(t.integer("cells", 1, 100000));
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
@@ -258,15 +259,9 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       st.cells.push_back(static_cast<int>(c));
     }
     st.methods = {method_of(s)};
-    if (t.has("methods")) {
-      st.methods.clear();
-      for (const auto& m : t.choices("methods", method_names().names())) st.methods.push_back(method_names().value(m));
-    }
+    if (t.has("methods")) st.methods = read_choices(t, "methods", method_names());
     st.updates = {s.update};
-    if (t.has("updates")) {
-      st.updates.clear();
-      for (const auto& u : t.choices("updates", update_names().names())) st.updates.push_back(update_names().value(u));
-    }
+    if (t.has("updates")) st.updates = read_choices(t, "updates", update_names());
     st.particles_per_side = {s.particles_per_side};
     if (t.has("particles_per_cell")) {
       for (const MPMBody& b : pr.bodies)
