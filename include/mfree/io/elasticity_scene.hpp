@@ -1,7 +1,8 @@
 #pragma once
 // Elasticity scenes: one TOML file describes a run (see verification/cantilever/*.toml).
 //
-//   [domain]      rectangle = [[x0, y0], [x1, y1]]  or  mesh = "path/to.wkt" (relative to the scene)
+//   [domain]      rectangle = [[x0, y0], [x1, y1]]  or  mesh = "path/to.wkt" or a gmsh file
+//                 (.geo, .msh, .step, ...; relative to the scene)
 //   [nodes]       cloud (lattice | perturbed | random), spacing, perturbation, seed
 //   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor
 //   [quadrature]  scheme (projected | gauss_cells | nodal), ratio, cloud (lattice | like_nodes),
