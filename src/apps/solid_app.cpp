@@ -150,12 +150,20 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   const std::optional<ExactMotion> exact = vibration_motion(scene);
   std::optional<MotionErrorSampler> sampler;
   if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
-  const Eigen::VectorXd v0 = timer.time("initial velocity", [&] {
-    return exact ? project_velocity(model, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); })
-                 : Eigen::VectorXd(Eigen::VectorXd::Zero(model.dofs()));
-  });
-
   const DynamicsScene& dyn = *scene.dynamics;
+  // Initial fields: of the exact motion, or the scene's formulas, L2-projected (the
+  // coefficients of RK functions are not nodal values); zero otherwise.
+  const auto initial = [&](const std::optional<VectorFormula>& f, bool velocity) -> Eigen::VectorXd {
+    if (exact && velocity)
+      return project_velocity(model, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); });
+    if (f) return project_velocity(model, settings.density, [&](const Vec2& x) { return (*f)(x); });
+    return Eigen::VectorXd::Zero(model.dofs());
+  };
+  const Eigen::VectorXd v0 = timer.time("initial velocity", [&] { return initial(dyn.initial_velocity, true); });
+  const Eigen::VectorXd d0 = dyn.initial_displacement
+                                 ? timer.time("initial displacement", [&] { return initial(dyn.initial_displacement, false); })
+                                 : Eigen::VectorXd(Eigen::VectorXd::Zero(model.dofs()));
+
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
   if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0) frames.emplace(scene, disc, exact ? &*exact : nullptr);
@@ -178,7 +186,6 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   };
   DynamicsSettings ds = settings;
   if (verbose) ds.progress = &std::cout;
-  const Eigen::VectorXd d0 = Eigen::VectorXd::Zero(model.dofs());
   run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step);
   return run;
 }

@@ -288,6 +288,13 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
     dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
     dyn.error_times = t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
+    for (const char* key : {"initial_displacement", "initial_velocity"}) {
+      if (!t.has(key)) continue;
+      if (out.vibration()) t.error(key, "the [exact] vibration solution sets the initial state");
+      const VectorFormula f = read_vector_formula(t, key, out.constants);
+      if (f.depends_on_time()) t.error(key, "an initial field is a function of X and Y, not of t");
+      (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
+    }
     if (!(out.density > 0.0)) t.error("scheme", "dynamics needs [material] density");
     d.density = out.density;
     if (out.newton) d.newton = *out.newton;

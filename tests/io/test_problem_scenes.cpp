@@ -192,3 +192,17 @@ TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away
   INFO("largest sigma_yy error / (rho g H) over 0.1 H ... 0.9 H: " << worst);
   CHECK(worst <= 0.02);
 }
+
+TEST_CASE("problem scenes: initial fields of dynamics are formulas in X and Y, never of t", "[io][problems]") {
+  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/tests/apps/vibration_quick.toml");
+  std::string text{std::istreambuf_iterator<char>(in), {}};
+  CHECK_THAT(scene_error(replace(text, "\\[dynamics\\]", "[dynamics]\ninitial_velocity = [\"0.1 * x\", 0]")),
+             Catch::Contains("dynamics.initial_velocity") && Catch::Contains("vibration solution sets the initial state"));
+  const std::string free = replace(replace(text, "\\[exact\\]\nsolution = \"vibration\"\namplitude = [0-9.e-]+\n", ""),
+                                   "fields = \\[[^\\]]*\\]", "fields = [\"displacement\"]");
+  const ElasticityScene scene = read_text(replace(free, "\\[dynamics\\]", "[dynamics]\ninitial_velocity = [\"0.1 * x\", \"y^2\"]"), "initial");
+  REQUIRE(scene.dynamics->initial_velocity);
+  CHECK((*scene.dynamics->initial_velocity)(Vec2(2.0, 3.0)) == Vec2(0.2, 9.0));
+  CHECK_THAT(scene_error(replace(free, "\\[dynamics\\]", "[dynamics]\ninitial_displacement = [\"t\", 0]")),
+             Catch::Contains("dynamics.initial_displacement") && Catch::Contains("not of t"));
+}

@@ -33,7 +33,8 @@
 //   [dynamics]    scheme (central_difference | newmark), end_time, time_step,
 //                 stability_factor, energy_every (steps between energy records; 0: no
 //                 energy balance computed), frames (VTK frames over the run),
-//                 error_times (fractions of end_time at which errors are measured)
+//                 error_times (fractions of end_time at which errors are measured),
+//                 initial_displacement, initial_velocity = [fx, fy] (formulas in X, Y; default 0)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, error, weights),
 //                 vtk, probe = [x, y] (u^h there at every load or time step),
 //                 eigenvalues = n (the n smallest eigenvalues of the free stiffness; linear statics)
@@ -103,6 +104,8 @@ struct StudySettings {
 
 struct DynamicsScene {
   DynamicsSettings settings;
+  std::optional<VectorFormula> initial_displacement;  ///< u(X, 0), L2-projected onto the RK functions
+  std::optional<VectorFormula> initial_velocity;      ///< v(X, 0), likewise
   int frames = 0;                   ///< VTK frames written, evenly over the run (plus t = 0)
   std::vector<double> error_times;  ///< fractions of end_time
 };
