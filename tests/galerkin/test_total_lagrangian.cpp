@@ -59,6 +59,17 @@ StaticSolution solve_logged(const TotalLagrangian& model, NewtonSettings s, std:
   return solve_static(model, s, timer);
 }
 
+/// K dir and the central difference of `residual` at d along dir, for a random dir.
+template <class Residual>
+std::pair<Eigen::VectorXd, Eigen::VectorXd> directional_derivatives(const Residual& residual, const Eigen::MatrixXd& k,
+                                                                    const Eigen::VectorXd& d, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd dir(d.size());
+  for (Eigen::Index i = 0; i < d.size(); ++i) dir[i] = u(rng);
+  const double h = 1e-6;
+  return {k * dir, (residual(d + h * dir) - residual(d - h * dir)) / (2 * h)};
+}
+
 }  // namespace
 
 TEST_CASE("TL tangent equals finite differences of the residual (Neo-Hookean, Nitsche, slip)", "[galerkin][tl]") {
@@ -74,13 +85,8 @@ TEST_CASE("TL tangent equals finite differences of the residual (Neo-Hookean, Ni
   model.tangent(d, load, k);
   const Eigen::MatrixXd dense(k);
   std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 3; ++trial) {
-    Eigen::VectorXd dir(d.size());
-    for (Eigen::Index i = 0; i < d.size(); ++i) dir[i] = u(rng);
-    const double h = 1e-6;
-    const Eigen::VectorXd fd = (residual(d + h * dir) - residual(d - h * dir)) / (2 * h);
-    const Eigen::VectorXd kd = dense * dir;
+    const auto [kd, fd] = directional_derivatives(residual, dense, d, rng);
     INFO("relative difference " << (fd - kd).norm() / kd.norm());
     CHECK((fd - kd).norm() <= 1e-6 * kd.norm());
   }
@@ -179,15 +185,12 @@ TEST_CASE("follower pressure: the load stiffness equals finite differences of th
                                 block.disc.boundary, block.disc.at_boundary);
   SparseMatrix k0 = without.zero_matrix();
   without.tangent(d, load, k0);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // The pressure part: the tangent with the pressure less the one without, along the same
+  // direction (the same seed draws the same direction).
+  std::mt19937_64 rng(5), again(5);
   for (int trial = 0; trial < 3; ++trial) {
-    Eigen::VectorXd dir(d.size());
-    for (Eigen::Index i = 0; i < d.size(); ++i) dir[i] = u(rng);
-    const double h = 1e-6;
-    const Eigen::VectorXd fd = (residual(d + h * dir) - residual(d - h * dir)) / (2 * h);
-    const Eigen::VectorXd kd = dense * dir;
-    const Eigen::VectorXd pressure_part = kd - Eigen::MatrixXd(k0) * dir;
+    const auto [kd, fd] = directional_derivatives(residual, dense, d, rng);
+    const Eigen::VectorXd pressure_part = kd - directional_derivatives(residual, Eigen::MatrixXd(k0), d, again).first;
     INFO("relative difference " << (fd - kd).norm() / pressure_part.norm());
     REQUIRE(pressure_part.norm() > 1e-5 * kd.norm());  // the load stiffness is there to be checked
     CHECK((fd - kd).norm() <= 1e-6 * pressure_part.norm());
@@ -240,12 +243,7 @@ TEST_CASE("Nitsche slip and clamp terms: their tangent equals finite differences
       return Eigen::VectorXd(with.internal_force(x) + with.boundary_force(x, load) - none.internal_force(x));
     };
     std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    Eigen::VectorXd dir(d.size());
-    for (Eigen::Index i = 0; i < d.size(); ++i) dir[i] = u(rng);
-    const double h = 1e-6;
-    const Eigen::VectorXd fd = (boundary_part(d + h * dir) - boundary_part(d - h * dir)) / (2 * h);
-    const Eigen::VectorXd kd = Eigen::MatrixXd(k) * dir - Eigen::MatrixXd(k0) * dir;
+    const auto [kd, fd] = directional_derivatives(boundary_part, Eigen::MatrixXd(k) - Eigen::MatrixXd(k0), d, rng);
     INFO("condition " << block.problem.conditions[c].name << ": relative difference " << (fd - kd).norm() / kd.norm());
     CHECK((fd - kd).norm() <= 1e-6 * kd.norm());
   }
