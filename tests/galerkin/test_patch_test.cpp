@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/problems/polynomial_fields.hpp"
 
 using namespace mfree;
 

@@ -22,6 +22,7 @@
 
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/problems/timoshenko_beam.hpp"
 
 namespace {
 

@@ -19,6 +19,7 @@
 
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/problems/timoshenko_beam.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 
 namespace {

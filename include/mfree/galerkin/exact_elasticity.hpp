@@ -1,6 +1,7 @@
 #pragma once
-// Exact solutions of small-strain elasticity used for verification, and the error norms
-// measured against them with an independent quadrature (never the solver's own).
+// The interface of an exact solution of small-strain elasticity, as the solver sees it, and
+// the error norms measured against one with an independent quadrature (never the solver's
+// own). The concrete solutions are problems (problems/).
 
 #include <functional>
 
@@ -11,6 +12,7 @@
 
 namespace mfree {
 
+/// Displacement, stress and body force as functions of the position.
 struct ExactElasticity {
   std::function<Vec2(const Vec2&)> displacement;
   std::function<Eigen::Vector3d(const Vec2&)> stress;  ///< Voigt (xx, yy, xy)
@@ -21,19 +23,6 @@ struct ExactElasticity {
     return {s[0] * n.x() + s[2] * n.y(), s[2] * n.x() + s[1] * n.y()};
   }
 };
-
-/// Timoshenko cantilever (SPEC section 4), beam 0 <= x <= L, -D/2 <= y <= D/2, shear load P
-/// on x = L, plane stress with E, nu of `material` (plane strain: E and nu are replaced by
-/// E / (1 - nu^2) and nu / (1 - nu)).
-ExactElasticity timoshenko_beam(double length, double depth, double load, const LinearElastic& material);
-
-/// A linear displacement u = a + G x: constant stress, no body force (the patch test).
-ExactElasticity linear_field(const Vec2& a, const Mat2& g, const LinearElastic& material);
-
-/// A quadratic displacement u_c = a_c + (G x)_c + x^T H_c x / 2 (H_0, H_1 symmetric): linear
-/// stress and the constant body force b = -div sigma (the quadratic patch test).
-ExactElasticity quadratic_field(const Vec2& a, const Mat2& g, const Mat2& h0, const Mat2& h1,
-                                const LinearElastic& material);
 
 struct ElasticErrors {
   double l2_displacement = 0.0;  ///< ||u^h - u||_L2 / ||u||_L2
