@@ -115,6 +115,7 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
       st.clouds.size() * st.orders.size() * st.schemes.size() * st.betas.size() * st.spacings.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", path.string(), runs,
                            thread_count());
+  std::cout << scene.describe_conditions();
 
   std::string csv =
       "cloud,order,scheme,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_stress,"

@@ -269,6 +269,7 @@ int converge_dynamics(const ElasticityScene& scene) {
   if (!scene.vibration()) throw InputError(fmt::format("{}: a dynamics study needs [exact] solution = \"vibration\"", scene.file.string()));
   const std::size_t runs = st.time_schemes.size() * st.spacings.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
+  std::cout << scene.describe_conditions();
   std::string csv = "time_scheme,spacing,nodes,dofs,time_step,steps,seconds,time,displacement,velocity,stress,energy_drift\n";
   std::string table;
   std::size_t done = 0;
