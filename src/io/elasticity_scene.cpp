@@ -383,23 +383,21 @@ SolidProblem ElasticityScene::solid_problem() const {
   if (const auto v = vibration())
     p.body_force = [v = *v](const Vec2& x, double t) -> Vec2 { return v.density * v.body_force(x, t); };
   else if (body_force || gravity)
-    p.body_force = [f = body_force, g = gravity, rho = density](const Vec2& x, double t) -> Vec2 {
-      Vec2 b = Vec2::Zero();
-      if (f) b += (*f)(x, t);
-      if (g) b += rho * *g;
-      return b;
-    };
+    p.body_force = loads_body_force();
   return p;
 }
 
+BodyForce ElasticityScene::loads_body_force() const {
+  return [f = body_force, g = gravity, rho = density](const Vec2& x, double t) -> Vec2 {
+    Vec2 b = Vec2::Zero();
+    if (f) b += (*f)(x, t);
+    if (g) b += rho * *g;
+    return b;
+  };
+}
+
 VectorField ElasticityScene::static_body_force() const {
-  if (body_force || gravity)
-    return [f = body_force, g = gravity, rho = density](const Vec2& x) -> Vec2 {
-      Vec2 b = Vec2::Zero();
-      if (f) b += (*f)(x, 0.0);
-      if (g) b += rho * *g;
-      return b;
-    };
+  if (body_force || gravity) return [b = loads_body_force()](const Vec2& x) { return b(x, 0.0); };
   if (exact_spec && exact_spec->formulas) return {};  // the loads are the scene's: none
   const std::optional<ExactElasticity> e = exact();
   return e ? e->body_force : VectorField{};

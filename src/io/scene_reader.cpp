@@ -304,11 +304,6 @@ std::vector<std::string> SceneTable::expressions(std::string_view key, std::size
   return out;
 }
 
-bool SceneTable::is_array(std::string_view key) const {
-  const toml::node* n = table_->get(key);
-  return n && n->is_array();
-}
-
 std::vector<std::string> SceneTable::keys() const {
   std::vector<std::string> out;
   for (const auto& [k, v] : *table_) {

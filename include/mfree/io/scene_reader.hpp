@@ -54,8 +54,6 @@ class SceneTable {
   std::string expression(std::string_view key) const;
   /// An array of `size` such values.
   std::vector<std::string> expressions(std::string_view key, std::size_t size) const;
-  /// True when the key holds an array.
-  bool is_array(std::string_view key) const;
   /// Every key of this table (all marked read), for tables of user-chosen names.
   std::vector<std::string> keys() const;
   /// "FILE:LINE:COLUMN: key 'section.key'" of a key, for messages raised later (a formula
