@@ -11,12 +11,22 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/io/read_choice.hpp"
+#include "mfree/problems/integration_functions.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
 #include "mfree/quadrature/voronoi_weights.hpp"
 
 namespace mfree {
+
+const NameTable<WeightScheme>& weight_scheme_names() {
+  static const NameTable<WeightScheme> table{{"rk", WeightScheme::rk},
+                                             {"voronoi", WeightScheme::voronoi},
+                                             {"gauss_cells", WeightScheme::gauss_cells},
+                                             {"equal", WeightScheme::equal}};
+  return table;
+}
 
 IntegrationStudySettings read_integration_study(const SceneTable& root) {
   IntegrationStudySettings s;
@@ -34,26 +44,18 @@ IntegrationStudySettings read_integration_study(const SceneTable& root) {
       if (n != std::floor(n)) throw InputError("study.levels: whole numbers of points expected");
       s.levels.push_back(static_cast<int>(n));
     }
-    for (const auto& c : t.choices("clouds", {"lattice", "perturbed", "random"}))
-      s.clouds.push_back(c == "lattice" ? CloudKind::lattice
-                                        : c == "perturbed" ? CloudKind::perturbed : CloudKind::random);
+    s.clouds = read_choices(t, "clouds", cloud_kind_names());
     s.perturbation = t.number_or("perturbation", s.perturbation, 0.0, 1.0);
-    for (const auto& o : t.choices("orders", {"linear", "quadratic"}))
-      s.orders.push_back(o == "linear" ? RKOrder::linear : RKOrder::quadratic);
-    s.schemes = t.choices("schemes", {"rk", "voronoi", "gauss_cells", "equal"});
-    s.functions = t.choices("functions", {"f1", "f2"});
+    s.orders = read_choices(t, "orders", order_names());
+    s.schemes = read_choices(t, "schemes", weight_scheme_names());
+    s.functions = t.choices("functions", integration_functions().names());
     s.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
     t.finish();
   }
   {
     const SceneTable k = root.table("kernel");
-    s.window = k.choice_or("window", "cubic_bspline", {"cubic_bspline", "quadratic_spline"}) ==
-                       "cubic_bspline"
-                   ? Window::cubic_bspline
-                   : Window::quadratic_spline;
-    s.support = k.choice_or("support", "circular", {"circular", "tensor"}) == "circular"
-                    ? SupportShape::circular
-                    : SupportShape::tensor;
+    s.window = read_choice_or(k, "window", window_names(), s.window);
+    s.support = read_choice_or(k, "support", support_names(), s.support);
     s.factor_linear = k.number_or("factor_linear", s.factor_linear, 0.5, 10.0);
     s.factor_quadratic = k.number_or("factor_quadratic", s.factor_quadratic, 0.5, 10.0);
     s.random_factor_scale = k.number_or("random_factor_scale", s.random_factor_scale, 1.0, 5.0);
@@ -76,36 +78,13 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-struct TestFunction {
-  std::string name;
-  double exact;
-  std::function<double(const Vec2&)> f;
-};
-
-std::vector<TestFunction> test_functions(const Box& r, const std::vector<std::string>& names) {
-  const double lx = r.size().x(), ly = r.size().y(), pi = std::numbers::pi;
-  const Vec2 lo = r.lo, centre = 0.5 * (r.lo + r.hi);
-  std::vector<TestFunction> out;
-  for (const auto& n : names) {
-    if (n == "f1")
-      out.push_back({n, 4.0 * lx * ly / (pi * pi), [=](const Vec2& x) {
-                       return std::sin(pi * (x.x() - lo.x()) / lx) * std::sin(pi * (x.y() - lo.y()) / ly);
-                     }});
-    else
-      out.push_back({n, 4.0 * lx * ly / 9.0, [=](const Vec2& x) {
-                       const double u = 2.0 * (x.x() - centre.x()) / lx, v = 2.0 * (x.y() - centre.y()) / ly;
-                       return (1.0 - u * u) * (1.0 - v * v);
-                     }});
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings& s, std::ostream& log) {
   const Domain domain = Domain::rectangle(s.rectangle.lo, s.rectangle.hi);
   const double area = domain.area();
-  const auto functions = test_functions(s.rectangle, s.functions);
+  std::vector<Integrand> functions;
+  for (const std::string& name : s.functions) functions.push_back(integration_functions().value(name)(s.rectangle));
   const double short_side = s.rectangle.size().minCoeff();
   std::vector<IntegrationRow> rows;
 
@@ -115,19 +94,20 @@ std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings
     double sum = 0.0;
     for (double wk : w) sum += wk;
     const NegativeWeights neg = negative_weights(w);
-    for (const auto& tf : functions) {
+    for (std::size_t i = 0; i < functions.size(); ++i) {
+      const Integrand& tf = functions[i];
       double integral = 0.0;
       for (std::size_t k = 0; k < x.size(); ++k) integral += w[k] * tf.f(x[k]);
       IntegrationRow r;
-      r.function = tf.name;
+      r.function = s.functions[i];
       r.cloud = cloud;
       r.order = order;
       r.scheme = scheme;
       r.level = level;
       r.points = static_cast<Index>(x.size());
       r.spacing = std::sqrt(area / static_cast<double>(x.size()));
-      r.error = std::abs(integral - tf.exact);
-      r.relative_error = r.error / std::abs(tf.exact);
+      r.error = std::abs(integral - tf.integral);
+      r.relative_error = r.error / std::abs(tf.integral);
       r.area_error = std::abs(sum - area) / area;
       r.seconds = seconds;
       r.negative = neg.count;
@@ -150,37 +130,46 @@ std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings
       const std::vector<Vec2> cloud = make_cloud(domain, cs);
       const std::string cname(to_string(kind));
 
-      for (const auto& scheme : s.schemes) {
-        if (scheme == "rk") {
-          for (RKOrder order : s.orders) {
+      for (const WeightScheme scheme : s.schemes) {
+        const std::string sname(weight_scheme_names().name(scheme));
+        switch (scheme) {
+          case WeightScheme::rk:
+            for (RKOrder order : s.orders) {
+              const auto t0 = Clock::now();
+              RKSettings rs;
+              rs.order = order;
+              rs.window = s.window;
+              rs.support = s.support;
+              const double factor = order == RKOrder::linear ? s.factor_linear : s.factor_quadratic;
+              rs.radius = factor * h;
+              // Irregular clouds: nodes beside a gap reach across it (nodal_support_radii).
+              if (kind != CloudKind::lattice)
+                rs.node_radii = nodal_support_radii(cloud, h, factor * s.random_factor_scale);
+              const RKShapeFunctions rk(cloud, rs);
+              const BackgroundLattice lattice(domain, h / s.lattice_refinement,
+                                              order == RKOrder::linear ? 1 : 2);
+              const std::vector<double> w = rk_quadrature_weights(rk, lattice);
+              record(cname, std::string(to_string(order)), sname, level, cloud, w, seconds_since(t0));
+            }
+            break;
+          case WeightScheme::voronoi: {
             const auto t0 = Clock::now();
-            RKSettings rs;
-            rs.order = order;
-            rs.window = s.window;
-            rs.support = s.support;
-            const double factor = order == RKOrder::linear ? s.factor_linear : s.factor_quadratic;
-            rs.radius = factor * h;
-            // Irregular clouds: nodes beside a gap reach across it (nodal_support_radii).
-            if (kind != CloudKind::lattice)
-              rs.node_radii = nodal_support_radii(cloud, h, factor * s.random_factor_scale);
-            const RKShapeFunctions rk(cloud, rs);
-            const BackgroundLattice lattice(domain, h / s.lattice_refinement,
-                                            order == RKOrder::linear ? 1 : 2);
-            const std::vector<double> w = rk_quadrature_weights(rk, lattice);
-            record(cname, std::string(to_string(order)), "rk", level, cloud, w, seconds_since(t0));
+            const std::vector<double> w = voronoi_weights(cloud, domain);
+            record(cname, "-", sname, level, cloud, w, seconds_since(t0));
+            break;
           }
-        } else if (scheme == "voronoi") {
-          const auto t0 = Clock::now();
-          const std::vector<double> w = voronoi_weights(cloud, domain);
-          record(cname, "-", scheme, level, cloud, w, seconds_since(t0));
-        } else if (scheme == "equal") {
-          const auto t0 = Clock::now();
-          const std::vector<double> w(cloud.size(), area / static_cast<double>(cloud.size()));
-          record(cname, "-", scheme, level, cloud, w, seconds_since(t0));
+          case WeightScheme::equal: {
+            const auto t0 = Clock::now();
+            const std::vector<double> w(cloud.size(), area / static_cast<double>(cloud.size()));
+            record(cname, "-", sname, level, cloud, w, seconds_since(t0));
+            break;
+          }
+          case WeightScheme::gauss_cells:  // independent of the clouds: below
+            break;
         }
       }
     }
-    if (std::find(s.schemes.begin(), s.schemes.end(), "gauss_cells") != s.schemes.end()) {
+    if (std::find(s.schemes.begin(), s.schemes.end(), WeightScheme::gauss_cells) != s.schemes.end()) {
       // Independent of the clouds: n x n points per cell of side n h, as many points as a
       // lattice cloud of this level.
       const auto t0 = Clock::now();

@@ -133,7 +133,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
                          scene.fields.von_mises || scene.fields.body || scene.fields.error || scene.fields.grid;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
-    frames.emplace(scene.folder, scene.fields, scene.vibration ? &*scene.vibration : nullptr, scene.problem.materials);
+    frames.emplace(scene.folder, scene.fields, scene.exact ? &*scene.exact : nullptr, scene.problem.materials);
     frames->write(solver);
   }
   const std::vector<int> at = error_steps(scene, run.steps);
@@ -143,9 +143,9 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
     for (int n = 1; n <= run.steps; ++n) {
       solver.step();
       run.max_mass_defect = std::max(run.max_mass_defect, solver.mass_defect());
-      if (scene.vibration)
+      if (scene.exact)
         for (int s : at)
-          if (s == n) run.errors.push_back(particle_errors(solver, *scene.vibration));
+          if (s == n) run.errors.push_back(particle_errors(solver, *scene.exact));
       if (scene.energy_every > 0 && (n % scene.energy_every == 0 || n == run.steps)) run.energy.push_back(solver.energy());
       if (n % report_every == 0 || n == run.steps) {
         check_finite(solver);

@@ -34,15 +34,8 @@ std::optional<ExactMotion> scaled_static(const ElasticityScene& scene) {
                        Mat2 m;
                        m << s[0], s[2], s[2], s[1];
                        return m;
-                     }};
-}
-
-std::optional<ExactMotion> vibration_motion(const ElasticityScene& scene) {
-  const std::optional<AxisAlignedVibration> v = scene.vibration();
-  if (!v) return std::nullopt;
-  return ExactMotion{[v = *v](const Vec2& x, double t) { return v.displacement(x, t); },
-                     [v = *v](const Vec2& x, double t) { return v.velocity(x, t); },
-                     [v = *v](const Vec2& x, double t) { return v.cauchy_stress(x, t); }};
+                     },
+                     {}};  // the loads are the scene's
 }
 
 /// The trial functions at the scene's probe, sampled once for the whole run.
@@ -147,7 +140,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   run.nodes = disc.node_count();
   run.spacing = scene.settings.nodes.spacing;
 
-  const std::optional<ExactMotion> exact = vibration_motion(scene);
+  const std::optional<ExactMotion> exact = scene.motion();
   std::optional<MotionErrorSampler> sampler;
   if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
   const DynamicsScene& dyn = *scene.dynamics;
@@ -266,7 +259,8 @@ int run_dynamics(const ElasticityScene& scene) {
 
 int converge_dynamics(const ElasticityScene& scene) {
   const StudySettings& st = *scene.study;
-  if (!scene.vibration()) throw InputError(fmt::format("{}: a dynamics study needs [exact] solution = \"vibration\"", scene.file.string()));
+  if (!scene.motion())
+    throw InputError(fmt::format("{}: a dynamics study needs an [exact] solution that is a motion", scene.file.string()));
   const std::size_t runs = st.time_schemes.size() * st.spacings.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
   std::cout << scene.describe_conditions();

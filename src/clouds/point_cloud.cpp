@@ -8,14 +8,12 @@
 
 namespace mfree {
 
-std::string_view to_string(CloudKind kind) {
-  switch (kind) {
-    case CloudKind::lattice: return "lattice";
-    case CloudKind::perturbed: return "perturbed";
-    case CloudKind::random: return "random";
-  }
-  return "?";
+const NameTable<CloudKind>& cloud_kind_names() {
+  static const NameTable<CloudKind> table{{"lattice", CloudKind::lattice}, {"perturbed", CloudKind::perturbed}, {"random", CloudKind::random}};
+  return table;
 }
+
+std::string_view to_string(CloudKind kind) { return cloud_kind_names().name(kind); }
 
 namespace {
 

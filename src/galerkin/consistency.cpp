@@ -11,14 +11,12 @@
 
 namespace mfree {
 
-std::string_view to_string(Consistency c) {
-  switch (c) {
-    case Consistency::none: return "none";
-    case Consistency::vci: return "vci";
-    case Consistency::symmetric: return "symmetric";
-  }
-  return "?";
+const NameTable<Consistency>& consistency_names() {
+  static const NameTable<Consistency> table{{"symmetric", Consistency::symmetric}, {"vci", Consistency::vci}, {"none", Consistency::none}};
+  return table;
 }
+
+std::string_view to_string(Consistency c) { return consistency_names().name(c); }
 
 ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
                                              const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq,

@@ -11,14 +11,12 @@
 
 namespace mfree {
 
-std::string_view to_string(QuadratureScheme s) {
-  switch (s) {
-    case QuadratureScheme::projected: return "projected";
-    case QuadratureScheme::gauss_cells: return "gauss_cells";
-    case QuadratureScheme::nodal: return "nodal";
-  }
-  return "?";
+const NameTable<QuadratureScheme>& scheme_names() {
+  static const NameTable<QuadratureScheme> table{{"projected", QuadratureScheme::projected}, {"gauss_cells", QuadratureScheme::gauss_cells}, {"nodal", QuadratureScheme::nodal}};
+  return table;
 }
+
+std::string_view to_string(QuadratureScheme s) { return scheme_names().name(s); }
 
 std::vector<Vec2> Discretisation::displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const {
   const GalerkinQuadrature at = sample_shape_functions(*trial, points, false);

@@ -9,7 +9,12 @@
 
 namespace mfree {
 
-std::string_view to_string(TimeScheme s) { return s == TimeScheme::newmark ? "newmark" : "central_difference"; }
+const NameTable<TimeScheme>& time_scheme_names() {
+  static const NameTable<TimeScheme> table{{"central_difference", TimeScheme::central_difference}, {"newmark", TimeScheme::newmark}};
+  return table;
+}
+
+std::string_view to_string(TimeScheme s) { return time_scheme_names().name(s); }
 
 Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
                                  const std::function<Vec2(const Vec2&)>& field) {

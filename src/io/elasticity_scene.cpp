@@ -13,22 +13,9 @@ namespace mfree {
 
 namespace {
 
-const NameTable<CloudKind> cloud_table{
-    {"lattice", CloudKind::lattice}, {"perturbed", CloudKind::perturbed}, {"random", CloudKind::random}};
-const NameTable<RKOrder> order_table{{"linear", RKOrder::linear}, {"quadratic", RKOrder::quadratic}};
-const NameTable<QuadratureScheme> scheme_table{{"projected", QuadratureScheme::projected},
-                                                 {"gauss_cells", QuadratureScheme::gauss_cells},
-                                                 {"nodal", QuadratureScheme::nodal}};
-const NameTable<Window> window_table{{"cubic_bspline", Window::cubic_bspline},
-                                       {"quadratic_spline", Window::quadratic_spline}};
-const NameTable<SupportShape> support_table{{"circular", SupportShape::circular}, {"tensor", SupportShape::tensor}};
 const NameTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
-const NameTable<Consistency> consistency_table{
-    {"symmetric", Consistency::symmetric}, {"vci", Consistency::vci}, {"none", Consistency::none}};
 const NameTable<std::optional<SolverKind>> solver_table{
     {"auto", std::nullopt}, {"cholmod", SolverKind::cholmod}, {"umfpack", SolverKind::umfpack}};
-const NameTable<TimeScheme> time_scheme_table{{"central_difference", TimeScheme::central_difference},
-                                                {"newmark", TimeScheme::newmark}};
 using ConditionType = BoundaryCondition::Type;
 const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
                                                  {"slip", ConditionType::slip},
@@ -101,7 +88,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("nodes");
-    s.nodes.kind = read_choice(t, "cloud", cloud_table);
+    s.nodes.kind = read_choice(t, "cloud", cloud_kind_names());
     s.nodes.spacing = t.number("spacing", 1e-12, 1e12);
     s.nodes.perturbation = t.number_or("perturbation", 0.3, 0.0, 1.0);
     s.nodes.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
@@ -109,22 +96,22 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("kernel");
-    s.order = read_choice(t, "order", order_table);
-    s.window = read_choice_or(t, "window", window_table, Window::cubic_bspline);
-    s.support = read_choice_or(t, "support", support_table, SupportShape::circular);
+    s.order = read_choice(t, "order", order_names());
+    s.window = read_choice_or(t, "window", window_names(), Window::cubic_bspline);
+    s.support = read_choice_or(t, "support", support_names(), SupportShape::circular);
     s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
     t.finish();
   }
   {
     const SceneTable t = root.table("quadrature");
-    s.scheme = read_choice(t, "scheme", scheme_table);
+    s.scheme = read_choice(t, "scheme", scheme_names());
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
     s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
-    s.quadrature_order = read_choice_or(t, "order", order_table, RKOrder::linear);
+    s.quadrature_order = read_choice_or(t, "order", order_names(), RKOrder::linear);
     s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
-    s.consistency = read_choice_or(t, "consistency", consistency_table, Consistency::symmetric);
+    s.consistency = read_choice_or(t, "consistency", consistency_names(), Consistency::symmetric);
     s.gauss_points = static_cast<int>(t.integer_or("gauss_points", s.order == RKOrder::linear ? 4 : 6, 1, 12));
     t.finish();
   }
@@ -157,7 +144,6 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (t.has("solution") == t.has("displacement"))
       t.error("solution", "give a built-in solution, or the exact displacement as formulas (displacement = [ux, uy])");
     if (t.has("displacement")) {
-      e.solution = "formulas";
       ExactFormulas f{read_vector_formula(t, "displacement", out.constants), {}, {}};
       if (t.has("stress") == t.has("gradient"))
         t.error("displacement", "give the exact stress = [sxx, syy, sxy] or the displacement gradient = "
@@ -173,36 +159,16 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
         check_static(t, "displacement", f.displacement.y, false);
         for (const Formula& g : key == "stress" ? f.stress : f.gradient) check_static(t, key, g, false);
       } else {
-        t.error("displacement", "exact solutions given as formulas are for statics; dynamics has the built-in "
-                                "vibration solution");
+        t.error("displacement", "exact solutions given as formulas are for statics; dynamics measures errors against a "
+                                "built-in motion (solution = \"...\")");
       }
       e.formulas = std::move(f);
     } else {
-      e.solution = t.choice("solution", {"timoshenko_beam", "linear", "quadratic", "vibration"});
-    }
-    if (e.solution == "timoshenko_beam") {
-      e.load = t.number("load", -1e300, 1e300);
-    } else if (e.solution == "vibration") {
-      e.amplitude = t.number("amplitude", 0.0, 1e300);
-      if (!std::holds_alternative<NeoHookean>(out.material)) t.error("solution", "the vibration solution needs [material] model = \"neo_hookean\"");
-      if (!(out.density > 0.0)) t.error("solution", "the vibration solution needs [material] density");
-    } else if (e.solution != "formulas") {
-      const auto a = t.numbers("offset", 2, -1e300, 1e300);
-      const auto g = t.pairs("gradient", 2);
-      e.offset = Vec2(a[0], a[1]);
-      e.gradient << g[0][0], g[0][1], g[1][0], g[1][1];
-      if (e.solution == "quadratic") {
-        for (int c = 0; c < 2; ++c) {
-          const std::string key = c == 0 ? "hessian_x" : "hessian_y";
-          const auto h = t.pairs(key, 2);
-          if (h[0][1] != h[1][0]) t.error(key, "a Hessian is symmetric: [[a, b], [b, c]]");
-          e.hessians[c] << h[0][0], h[0][1], h[1][0], h[1][1];
-        }
-      }
+      e.builtin = read_builtin_solution(t, out.solution_setting(), dynamics);
     }
     // A built-in solution comes with the body force that makes it exact; another one would not.
-    if (e.solution != "formulas" && (out.body_force || out.gravity))
-      t.error("solution", fmt::format("the {} solution sets the body force: remove [loads]", e.solution));
+    if (e.builtin && (out.body_force || out.gravity))
+      t.error("solution", fmt::format("the {} solution sets the body force: remove [loads]", e.builtin->name));
     t.finish();
     out.exact_spec = std::move(e);
   }
@@ -282,7 +248,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("dynamics");
     DynamicsScene dyn;
     DynamicsSettings& d = dyn.settings;
-    d.scheme = read_choice(t, "scheme", time_scheme_table);
+    d.scheme = read_choice(t, "scheme", time_scheme_names());
     d.end_time = t.number("end_time", 1e-300, 1e300);
     if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
     if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
@@ -292,7 +258,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     dyn.error_times = t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
     for (const char* key : {"initial_displacement", "initial_velocity"}) {
       if (!t.has(key)) continue;
-      if (out.vibration()) t.error(key, "the [exact] vibration solution sets the initial state");
+      if (out.motion()) t.error(key, "the [exact] motion sets the initial state");
       const VectorFormula f = read_vector_formula(t, key, out.constants);
       if (f.depends_on_time()) t.error(key, "an initial field is a function of X and Y, not of t");
       (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
@@ -317,7 +283,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       out.output.probe = Vec2(p[0], p[1]);
       if (!out.domain.contains(*out.output.probe)) t.error("probe", "the probe lies outside the domain");
     }
-    if (out.output.wants("error") && !exact && !out.vibration()) t.error("fields", "'error' needs an [exact] section");
+    if (out.output.wants("error") && !exact && !out.motion()) t.error("fields", "'error' needs an [exact] section");
     out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
     if (out.output.eigenvalues > 0 && out.nonlinear())
       t.error("eigenvalues", "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
@@ -331,12 +297,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     st.clouds = {s.nodes.kind};
     st.orders = {s.order};
     st.schemes = {s.scheme};
-    if (t.has("clouds")) st.clouds = read_choices(t, "clouds", cloud_table);
-    if (t.has("orders")) st.orders = read_choices(t, "orders", order_table);
-    if (t.has("schemes")) st.schemes = read_choices(t, "schemes", scheme_table);
+    if (t.has("clouds")) st.clouds = read_choices(t, "clouds", cloud_kind_names());
+    if (t.has("orders")) st.orders = read_choices(t, "orders", order_names());
+    if (t.has("schemes")) st.schemes = read_choices(t, "schemes", scheme_names());
     if (t.has("time_schemes")) {
       if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
-      st.time_schemes = read_choices(t, "time_schemes", time_scheme_table);
+      st.time_schemes = read_choices(t, "time_schemes", time_scheme_names());
     } else if (out.dynamics) {
       st.time_schemes = {out.dynamics->settings.scheme};
     }
@@ -366,13 +332,13 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   return out;
 }
 
-std::optional<AxisAlignedVibration> ElasticityScene::vibration() const {
-  if (!exact_spec || exact_spec->solution != "vibration") return std::nullopt;
-  const Box b = domain.bounding_box();
-  if (b.lo.norm() > 1e-12 * b.size().norm() || std::abs(b.size().x() - b.size().y()) > 1e-12 * b.size().x())
-    throw InputError(fmt::format("{}: the vibration solution needs the square domain [0, L] x [0, L]", file.string()));
-  const LinearElastic& m = settings.problem.material;
-  return AxisAlignedVibration{exact_spec->amplitude, b.size().x(), m.youngs_modulus, m.poisson_ratio, density};
+SolutionSetting ElasticityScene::solution_setting() const {
+  return {domain.bounding_box(), settings.problem.material, std::holds_alternative<NeoHookean>(material), density};
+}
+
+std::optional<ExactMotion> ElasticityScene::motion() const {
+  if (!exact_spec || !exact_spec->builtin || !exact_spec->builtin->solution().motion) return std::nullopt;
+  return exact_spec->builtin->solution().motion(exact_spec->builtin->values, solution_setting());
 }
 
 SolidProblem ElasticityScene::solid_problem() const {
@@ -380,8 +346,8 @@ SolidProblem ElasticityScene::solid_problem() const {
   linear.spacing = settings.nodes.spacing;
   SolidProblem p = mfree::solid_problem(linear);
   p.material = material;
-  if (const auto v = vibration())
-    p.body_force = [v = *v](const Vec2& x, double t) -> Vec2 { return v.density * v.body_force(x, t); };
+  if (const auto m = motion())
+    p.body_force = [b = m->body_force, rho = density](const Vec2& x, double t) -> Vec2 { return rho * b(x, t); };
   else if (body_force || gravity)
     p.body_force = loads_body_force();
   return p;
@@ -411,7 +377,7 @@ std::string ElasticityScene::describe_conditions() const {
 }
 
 std::optional<ExactElasticity> ElasticityScene::exact() const {
-  if (!exact_spec || exact_spec->solution == "vibration") return std::nullopt;
+  if (!exact_spec) return std::nullopt;
   if (const auto& f = exact_spec->formulas) {
     // Strain from the gradient, or from the stress by the compliance of the small-strain law.
     const LinearElastic m = settings.problem.material;
@@ -428,15 +394,9 @@ std::optional<ExactElasticity> ElasticityScene::exact() const {
     if (!e.body_force) e.body_force = [](const Vec2&) { return Vec2::Zero(); };
     return e;
   }
-  if (exact_spec->solution == "linear") return linear_field(exact_spec->offset, exact_spec->gradient, settings.problem.material);
-  if (exact_spec->solution == "quadratic")
-    return quadratic_field(exact_spec->offset, exact_spec->gradient, exact_spec->hessians[0], exact_spec->hessians[1],
-                           settings.problem.material);
-  const Box b = domain.bounding_box();
-  // The beam's axis is y = 0 from x = 0 (SPEC section 4): the domain must be [0, L] x [-D/2, D/2].
-  if (std::abs(b.lo.x()) > 1e-12 * b.size().x() || std::abs(b.lo.y() + b.hi.y()) > 1e-12 * b.size().y())
-    throw InputError(fmt::format("{}: the timoshenko_beam solution needs the domain [0, L] x [-D/2, D/2]", file.string()));
-  return timoshenko_beam(b.size().x(), b.size().y(), exact_spec->load, settings.problem.material);
+  const BuiltinSolution& b = exact_spec->builtin->solution();
+  if (!b.statics) return std::nullopt;
+  return b.statics(exact_spec->builtin->values, solution_setting());
 }
 
 }  // namespace mfree

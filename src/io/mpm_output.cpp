@@ -47,7 +47,7 @@ std::string particle_table(const Particles& P, const std::vector<MPMBody>& bodie
   return out;
 }
 
-MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
+MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion* exact,
                      std::vector<MPMMaterial> materials)
     : folder_(std::move(folder)), fields_(fields), exact_(exact), materials_(std::move(materials)) {
   if (fields_.error && exact_ == nullptr)

@@ -172,26 +172,20 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
 
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
-    (void)t.choice("solution", {"vibration"});
-    const double amplitude = t.number("amplitude", 0.0, 1e300);
-    if (pr.bodies.size() != 1) t.error("solution", "the vibration solution needs a single [[body]]");
+    if (pr.bodies.size() != 1) t.error("solution", "an exact motion needs a single [[body]]");
     const MPMBody& body = pr.bodies.front();
-    const SceneTable& bt = body_tables.front();
     const Box& d = pr.box;
-    if (d.lo.norm() > 1e-12 * d.size().norm() || std::abs(d.size().x() - d.size().y()) > 1e-12 * d.size().x())
-      t.error("solution", "the vibration solution needs the square grid box [0, L] x [0, L]");
     if (body.shape != Shape::rectangle || (body.bounds.lo - d.lo).norm() > 1e-12 * d.size().norm() ||
         (body.bounds.hi - d.hi).norm() > 1e-12 * d.size().norm())
-      t.error("solution", "the vibration solution needs the body to be the rectangle filling the grid box");
-    if (body.initial_velocity) bt.error("velocity", "the [exact] solution sets the initial velocity");
+      t.error("solution", "an exact motion needs the body to be the rectangle filling the grid box");
+    if (body.initial_velocity) body_tables.front().error("velocity", "the [exact] solution sets the initial velocity");
     const MaterialSection& material = sections[static_cast<std::size_t>(body.material)];
-    if (!std::holds_alternative<NeoHookean>(material.material))
-      t.error("solution", "the vibration solution needs a material with model = \"neo_hookean\"");
-    const AxisAlignedVibration v{amplitude, d.size().x(), material.linear.youngs_modulus, material.linear.poisson_ratio,
-                                 material.density};
-    out.vibration = v;
-    pr.body_force = [v](const Vec2& X, double t) { return v.body_force(X, t); };
-    pr.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
+    const SolutionSetting on{d, material.linear, std::holds_alternative<NeoHookean>(material.material), material.density};
+    const BuiltinChoice c = read_builtin_solution(t, on, true);
+    const ExactMotion m = c.solution().motion(c.values, on);
+    out.exact = m;
+    pr.body_force = m.body_force;
+    pr.bodies.front().initial_velocity = [v = m.velocity](const Vec2& X) { return v(X, 0.0); };
     t.finish();
   }
   {
@@ -208,7 +202,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.walls = read_walls(t);
     s.damping = t.number_or("damping", 0.0, 0.0, 1e300);
     if (t.has("gravity")) {
-      if (out.vibration) t.error("gravity", "the [exact] solution sets the body force");
+      if (out.exact) t.error("gravity", "the [exact] solution sets the body force");
       pr.body_force = vector_field<double>(read_vector_formula(t, "gravity", constants));
     }
     const double h = pr.box.size().x() / s.cells;
@@ -226,9 +220,9 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     out.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
     out.energy_every = static_cast<int>(t.integer_or("energy_every", 0, 0, 1 << 30));
     if (t.has("error_times")) {
-      if (!out.vibration) t.error("error_times", "errors need an [exact] solution");
+      if (!out.exact) t.error("error_times", "errors need an [exact] solution");
       out.error_times = t.numbers("error_times", 0, 0.0, 1.0);
-    } else if (out.vibration) {
+    } else if (out.exact) {
       out.error_times = {1.0};
     }
     t.finish();
@@ -246,7 +240,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
         if (f == "error") out.fields.error = true;
         if (f == "grid") out.fields.grid = true;
       }
-    if (out.fields.error && !out.vibration) t.error("fields", "'error' needs an [exact] section");
+    if (out.fields.error && !out.exact) t.error("fields", "'error' needs an [exact] section");
     out.vtk = t.boolean_or("vtk", true);
     out.particles_csv = t.boolean_or("particles_csv", false);
     t.finish();
@@ -270,7 +264,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       st.particles_per_side.clear();
       for (const double n : t.numbers("particles_per_cell", 0, 1, 25)) st.particles_per_side.push_back(per_side(t, "particles_per_cell", std::lround(n)));
     }
-    if (!out.vibration) t.error("cells", "a study needs an [exact] solution to measure errors against");
+    if (!out.exact) t.error("cells", "a study needs an [exact] solution to measure errors against");
     t.finish();
     out.study = st;
   }

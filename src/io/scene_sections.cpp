@@ -13,7 +13,7 @@ MaterialSection read_material(const SceneTable& root) { return read_material_key
 
 MaterialSection read_material_keys(const SceneTable& t) {
   MaterialSection m;
-  m.model = t.choice("model", {"plane_stress", "plane_strain", "neo_hookean", "st_venant_kirchhoff"});
+  m.model = t.choice("model", material_models().names());
   m.linear.model = m.model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;
   m.linear.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
   m.linear.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
@@ -85,6 +85,45 @@ Formula read_formula(const SceneTable& t, const std::string& key, const Constant
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
   const std::vector<std::string> e = t.expressions(key, 2);
   return {Formula(e[0], constants, t.where(key, 0)), Formula(e[1], constants, t.where(key, 1))};
+}
+
+BuiltinChoice read_builtin_solution(const SceneTable& t, const SolutionSetting& setting, bool motion) {
+  BuiltinChoice c;
+  c.name = t.choice("solution", builtin_solutions().names());
+  const BuiltinSolution& s = c.solution();
+  for (const SolutionParameter& p : s.parameters) {
+    switch (p.kind) {
+      case ParameterKind::number:
+        c.values.numbers[p.name] = t.number(p.name, -1e300, 1e300);
+        break;
+      case ParameterKind::vector: {
+        const auto a = t.numbers(p.name, 2, -1e300, 1e300);
+        c.values.vectors[p.name] = Vec2(a[0], a[1]);
+        break;
+      }
+      case ParameterKind::matrix:
+      case ParameterKind::symmetric_matrix: {
+        const auto m = t.pairs(p.name, 2);
+        if (p.kind == ParameterKind::symmetric_matrix && m[0][1] != m[1][0])
+          t.error(p.name, "a symmetric matrix: [[a, b], [b, c]]");
+        c.values.matrices[p.name] << m[0][0], m[0][1], m[1][0], m[1][1];
+        break;
+      }
+    }
+  }
+  if (motion && !s.motion)
+    t.error("solution", fmt::format("the {} solution is static; a motion is needed here", c.name));
+  if (!motion && !s.statics)
+    t.error("solution", fmt::format("the {} solution is a motion; it needs a dynamic run", c.name));
+  try {
+    if (motion)
+      (void)s.motion(c.values, setting);
+    else
+      (void)s.statics(c.values, setting);
+  } catch (const InputError& e) {
+    t.error("solution", e.what());
+  }
+  return c;
 }
 
 }  // namespace mfree

@@ -10,15 +10,26 @@
 
 namespace mfree {
 
-std::string_view to_string(Window kind) {
-  return kind == Window::cubic_bspline ? "cubic_bspline" : "quadratic_spline";
+const NameTable<Window>& window_names() {
+  static const NameTable<Window> table{{"cubic_bspline", Window::cubic_bspline}, {"quadratic_spline", Window::quadratic_spline}};
+  return table;
 }
-std::string_view to_string(RKOrder order) {
-  return order == RKOrder::linear ? "linear" : "quadratic";
+
+std::string_view to_string(Window kind) { return window_names().name(kind); }
+
+const NameTable<RKOrder>& order_names() {
+  static const NameTable<RKOrder> table{{"linear", RKOrder::linear}, {"quadratic", RKOrder::quadratic}};
+  return table;
 }
-std::string_view to_string(SupportShape shape) {
-  return shape == SupportShape::circular ? "circular" : "tensor";
+
+std::string_view to_string(RKOrder order) { return order_names().name(order); }
+
+const NameTable<SupportShape>& support_names() {
+  static const NameTable<SupportShape> table{{"circular", SupportShape::circular}, {"tensor", SupportShape::tensor}};
+  return table;
 }
+
+std::string_view to_string(SupportShape shape) { return support_names().name(shape); }
 
 namespace {
 

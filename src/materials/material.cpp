@@ -1,7 +1,9 @@
 #include "mfree/materials/material.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "mfree/core/error.hpp"
 
@@ -30,14 +32,29 @@ std::string_view name(const Material& m) {
   return std::holds_alternative<NeoHookean>(m) ? "neo_hookean" : "st_venant_kirchhoff";
 }
 
+namespace {
+
+Material plane_stress(double e, double nu) { return LinearElastic{e, nu, PlaneModel::stress}; }
+Material plane_strain(double e, double nu) { return LinearElastic{e, nu, PlaneModel::strain}; }
+Material neo_hookean(double e, double nu) { return NeoHookean{lame_constants(e, nu)}; }
+Material st_venant_kirchhoff(double e, double nu) { return StVenantKirchhoff{lame_constants(e, nu)}; }
+
+}  // namespace
+
+const NameTable<MaterialMaker>& material_models() {
+  static const NameTable<MaterialMaker> table{{"plane_stress", plane_stress},
+                                              {"plane_strain", plane_strain},
+                                              {"neo_hookean", neo_hookean},
+                                              {"st_venant_kirchhoff", st_venant_kirchhoff}};
+  return table;
+}
+
 Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio) {
-  LinearElastic linear{youngs_modulus, poisson_ratio, model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain};
-  linear.validate();
-  if (model == "plane_stress" || model == "plane_strain") return linear;
-  const Lame lame = lame_constants(youngs_modulus, poisson_ratio);
-  if (model == "neo_hookean") return NeoHookean{lame};
-  if (model == "st_venant_kirchhoff") return StVenantKirchhoff{lame};
-  throw InputError(fmt::format("unknown material model '{}'", model));
+  const std::vector<std::string> names = material_models().names();
+  if (std::find(names.begin(), names.end(), model) == names.end())
+    throw InputError(fmt::format("unknown material model '{}' (models: {})", model, fmt::join(names, ", ")));
+  LinearElastic{youngs_modulus, poisson_ratio, PlaneModel::strain}.validate();
+  return material_models().value(model)(youngs_modulus, poisson_ratio);
 }
 
 double wave_speed(const Material& m, double density) {

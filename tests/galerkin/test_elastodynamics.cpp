@@ -5,7 +5,7 @@
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "../test_support.hpp"
 

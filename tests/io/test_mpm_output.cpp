@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "../test_support.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/mpm_output.hpp"
 #include "mfree/io/vtk_output.hpp"
@@ -28,6 +29,7 @@ namespace {
 
 
 const AxisAlignedVibration vibration{0.05, 1.0, 1e7, 0.3, 1000.0};
+const ExactMotion vibration_motion = vibration.motion();
 const Walls open_walls{Wall::open, Wall::open, Wall::open, Wall::open};
 
 /// The small vibration run of the unit square: quadratic B-splines, 4 x 4 cells, 2 x 2
@@ -82,7 +84,7 @@ TEST_CASE("MPM frames: particle fields read back bit for bit, and the series lis
   const std::vector<MPMMaterial> material{{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}};
   MPMFrameFields fields;
   fields.displacement = fields.velocity = fields.stress = fields.von_mises = fields.error = true;
-  MPMFrames frames(folder.path, fields, &vibration, material);
+  MPMFrames frames(folder.path, fields, &vibration_motion, material);
   CHECK(fs::is_directory(folder.path));  // created by the constructor
   frames.write(solver);
   solver.step();

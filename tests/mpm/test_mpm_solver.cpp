@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "../test_support.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/mpm/particle_errors.hpp"
 
@@ -132,7 +133,7 @@ ParticleErrors quarter_period_errors(const Method& m, int cells) {
   s.walls = {Wall::slip, Wall::slip, Wall::slip, Wall::slip};
   MPMSolver solver(problem, s);
   for (int n = 0; n < solver.steps(); ++n) solver.step();
-  return particle_errors(solver, v);
+  return particle_errors(solver, v.motion());
 }
 
 }  // namespace

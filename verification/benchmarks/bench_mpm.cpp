@@ -23,7 +23,7 @@
 #include <string>
 
 #include "mfree/core/parallel.hpp"
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 #include "mfree/mpm/mpm_solver.hpp"
 
 namespace {

@@ -1,13 +1,7 @@
 #pragma once
 // The integration-accuracy study of seed 003 (SPEC section 2).
 //
-// On the rectangle [x0, x0 + Lx] x [y0, y0 + Ly], with (s, t) = (x - x0, y - y0):
-//   f1 = sin(pi s / Lx) sin(pi t / Ly)                 integral 4 Lx Ly / pi^2
-//   f2 = [1 - (2 u / Lx)^2] [1 - (2 v / Ly)^2]         integral 4 Lx Ly / 9
-// with (u, v) measured from the centre. On the 2 x 1 rectangle f1 is seed 003's
-// sin(pi x / 2) sin(pi y) in corner coordinates: written in centred coordinates it would be
-// odd in x and y, integrate to zero, and symmetric clouds would integrate it exactly by
-// symmetry alone, which measures nothing.
+// The integrands are problems/integration_functions.hpp.
 //
 // error = |integral f - sum_K w_K f(x_K)| for our scheme (w_K = integral of phi_K by the
 // background lattice) and the baselines: Voronoi cells clipped to the domain, Gauss points
@@ -19,10 +13,16 @@
 #include <vector>
 
 #include "mfree/clouds/point_cloud.hpp"
+#include "mfree/core/name_table.hpp"
 #include "mfree/io/scene_reader.hpp"
 #include "mfree/kernels/rk_shape_functions.hpp"
 
 namespace mfree {
+
+/// The weights compared: ours (w_K = integral of phi_K) and the three baselines above.
+enum class WeightScheme { rk, voronoi, gauss_cells, equal };
+/// rk, voronoi, gauss_cells, equal.
+const NameTable<WeightScheme>& weight_scheme_names();
 
 struct IntegrationStudySettings {
   Box rectangle;
@@ -30,7 +30,7 @@ struct IntegrationStudySettings {
   std::vector<CloudKind> clouds;
   double perturbation = 0.3;          ///< for perturbed clouds, fraction of the spacing
   std::vector<RKOrder> orders;
-  std::vector<std::string> schemes;   ///< rk, voronoi, gauss_cells, equal
+  std::vector<WeightScheme> schemes;
   std::vector<std::string> functions; ///< f1, f2
   std::uint64_t seed = 1;
   Window window = Window::cubic_bspline;

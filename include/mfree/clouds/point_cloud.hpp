@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/geometry/domain.hpp"
 
@@ -43,6 +44,8 @@ std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& settings
 std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes,
                                         double ratio);
 
+/// lattice, perturbed, random: the names scenes use.
+const NameTable<CloudKind>& cloud_kind_names();
 std::string_view to_string(CloudKind kind);
 
 }  // namespace mfree

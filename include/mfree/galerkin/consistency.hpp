@@ -46,6 +46,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/galerkin/boundary_quadrature.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/linalg/node_pattern.hpp"
@@ -53,6 +54,8 @@
 namespace mfree {
 
 enum class Consistency { none, vci, symmetric };
+/// symmetric, vci, none: the names scenes use.
+const NameTable<Consistency>& consistency_names();
 std::string_view to_string(Consistency c);
 
 /// The conditions (IC_p) of one domain quadrature, boundary quadrature and RK order.

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/boundary_quadrature.hpp"
@@ -28,6 +29,8 @@
 namespace mfree {
 
 enum class QuadratureScheme { projected, gauss_cells, nodal };
+/// projected, gauss_cells, nodal: the names scenes use.
+const NameTable<QuadratureScheme>& scheme_names();
 std::string_view to_string(QuadratureScheme s);
 
 struct ElasticitySettings {

@@ -29,12 +29,15 @@
 #include <string_view>
 #include <vector>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 
 namespace mfree {
 
 enum class TimeScheme { central_difference, newmark };
+/// central_difference, newmark: the names scenes use.
+const NameTable<TimeScheme>& time_scheme_names();
 std::string_view to_string(TimeScheme s);
 
 struct DynamicsSettings {

@@ -10,19 +10,12 @@
 //
 // The shape functions are sampled at the points once; each evaluation is a pass over them.
 
-#include <functional>
-
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/materials/material.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 
 namespace mfree {
-
-struct ExactMotion {
-  std::function<Vec2(const Vec2&, double)> displacement;
-  std::function<Vec2(const Vec2&, double)> velocity;
-  std::function<Mat2(const Vec2&, double)> cauchy_stress;
-};
 
 struct MotionErrors {
   double time = 0.0;

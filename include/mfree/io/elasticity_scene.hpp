@@ -14,9 +14,9 @@
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy] (per unit volume; numbers or formulas in X, Y, t),
 //                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
-//   [exact]       solution (timoshenko_beam: load; linear: offset, gradient; quadratic:
-//                 offset, gradient, hessian_x, hessian_y (symmetric, of u_x and u_y);
-//                 vibration: amplitude), or the formulas displacement = [ux, uy] with
+//   [exact]       solution = a built-in one (problems/builtin_solutions.hpp: timoshenko_beam:
+//                 load; linear: offset, gradient; quadratic: offset, gradient, hessian_x,
+//                 hessian_y (symmetric, of u_x and u_y); vibration (dynamics): amplitude), or the formulas displacement = [ux, uy] with
 //                 stress = [sxx, syy, sxy] or gradient = [dux/dx, dux/dy, duy/dx, duy/dy]
 //                 (statics; the body force is [loads]')   optional
 //   [[boundary]]  name, type (displacement | slip | traction | pressure), one selector:
@@ -53,9 +53,9 @@
 
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
-#include "mfree/materials/vibration_solution.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/io/scene_reader.hpp"
+#include "mfree/io/scene_sections.hpp"
 #include "mfree/problems/formula.hpp"
 
 namespace mfree {
@@ -68,14 +68,10 @@ struct ExactFormulas {
   std::vector<Formula> gradient;  ///< 4 formulas, or empty
 };
 
+/// [exact]: a built-in solution, or formulas.
 struct ExactSpec {
-  std::string solution;  ///< timoshenko_beam | linear | quadratic | vibration | formulas
+  std::optional<BuiltinChoice> builtin;
   std::optional<ExactFormulas> formulas;
-  double load = 0.0;
-  double amplitude = 0.0;
-  Vec2 offset = Vec2::Zero();
-  Mat2 gradient = Mat2::Zero();
-  std::array<Mat2, 2> hessians{Mat2::Zero(), Mat2::Zero()};  ///< of u_x and u_y (quadratic)
 };
 
 struct OutputSettings {
@@ -134,10 +130,12 @@ struct ElasticityScene {
 
   /// The exact solution of the scene, if any, for its domain and material (statics).
   [[nodiscard]] std::optional<ExactElasticity> exact() const;
-  /// The vibration solution of [exact] solution = "vibration".
-  [[nodiscard]] std::optional<AxisAlignedVibration> vibration() const;
+  /// The exact motion of a built-in solution that is one (dynamics).
+  [[nodiscard]] std::optional<ExactMotion> motion() const;
+  /// What a built-in solution is posed on: the domain's box, the material, the density.
+  [[nodiscard]] SolutionSetting solution_setting() const;
   /// The finite-strain (or small-strain) problem of the scene; loads are those of statics
-  /// with the exact body force, or the vibration's body force rho0 b(X, t).
+  /// with the exact body force, or the body force rho0 b(X, t) of an exact motion.
   [[nodiscard]] SolidProblem solid_problem() const;
   /// rho0 b(X, t) of [loads]: body_force plus density times gravity.
   [[nodiscard]] BodyForce loads_body_force() const;

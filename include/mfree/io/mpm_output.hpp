@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "mfree/materials/material.hpp"
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/mpm/mpm_solver.hpp"
 
 namespace mfree {
@@ -58,7 +58,7 @@ class MPMFrames {
   /// Frames into `folder`, created if missing (Error when it cannot be). exact: the motion
   /// errors are measured against; may be null, but then fields.error is an InputError.
   /// materials: the problem's (particles index them), for sigma_zz in von_mises.
-  MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const AxisAlignedVibration* exact,
+  MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion* exact,
             std::vector<MPMMaterial> materials);
 
   /// Writes frame number frames() at solver.time() and rewrites the series. Errors as the
@@ -74,7 +74,7 @@ class MPMFrames {
 
   std::filesystem::path folder_;
   MPMFrameFields fields_;
-  const AxisAlignedVibration* exact_;
+  const ExactMotion* exact_;
   std::vector<MPMMaterial> materials_;
   std::vector<std::pair<double, std::string>> steps_, grid_steps_;
 };

@@ -23,9 +23,10 @@
 //                 velocity = [vx, vy] (numbers or formulas in X, Y; default at rest),
 //                 particles_per_cell (default [mpm]'s). Bodies lie in the grid box and do not
 //                 overlap (mpm/body.hpp); each must get particles.
-//   [exact]       solution = "vibration", amplitude (optional): initial velocity, body force
-//                 and the errors come from it; needs one Neo-Hookean rectangle body filling
-//                 the grid box [0, L] x [0, L], with no velocity of its own and no gravity
+//   [exact]       solution = a built-in motion (problems/builtin_solutions.hpp; vibration:
+//                 amplitude) (optional): initial velocity, body force and the errors come
+//                 from it; needs one rectangle body filling the grid box, with no velocity of
+//                 its own and no gravity (the motion says what else it needs)
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, body, error, grid), vtk,
@@ -41,7 +42,7 @@
 #include <vector>
 
 #include "mfree/io/mpm_output.hpp"
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/mpm/mpm_solver.hpp"
 
 namespace mfree {
@@ -68,7 +69,7 @@ struct MPMScene {
   std::filesystem::path file;
   MPMProblem problem;
   MPMSettings settings;
-  std::optional<AxisAlignedVibration> vibration;
+  std::optional<ExactMotion> exact;  ///< of [exact]
   int frames = 0;                   ///< VTK frames over the run (plus t = 0)
   std::vector<double> error_times;  ///< fractions of end_time (with [exact])
   int energy_every = 0;             ///< steps between energy records (0: none)

@@ -5,6 +5,7 @@
 //               youngs_modulus, poisson_ratio, density (dynamics and MPM)
 //   a box       [[x0, y0], [x1, y1]] (corners in any order)
 //   [constants] name = number, ...: named constants every formula of the scene may use
+//   [exact]     solution = "name" of problems/builtin_solutions.hpp and that entry's parameters
 //   a value     a number or a formula string in x, y, X, Y, t (problems/formula.hpp); a
 //               vector value is an array of two of them, e.g. ["0", "-rho * g * (H - y)"]
 
@@ -13,6 +14,7 @@
 #include "mfree/core/types.hpp"
 #include "mfree/io/scene_reader.hpp"
 #include "mfree/materials/material.hpp"
+#include "mfree/problems/builtin_solutions.hpp"
 #include "mfree/problems/formula.hpp"
 
 namespace mfree {
@@ -41,5 +43,17 @@ Formula read_formula(const SceneTable& t, const std::string& key, const Constant
 
 /// The two numbers or formulas under `key`.
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants);
+
+/// A built-in solution as a scene names it, with its parameters' values.
+struct BuiltinChoice {
+  std::string name;
+  SolutionValues values;
+  [[nodiscard]] const BuiltinSolution& solution() const { return builtin_solutions().value(name); }
+};
+
+/// The key `solution` of t and the parameters its entry lists, checked by building the
+/// solution on `setting`: a mismatch is an error at `solution` saying what the solution
+/// needs, as is a static solution where a motion is wanted (`motion`) or the reverse.
+BuiltinChoice read_builtin_solution(const SceneTable& t, const SolutionSetting& setting, bool motion);
 
 }  // namespace mfree

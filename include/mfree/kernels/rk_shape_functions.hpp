@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/kernels/polynomial_basis.hpp"
@@ -101,7 +102,11 @@ class RKShapeFunctions {
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,
                                         int k = 4);
 
+/// linear, quadratic: the names scenes use.
+const NameTable<RKOrder>& order_names();
 std::string_view to_string(RKOrder order);
+/// circular, tensor: the names scenes use.
+const NameTable<SupportShape>& support_names();
 std::string_view to_string(SupportShape shape);
 
 }  // namespace mfree

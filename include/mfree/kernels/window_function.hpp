@@ -8,6 +8,8 @@
 #include <cmath>
 #include <string_view>
 
+#include "mfree/core/name_table.hpp"
+
 namespace mfree {
 
 enum class Window {
@@ -49,6 +51,8 @@ inline WindowValue evaluate_window(Window kind, double r) {
   return kind == Window::cubic_bspline ? cubic_bspline(r) : quadratic_spline(r);
 }
 
+/// cubic_bspline, quadratic_spline: the names scenes use.
+const NameTable<Window>& window_names();
 std::string_view to_string(Window kind);
 
 }  // namespace mfree

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <variant>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/materials/linear_elastic.hpp"
 #include "mfree/materials/neo_hookean.hpp"
 #include "mfree/materials/st_venant_kirchhoff.hpp"
@@ -37,8 +38,12 @@ double out_of_plane_stress(const Material& m, const Mat2& f);
 inline bool is_linear(const Material& m) { return std::holds_alternative<LinearElastic>(m); }
 std::string_view name(const Material& m);
 
-/// The law of a scene's model name (plane_stress, plane_strain, st_venant_kirchhoff,
-/// neo_hookean) with Young's modulus and Poisson's ratio; InputError for E <= 0 or nu outside
+/// The law of a model from Young's modulus and Poisson's ratio.
+using MaterialMaker = Material (*)(double youngs_modulus, double poisson_ratio);
+/// plane_stress, plane_strain, neo_hookean, st_venant_kirchhoff: the names scenes use.
+const NameTable<MaterialMaker>& material_models();
+
+/// The law of a model name of material_models() with Young's modulus and Poisson's ratio; InputError for E <= 0 or nu outside
 /// (-1, 1/2) (the message names the value).
 Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio);
 

@@ -1,5 +1,5 @@
 #pragma once
-// Errors of an MPM run against the vibration solution: root-mean-square values over the
+// Errors of an MPM run against an exact motion: root-mean-square values over the
 // particles (seed 000 eq. 43), each particle's exact value taken at its reference position
 // X_p and the current time,
 //
@@ -11,7 +11,7 @@
 // The particles are the method's own sample of the body; seed 000 and the CPDI study measure
 // there, so the figures compare with theirs.
 
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/mpm/mpm_solver.hpp"
 
 namespace mfree {
@@ -24,6 +24,6 @@ struct ParticleErrors {
   double stress = 0.0;         ///< Pa
 };
 
-ParticleErrors particle_errors(const MPMSolver& solver, const AxisAlignedVibration& exact);
+ParticleErrors particle_errors(const MPMSolver& solver, const ExactMotion& exact);
 
 }  // namespace mfree

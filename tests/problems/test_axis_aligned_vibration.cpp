@@ -1,13 +1,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 
 using namespace mfree;
 
 // The manufactured solution must satisfy rho0 u_tt = Div P + rho0 b with the body force of
 // SPEC section 6: checked by central differences of P in X at scattered points and times.
-TEST_CASE("axis-aligned vibration: the corrected body force balances the motion", "[materials]") {
+TEST_CASE("axis-aligned vibration: the corrected body force balances the motion", "[problems]") {
   for (double amplitude : {0.05, 0.1}) {
     const AxisAlignedVibration v{amplitude};
     const NeoHookean m = v.material();

@@ -10,6 +10,7 @@
 // carry no shear traction and the normal displacement vanishes there: slip walls. The period
 // is 2 L / c. Units: SI as given (m, s, Pa, kg/m^3).
 
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/materials/neo_hookean.hpp"
 
@@ -33,6 +34,8 @@ struct AxisAlignedVibration {
   [[nodiscard]] Mat2 cauchy_stress(const Vec2& x, double t) const;
   /// b (force per unit mass) with rho0 u_tt = Div P + rho0 b.
   [[nodiscard]] Vec2 body_force(const Vec2& x, double t) const;
+  /// The fields above as the solvers' error measures take them.
+  [[nodiscard]] ExactMotion motion() const;
 };
 
 }  // namespace mfree

@@ -1,4 +1,4 @@
-#include "mfree/materials/vibration_solution.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -48,6 +48,13 @@ Vec2 AxisAlignedVibration::body_force(const Vec2& x, double t) const {
   const double common = 4.0 * m.mu / density - c2, k = 4.0 * (m.lambda * (lnj - 1.0) - m.mu) / density;
   const double scale = pi * pi / (length * length);
   return scale * Vec2(u.x() * (common - k / (f(0, 0) * f(0, 0))), u.y() * (common - k / (f(1, 1) * f(1, 1))));
+}
+
+ExactMotion AxisAlignedVibration::motion() const {
+  return {[v = *this](const Vec2& x, double t) { return v.displacement(x, t); },
+          [v = *this](const Vec2& x, double t) { return v.velocity(x, t); },
+          [v = *this](const Vec2& x, double t) { return v.cauchy_stress(x, t); },
+          [v = *this](const Vec2& x, double t) { return v.body_force(x, t); }};
 }
 
 }  // namespace mfree
