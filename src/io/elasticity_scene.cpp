@@ -6,8 +6,6 @@
 #include "mfree/core/error.hpp"
 #include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_sections.hpp"
-#include "mfree/problems/polynomial_fields.hpp"
-#include "mfree/problems/timoshenko_beam.hpp"
 
 namespace mfree {
 
