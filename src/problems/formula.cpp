@@ -136,7 +136,7 @@ double Formula::operator()(const Vec2& x, double t) const {
   e.t = t;
   const double v = e.parser.Eval();
   if (!std::isfinite(v))
-    throw NumericalError(fmt::format("{}: formula '{}' is {} at (x, y) = ({:.6g}, {:.6g}), t = {:.6g}", impl_->key,
+    throw InputError(fmt::format("{}: formula '{}' is {} at (x, y) = ({:.6g}, {:.6g}), t = {:.6g}", impl_->key,
                                      impl_->expression, v, x.x(), x.y(), t));
   return v;
 }

@@ -12,7 +12,9 @@ constexpr double pi = std::numbers::pi;
 Integrand f1(const Box& r) {
   const double lx = r.size().x(), ly = r.size().y();
   const Vec2 lo = r.lo;
-  return {[=](const Vec2& x) { return std::sin(pi * (x.x() - lo.x()) / lx) * std::sin(pi * (x.y() - lo.y()) / ly); },
+  return {[=](const Vec2& x) {
+            return std::sin(pi * (x.x() - lo.x()) / lx) * std::sin(pi * (x.y() - lo.y()) / ly);
+          },
           4.0 * lx * ly / (pi * pi)};
 }
 

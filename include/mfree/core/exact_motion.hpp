@@ -12,7 +12,7 @@ struct ExactMotion {
   std::function<Vec2(const Vec2&, double)> displacement;   ///< u(X, t)
   std::function<Vec2(const Vec2&, double)> velocity;       ///< v(X, t)
   std::function<Mat2(const Vec2&, double)> cauchy_stress;  ///< sigma(X, t)
-  std::function<Vec2(const Vec2&, double)> body_force;     ///< b(X, t) per unit mass, rho0 u_tt = Div P + rho0 b
+  std::function<Vec2(const Vec2&, double)> body_force;  ///< b(X, t) per unit mass, rho0 u_tt = Div P + rho0 b
 };
 
 }  // namespace mfree

@@ -37,10 +37,10 @@ struct SolutionValues {
 
 /// What a solution is posed on.
 struct SolutionSetting {
-  Box body;                ///< the body's bounding box (reference configuration)
-  LinearElastic material;  ///< E, nu and the plane model (of the law or of its linearisation)
+  Box body;                  ///< the body's bounding box (reference configuration)
+  LinearElastic material;    ///< E, nu and the plane model (of the law or of its linearisation)
   bool neo_hookean = false;  ///< the law is the compressible Neo-Hookean one
-  double density = 0.0;    ///< rho0; 0 when not given
+  double density = 0.0;      ///< rho0; 0 when not given
 };
 
 /// A built-in solution. The builders throw InputError, saying what the solution needs, for a

@@ -12,7 +12,8 @@
 //
 // Errors: a formula that does not parse, or names an unknown variable, is an InputError
 // naming the formula's key, the position in the formula and what is wrong; a value that is
-// NaN or infinite at some point is a NumericalError naming the key, the point and the time.
+// NaN or infinite at some point is an InputError (the scene's formula is at fault) naming the
+// key, the point and the time.
 // Evaluation is thread-safe (one parser per OpenMP thread).
 
 #include <map>
@@ -41,7 +42,7 @@ class Formula {
   Formula& operator=(Formula&&) noexcept;
   ~Formula();
 
-  /// The value at point x and time t; throws NumericalError when it is NaN or infinite.
+  /// The value at point x and time t; throws InputError when it is NaN or infinite.
   [[nodiscard]] double operator()(const Vec2& x, double t = 0.0) const;
   /// Values at many points at one time (out resized to points.size()).
   void evaluate(const std::vector<Vec2>& points, double t, std::vector<double>& out) const;
