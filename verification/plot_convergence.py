@@ -28,7 +28,8 @@ def main():
     series = defaultdict(list)
     with open(path) as f:
         for r in csv.DictReader(f):
-            series[(r["scheme"], r["order"], r["cloud"])].append(r)
+            if r["status"] == "ok":  # a failed run's row has empty cells and its reason
+                series[(r["scheme"], r["order"], r["cloud"])].append(r)
     for x_key, x_label, name, invert in [("spacing", "node spacing h", "error_vs_spacing.png", True),
                                          ("seconds", "wall time of the solve [s]", "error_vs_time.png", False)]:
         fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))

@@ -10,6 +10,7 @@
 #include "mfree/apps/solid_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
@@ -18,10 +19,10 @@
 
 namespace mfree {
 
-int run_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  const ElasticityScene scene = read_elasticity_scene(path, false, overrides);
-  if (scene.dynamics) return run_dynamics(scene);
-  if (scene.nonlinear()) return run_static(scene);
+namespace {
+
+int run_linear_statics(const ElasticityScene& scene) {
+  const std::filesystem::path& path = scene.file;
   const std::optional<ExactElasticity> exact = scene.exact();
   std::cout << fmt::format("mfree run: {} ({} thread(s))\n", path.string(), thread_count());
   std::cout << scene.describe_conditions();
@@ -86,7 +87,7 @@ int run_elasticity(const std::filesystem::path& path, const std::vector<std::str
   }
   if (!o.fields.empty() && o.vtk) {
     const auto files = r.timer.time("output", [&] { return write_elasticity_fields(scene, r); });
-    for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.string());
+    for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.filename().string());
     std::cout << "  open field.vtu in ParaView for contour plots (see README)\n";
   } else {
     std::cout << "  no output fields asked for: stress recovery and field files skipped (summary.json only)\n";
@@ -98,12 +99,8 @@ int run_elasticity(const std::filesystem::path& path, const std::vector<std::str
   return 0;
 }
 
-int converge_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  const ElasticityScene scene = read_elasticity_scene(path, true, overrides);
-  if (scene.dynamics) return converge_dynamics(scene);
-  if (scene.nonlinear())
-    throw InputError(fmt::format("{}: mfree converge runs linear statics and dynamics; run a Newton scene with mfree run",
-                                 path.string()));
+int converge_linear_statics(const ElasticityScene& scene) {
+  const std::filesystem::path& path = scene.file;
   const StudySettings& st = *scene.study;
   const std::optional<ExactElasticity> exact = scene.exact();
   const std::optional<Vec2> probe = st.probe ? st.probe : scene.output.probe;
@@ -119,7 +116,7 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
 
   std::string csv =
       "cloud,order,scheme,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_stress,"
-      "probe_uy,seconds,consistency_before,consistency_after\n";
+      "probe_uy,seconds,consistency_before,consistency_after,status\n";
   std::string table;
   std::size_t done = 0;
   for (CloudKind cloud : st.clouds)
@@ -150,8 +147,8 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
                   fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} FAILED: {}", to_string(cloud),
                               to_string(order), to_string(q), beta, h, e.what());
               table += line + "\n";
-              csv += fmt::format("{},{},{},{},{},,,,nan,nan,nan,nan,nan,nan,nan\n", to_string(cloud),
-                                 to_string(order), to_string(q), beta, h);
+              csv += fmt::format("{},{},{},{},{},,,,,,,,,,,{}\n", to_string(cloud), to_string(order), to_string(q),
+                                 beta, h, csv_status(e.what()));
               std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
               continue;
             }
@@ -181,7 +178,7 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
                                                    to_string(cloud), to_string(order), to_string(q), beta, h,
                                                    2 * r.nodes.size(), u.x(), u.y(), change, rate, extrapolated, seconds);
               table += line + "\n";
-              csv += fmt::format("{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e}\n", to_string(cloud),
+              csv += fmt::format("{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e},ok\n", to_string(cloud),
                                  to_string(order), to_string(q), beta, h, r.nodes.size(), 2 * r.nodes.size(),
                                  r.quadrature.size(), u.y(), seconds, r.consistency_before, r.consistency_after);
               std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
@@ -203,10 +200,11 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
                 to_string(cloud), to_string(order), to_string(q), beta, h, 2 * r.nodes.size(),
                 e.l2_displacement, e.energy, e.l2_stress, rates, probe_uy, seconds);
             table += line + "\n";
-            csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.3e},{:.3e}\n",
+            csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{},{:.6e},{:.3e},{:.3e},ok\n",
                                to_string(cloud), to_string(order), to_string(q), beta, h, r.nodes.size(),
                                2 * r.nodes.size(), r.quadrature.size(), e.l2_displacement, e.energy,
-                               e.l2_stress, probe_uy, seconds, r.consistency_before, r.consistency_after);
+                               e.l2_stress, csv_number(probe_uy, "{:.9e}"), seconds, r.consistency_before,
+                               r.consistency_after);
             std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
           }
         }
@@ -224,10 +222,31 @@ int converge_elasticity(const std::filesystem::path& path, const std::vector<std
                              "|change|", "rate", "extrapolated u_y", "time [s]");
   std::cout << table;
   if (st.reference) std::cout << fmt::format("reference probe u_y: {:.7f}\n", *st.reference);
-  std::cout << fmt::format("wrote {}\n", csv_path.string());
+  std::cout << fmt::format("wrote {}\n", csv_path.filename().string());
   // Plots: error against spacing and against run time (errors need an exact solution).
   if (exact) plot("plot_convergence.py", csv_path, scene.output.folder);
   return 0;
+}
+
+}  // namespace
+
+int run_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  ElasticityScene scene = read_elasticity_scene(path, false, overrides);
+  return in_staged_folder(scene.output.folder, [&] {
+    if (scene.dynamics) return run_dynamics(scene);
+    if (scene.nonlinear()) return run_static(scene);
+    return run_linear_statics(scene);
+  });
+}
+
+int converge_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  ElasticityScene scene = read_elasticity_scene(path, true, overrides);
+  if (scene.nonlinear() && !scene.dynamics)
+    throw InputError(fmt::format("{}: mfree converge runs linear statics and dynamics; run a Newton scene with mfree run",
+                                 path.string()));
+  return in_staged_folder(scene.output.folder, [&] {
+    return scene.dynamics ? converge_dynamics(scene) : converge_linear_statics(scene);
+  });
 }
 
 }  // namespace mfree

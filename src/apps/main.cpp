@@ -6,17 +6,21 @@
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
 //
-// Exit codes: 0 success, 1 bad input or a numerical failure (the message says what and
-// where), 2 bad command line.
+// Exit codes (also in --help and README): 0 success, 1 bad input (a scene, a mesh, a file
+// that cannot be read or written, not enough memory), 2 bad command line, 3 a numerical
+// failure (a singular matrix, an inverted material, Newton not converging). The message on
+// standard error says what and where.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <new>
 
 #include "mfree/apps/elasticity_app.hpp"
 #include "mfree/apps/integration_study.hpp"
 #include "mfree/apps/mpm_app.hpp"
+#include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/atomic_file.hpp"
@@ -41,6 +45,9 @@ int run_integration(const std::filesystem::path& scene_path, const std::filesyst
 
 int main(int argc, char** argv) {
   CLI::App app{"mfree: meshfree Galerkin solid mechanics and the Material Point Method"};
+  app.footer(
+      "Exit codes: 0 success, 1 bad input (scene, mesh, files, memory), 2 bad command line, "
+      "3 numerical failure.");
   app.set_version_flag("--version", "mfree 0.1.0");
   app.require_subcommand(1);
 
@@ -59,18 +66,46 @@ int main(int argc, char** argv) {
   converge->add_option("scene", scene, "Scene file (TOML) with a [study] section")->required();
   converge->add_option("--set", overrides, set_help);
 
-  CLI11_PARSE(app, argc, argv);
+  // A first word that is no subcommand is named (CLI11 alone would say one is missing).
+  if (argc > 1 && argv[1][0] != '-') {
+    try {
+      (void)app.get_subcommand(argv[1]);
+    } catch (const CLI::OptionNotFound&) {
+      std::cerr << fmt::format("mfree: unknown subcommand '{}' (run, converge, integration; see mfree --help)\n",
+                               argv[1]);
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    (void)app.exit(e);
+    return 2;
+  }
   try {
     if (*integration) return run_integration(scene, out);
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
-      const mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);
-      return *run ? mfree::run_mpm(mpm) : mfree::converge_mpm(mpm);
+      mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);
+      return mfree::in_staged_folder(mpm.folder, [&] { return *run ? mfree::run_mpm(mpm) : mfree::converge_mpm(mpm); });
     }
     if (*run) return mfree::run_elasticity(scene, overrides);
     if (*converge) return mfree::converge_elasticity(scene, overrides);
+  } catch (const mfree::NumericalError& e) {
+    std::cerr << "mfree: error: " << e.what() << '\n';
+    return 3;
   } catch (const mfree::Error& e) {
     std::cerr << "mfree: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "mfree: error: out of memory: the problem does not fit this machine (fewer nodes, particles "
+                 "or cells, or a coarser spacing)\n";
     return 1;
   }
   return 0;

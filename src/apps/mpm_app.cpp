@@ -10,6 +10,7 @@
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/run_summary.hpp"
 
@@ -166,7 +167,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   if (verbose && scene.particles_csv && !run.failure) run.particle_table = particle_table(solver.particles(), scene.problem.bodies);
   run.timer = solver.timer();
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (verbose && frames) std::cout << fmt::format("  wrote {} frames, {} (open in ParaView)\n", frames->frames(), frames->series().string());
+  if (verbose && frames) std::cout << fmt::format("  wrote {} frames, {} (open in ParaView)\n", frames->frames(), frames->series().filename().string());
   return run;
 }
 
@@ -187,7 +188,7 @@ int run_mpm(const MPMScene& scene) {
     }
     std::cout << "  v_p: the particles' own (FLIP) velocities; v_grid: sum_i S_ip v_i at the particles\n";
     write_file_atomically(scene.folder / "errors.csv", csv);
-    std::cout << fmt::format("  wrote {}\n", (scene.folder / "errors.csv").string());
+    std::cout << "  wrote errors.csv\n";
   }
   if (s.method == MPMMethod::bspline_mls)
     std::cout << fmt::format("  MLS reconstruction: grid mass differs from the particles' by up to {:.3e} (relative)\n",
@@ -198,11 +199,11 @@ int run_mpm(const MPMScene& scene) {
     print_energy(scene.problem, run.energy);
     std::cout << fmt::format("  total momentum: largest |sum m_p v_p| {:.3e} kg m/s\n", largest_momentum(run.energy));
     write_file_atomically(scene.folder / "energy.csv", energy_csv(scene.problem, run.energy));
-    std::cout << fmt::format("  wrote {}\n", (scene.folder / "energy.csv").string());
+    std::cout << "  wrote energy.csv\n";
   }
   if (scene.particles_csv) {
     write_file_atomically(scene.folder / "particles.csv", run.particle_table);
-    std::cout << fmt::format("  wrote {}\n", (scene.folder / "particles.csv").string());
+    std::cout << "  wrote particles.csv\n";
   }
   const double throughput = run.particles * static_cast<double>(run.steps) / run.timer.total();
   std::cout << fmt::format("  {:.3e} particle-steps per second\n", throughput);
@@ -268,17 +269,15 @@ int converge_mpm(const MPMScene& scene) {
           const MPMRun run = simulate_mpm(scene, s, false);
           const double h = scene.problem.box.size().x() / cells;
           const std::string name = fmt::format("{},{},{}", method_name(m), to_string(u), side * side);
-          const std::string status = run.failure ? "failed: " + *run.failure : "ok";
+          const std::string status = csv_status(run.failure);
           const double drift = energy_drift(run.energy);
           for (std::size_t k = 0; k < run.errors.size(); ++k) {
             const ParticleErrors& e = run.errors[k];
-            std::string quoted = status;
-            for (char& c : quoted)
-              if (c == '"' || c == ',') c = ';';
-            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{}\n",
-                               name, cells, h, run.particles, run.steps, run.time_step, run.seconds,
-                               scene.error_times[k], e.time, e.displacement, e.velocity, e.grid_velocity, e.stress,
-                               run.max_mass_defect, drift, quoted);
+            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{},{},{},{},{},{},{}\n", name, cells, h,
+                               run.particles, run.steps, run.time_step, run.seconds, scene.error_times[k], e.time,
+                               csv_number(e.displacement, "{:.9e}"), csv_number(e.velocity, "{:.9e}"),
+                               csv_number(e.grid_velocity, "{:.9e}"), csv_number(e.stress, "{:.9e}"),
+                               csv_number(run.max_mass_defect, "{:.6e}"), csv_number(drift, "{:.6e}"), status);
           }
           energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
           if (!run.failure) series[name].emplace_back(h, run.errors);
@@ -314,10 +313,10 @@ int converge_mpm(const MPMScene& scene) {
       }
   const std::filesystem::path csv_path = scene.folder / "mpm_convergence.csv";
   write_file_atomically(csv_path, csv);
-  std::cout << fmt::format("wrote {}\n", csv_path.string());
+  std::cout << fmt::format("wrote {}\n", csv_path.filename().string());
   if (scene.energy_every > 0) {
     write_file_atomically(scene.folder / "mpm_energy.csv", energy_csv);
-    std::cout << fmt::format("wrote {}\n", (scene.folder / "mpm_energy.csv").string());
+    std::cout << "wrote mpm_energy.csv\n";
   }
   plot("plot_mpm.py", csv_path, scene.folder);
   return 0;

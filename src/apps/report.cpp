@@ -1,8 +1,13 @@
 #include "mfree/apps/report.hpp"
 
-#include <cstdlib>
 #include <fmt/format.h>
 #include <iostream>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+extern char** environ;
 
 namespace mfree {
 
@@ -15,10 +20,18 @@ void print_stages(const StageTimer& t) {
 
 void plot(const std::string& script, const std::filesystem::path& csv, const std::filesystem::path& folder) {
   std::cout.flush();
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}/verification/{}' '{}' '{}'", MFREE_SOURCE_DIR, script,
-                                      csv.string(), folder.string());
-  if (std::system(cmd.c_str()) != 0)
-    std::cerr << "mfree: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
+  // An argument vector, no shell: nothing of a scene (the folder's name) is ever parsed as
+  // a command.
+  std::vector<std::string> args{"/usr/bin/python3", std::string(MFREE_SOURCE_DIR) + "/verification/" + script,
+                                csv.string(), folder.string()};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  int status = 0;
+  const bool ran = posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0 &&
+                   waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (!ran) std::cerr << "mfree: plotting failed (needs /usr/bin/python3 with matplotlib); the CSV is complete\n";
 }
 
 }  // namespace mfree

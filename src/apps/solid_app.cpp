@@ -13,6 +13,7 @@
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_output.hpp"
@@ -97,8 +98,9 @@ int run_static(const ElasticityScene& scene) {
                              step.cutbacks ? fmt::format(" after {} cut-back(s)", step.cutbacks) : "",
                              o.probe ? fmt::format(", probe u = ({:.6g}, {:.6g})", probe.x(), probe.y()) : "",
                              exact ? fmt::format(", L2 difference from small strain {:.3e}", relative) : "");
-    csv += fmt::format("{:.9g},{},{},{:.9e},{:.9e},{:.9e},{:.6e}\n", step.factor, iterations, step.cutbacks, probe.x(),
-                       probe.y(), linear, relative);
+    // Cells without a probe or an exact solution stay empty (never "nan").
+    csv += fmt::format("{:.9g},{},{},{},{},{},{}\n", step.factor, iterations, step.cutbacks, csv_number(probe.x(), "{:.9e}"),
+                       csv_number(probe.y(), "{:.9e}"), csv_number(linear, "{:.9e}"), csv_number(relative, "{:.6e}"));
     if (frames) timer.time("output", [&] { frames->write(step.factor, d, nullptr); });
   };
   const StaticSolution sol = solve_static(model, ns, timer, on_step);
@@ -111,8 +113,8 @@ int run_static(const ElasticityScene& scene) {
                            to_string(sol.solver));
   const std::filesystem::path csv_path = o.folder / "load_steps.csv";
   write_file_atomically(csv_path, csv);
-  std::cout << fmt::format("  wrote {}\n", csv_path.string());
-  if (frames) std::cout << fmt::format("  wrote {} frames, {}\n", frames->frames(), frames->series().string());
+  std::cout << fmt::format("  wrote {}\n", csv_path.filename().string());
+  if (frames) std::cout << fmt::format("  wrote {} frames, {}\n", frames->frames(), frames->series().filename().string());
   if (o.probe) plot("plot_load_deflection.py", csv_path, o.folder);
   std::cout << "stages:\n";
   print_stages(timer);
@@ -229,16 +231,16 @@ int run_dynamics(const ElasticityScene& scene) {
                              "kinetic + strain energy\n",
                              r.energy.front().total(), r.energy.back().total(), energy_drift(r.energy));
     write_file_atomically(folder / "energy.csv", energy_csv(r.energy));
-    std::cout << fmt::format("  wrote {}\n", (folder / "energy.csv").string());
+    std::cout << "  wrote energy.csv\n";
   }
   if (!run.probe.empty()) {
     std::string csv = "time,probe_ux,probe_uy\n";
     for (const auto& [t, u] : run.probe) csv += fmt::format("{:.9e},{:.9e},{:.9e}\n", t, u.x(), u.y());
     write_file_atomically(folder / "probe.csv", csv);
-    std::cout << fmt::format("  wrote {}\n", (folder / "probe.csv").string());
+    std::cout << "  wrote probe.csv\n";
   }
   if (scene.dynamics->frames > 0 && scene.output.vtk && !scene.output.fields.empty())
-    std::cout << fmt::format("  wrote {} (open in ParaView)\n", (folder / "series.pvd").string());
+    std::cout << "  wrote series.pvd (open in ParaView)\n";
   std::cout << "stages:\n";
   print_stages(run.timer);
   RunSummary summary("dynamics", scene.file);
@@ -331,7 +333,7 @@ int converge_dynamics(const ElasticityScene& scene) {
   std::cout << fmt::format("\n{:<18} {:>8} {:>7} {:>10} {:>8} {:>10} {:>10} {:>10} {:>17} {:>8} {:>9}\n", "scheme", "h",
                            "DOFs", "dt", "t", "RMS u", "RMS v", "RMS stress", "rates (u v s)", "time [s]", "drift")
             << table << checks;
-  std::cout << fmt::format("wrote {}\n", csv_path.string());
+  std::cout << fmt::format("wrote {}\n", csv_path.filename().string());
   plot("plot_dynamics.py", csv_path, scene.output.folder);
   return 0;
 }

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <random>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 
 namespace mfree {
 
@@ -59,6 +61,12 @@ std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) {
     throw InputError(fmt::format("cloud: perturbation must lie in [0, 1] (a fraction of the "
                                  "spacing), got {}",
                                  s.perturbation));
+  // Counted in floating point before any point is made: no spacing overflows the index.
+  const double expected = domain.bounding_box().area() / (s.spacing * s.spacing);
+  if (!(expected <= std::numeric_limits<Index>::max()))
+    throw InputError(fmt::format("cloud: spacing {} gives about {:.3g} points, more than the {} a cloud may hold",
+                                 s.spacing, expected, std::numeric_limits<Index>::max()));
+  check_memory(expected * sizeof(Vec2) * 2.0, fmt::format("a cloud of spacing {} ({:.3g} points)", s.spacing, expected));
   std::mt19937_64 rng(s.seed);
   std::uniform_real_distribution<double> unit(-0.5, 0.5);
   std::vector<Vec2> points;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/step_count.hpp"
 
 namespace mfree {
 
@@ -59,9 +60,9 @@ double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& l
 
 namespace {
 
-/// dt = end / ceil(end / requested).
+/// dt = end / n, n = ceil(end / requested) (core/step_count.hpp).
 std::pair<double, int> equal_steps(double end_time, double requested) {
-  const int n = std::max(1, static_cast<int>(std::ceil(end_time / requested - 1e-9)));
+  const int n = step_count(end_time, requested, "dynamics");
   return {end_time / n, n};
 }
 

@@ -120,6 +120,14 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
       out.converged = true;
       return out;
     }
+    // Stagnation at round-off: far below the start (1e-8 |R_0|) and no longer falling (not
+    // halved by the last iteration). More iterations, or a cut-back, would not lower it.
+    const double before = out.history[out.history.size() - 2].residual;
+    if (norm <= 1e-8 * *r0 && norm > 0.5 * before) {
+      out.converged = out.stagnated = true;
+      if (s.log) *s.log << fmt::format("      newton: stagnated at |R|/|R0| = {:.3e} (round-off): accepted\n", norm / *r0);
+      return out;
+    }
   }
   out.failure = fmt::format("no convergence in {} iterations (|R|/|R0| = {:.3e})", s.max_iterations, norm / *r0);
   return out;
@@ -142,6 +150,13 @@ StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& 
 
   const Eigen::VectorXd f_unit = model.external_force({});
   Eigen::VectorXd d = Eigen::VectorXd::Zero(model.dofs());
+  // The absolute tolerance, unless given: tolerance times the residual of the whole load on
+  // the undeformed body (the external force and the prescribed displacements' terms). One
+  // scale for every step: a cut-back, which shrinks |R_0|, does not tighten it below
+  // round-off.
+  NewtonSettings ns = s;
+  if (!(ns.absolute_tolerance > 0.0))
+    ns.absolute_tolerance = s.tolerance * (model.internal_force(d) + model.boundary_force(d, {1.0, 0.0}) - f_unit).norm();
   double done = 0.0;  // last converged load factor
   for (double target : targets) {
     double factor = target;
@@ -154,7 +169,7 @@ StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& 
           },
           [&](const Eigen::VectorXd& x, SparseMatrix& t) { model.tangent(x, {factor, 0.0}, t); }};
       Eigen::VectorXd trial = d;
-      const NewtonOutcome o = newton(system, trial, k, solver, s, timer);
+      const NewtonOutcome o = newton(system, trial, k, solver, ns, timer);
       if (o.converged) {
         d = std::move(trial);
         out.steps.push_back({factor, cutbacks, o.history});

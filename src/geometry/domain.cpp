@@ -344,6 +344,10 @@ Domain Domain::from_file(const std::filesystem::path& path) {
     throw InputError(fmt::format("mesh file '{}' does not exist or is not a regular file",
                                  path.string()));
   }
+  constexpr std::uintmax_t max_bytes = std::uintmax_t{1} << 30;
+  if (const std::uintmax_t bytes = std::filesystem::file_size(path, ec); !ec && bytes > max_bytes)
+    throw InputError(fmt::format("mesh file '{}' is {} bytes, more than the {} a domain file may have", path.string(),
+                                 bytes, max_bytes));
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return std::tolower(c); });

@@ -80,7 +80,11 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
       out.domain = Domain::rectangle(b.lo, b.hi);
     } else {
-      out.domain = Domain::from_file(root.folder() / t.string("mesh"));
+      try {
+        out.domain = Domain::from_file(root.folder() / t.string("mesh"));
+      } catch (const InputError& e) {
+        t.error("mesh", e.what());
+      }
     }
     t.finish();
   }
@@ -228,6 +232,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("newton");
     NewtonSettings n;
     n.tolerance = t.number_or("tolerance", n.tolerance, 1e-16, 1.0);
+    n.absolute_tolerance = t.number_or("absolute_tolerance", 0.0, 0.0, 1e300);
     n.max_iterations = static_cast<int>(t.integer_or("max_iterations", n.max_iterations, 1, 1000));
     n.line_search = t.boolean_or("line_search", true);
     if (t.has("load_factors") && t.has("load_steps")) t.error("load_factors", "give load_steps or load_factors, not both");
@@ -269,7 +274,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("output");
-    out.output.folder = t.string("folder");
+    out.output.folder = read_output_folder(t);
     // An empty list asks for nothing: no stress recovery, no files.
     if (t.has("fields") && !(t.is_array_empty("fields")))
       for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "error", "weights"}))
@@ -287,6 +292,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       t.error("eigenvalues", "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
     t.finish();
   }
+  if (want_study && !out.dynamics && out.nonlinear())
+    root.error("study", "mfree converge runs linear statics and dynamics; this scene is solved by Newton (a "
+                        "finite-strain material or [newton]): run it with mfree run");
   if (want_study || root.has("study")) {
     const SceneTable t = root.table("study");
     StudySettings st;

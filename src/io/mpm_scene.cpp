@@ -229,7 +229,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
   }
   {
     const SceneTable t = root.table("output");
-    out.folder = t.string("folder");
+    out.folder = read_output_folder(t);
     if (t.has("fields") && !t.is_array_empty("fields"))
       for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "body", "error", "grid"})) {
         if (f == "displacement") out.fields.displacement = true;

@@ -52,6 +52,9 @@ Scene Scene::parse(std::string_view text, const std::string& name) {
 
 namespace {
 
+constexpr std::string_view bare_key_characters =
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-";
+
 /// Replaces (or adds) the key of one override "a.b.c=value" in `root`.
 void apply_override(toml::table& root, const std::string& setting) {
   const std::string origin = "--set " + setting;
@@ -70,23 +73,45 @@ void apply_override(toml::table& root, const std::string& setting) {
   std::size_t begin = 0;
   for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', begin)) {
     const std::string section = path.substr(begin, dot - begin);
-    auto [it, inserted] = at->emplace(section, toml::table{});
+    if (section.empty() || section.find_first_not_of(bare_key_characters) != std::string::npos)
+      throw InputError(fmt::format("{}: '{}' is not a section name (letters, digits, _ and -)", origin, section));
+    if (!at->contains(section)) {
+      // Parsed rather than made, so that the new section carries the override as its source.
+      toml::table made = toml::parse(section + " = {}", origin);
+      at->insert(section, std::move(*made.get(section)));
+    }
+    const auto it = at->find(section);
     if (!it->second.is_table())
       throw InputError(fmt::format("{}: '{}' is not a section of the scene", origin, path.substr(0, dot)));
     at = it->second.as_table();
     begin = dot + 1;
   }
-  at->insert_or_assign(path.substr(begin), std::move(*parsed.get("value")));
+  const std::string key = path.substr(begin);
+  if (key.empty() || key.find_first_not_of(bare_key_characters) != std::string::npos)
+    throw InputError(fmt::format("{}: '{}' is not a key name (letters, digits, _ and -)", origin, key));
+  at->insert_or_assign(key, std::move(*parsed.get("value")));
 }
 
 }  // namespace
 
 Scene Scene::load(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(fmt::format("{}: cannot open the scene file (no such file)", path.string()));
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(fmt::format("{}: cannot open the scene file: not a regular file (a scene is a TOML file)",
+                                 path.string()));
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open the scene file", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  Scene scene = parse(text.str(), path.string());
+  std::string text(max_scene_bytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > max_scene_bytes)
+    throw InputError(fmt::format("{}: the scene file is larger than {} bytes; a scene describes a problem, "
+                                 "its data (meshes, WKT) lives in files it names",
+                                 path.string(), max_scene_bytes));
+  Scene scene = parse(text, path.string());
   for (const std::string& o : overrides) apply_override(scene.impl_->table, o);
   return scene;
 }
@@ -101,11 +126,14 @@ SceneTable::SceneTable(const toml::table* t, std::string prefix,
     : table_(t), prefix_(std::move(prefix)), file_(std::move(file)), folder_(std::move(folder)),
       used_(std::make_shared<std::set<std::string>>()) {}
 
+const std::string& SceneTable::origin_of(const toml::source_region& region) const {
+  return region.path && region.path->starts_with("--set ") ? *region.path : *file_;
+}
+
 void SceneTable::fail(const toml::node* at, std::string_view key, const std::string& what) const {
   const toml::source_region& region = at ? at->source() : table_->source();
   // A value from a command-line override carries the override as its path.
-  const std::string& where = region.path && region.path->starts_with("--set ") ? *region.path : *file_;
-  throw InputError(fmt::format("{}:{}:{}: key '{}{}': {}", where, region.begin.line, region.begin.column,
+  throw InputError(fmt::format("{}:{}:{}: key '{}{}': {}", origin_of(region), region.begin.line, region.begin.column,
                                prefix_, key, what));
 }
 
@@ -217,10 +245,12 @@ SceneTable SceneTable::table(std::string_view key) const {
 void SceneTable::finish() const {
   for (const auto& [k, v] : *table_)
     if (!used_->count(std::string(k.str()))) {
-      const auto& at = k.source().begin;  // point at the key itself, not its value
+      // Point at the key itself, not its value; a key an override added has no place of its
+      // own, but its value names the override.
+      const toml::source_region& region = k.source().begin.line > 0 ? k.source() : v.source();
       throw InputError(fmt::format("{}:{}:{}: key '{}{}': unknown key (misspelt, or not used by "
                                    "this kind of run)",
-                                   *file_, at.line, at.column, prefix_, k.str()));
+                                   origin_of(region), region.begin.line, region.begin.column, prefix_, k.str()));
     }
 }
 
@@ -318,8 +348,7 @@ std::string SceneTable::where(std::string_view key, int index) const {
   if (index >= 0 && n && n->is_array() && static_cast<std::size_t>(index) < n->as_array()->size())
     n = n->as_array()->get(static_cast<std::size_t>(index));
   const toml::source_region& region = n ? n->source() : table_->source();
-  const std::string& file = region.path && region.path->starts_with("--set ") ? *region.path : *file_;
-  return fmt::format("{}:{}:{}: key '{}{}{}'", file, region.begin.line, region.begin.column, prefix_, key,
+  return fmt::format("{}:{}:{}: key '{}{}{}'", origin_of(region), region.begin.line, region.begin.column, prefix_, key,
                      index >= 0 ? fmt::format("[{}]", index) : "");
 }
 

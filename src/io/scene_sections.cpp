@@ -87,6 +87,18 @@ VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, c
   return {Formula(e[0], constants, t.where(key, 0)), Formula(e[1], constants, t.where(key, 1))};
 }
 
+std::filesystem::path read_output_folder(const SceneTable& t) {
+  const std::filesystem::path folder = t.string("folder");
+  std::filesystem::path normal = folder.lexically_normal();
+  if (!normal.has_filename()) normal = normal.parent_path();  // "results/run/"
+  const std::filesystem::path name = normal.filename();
+  if (folder.empty() || name.empty() || name == "." || name == "..")
+    t.error("folder", fmt::format("'{}' is not a folder of its own: give one the run may create and replace "
+                                  "(e.g. \"results/NAME\")",
+                                  folder.string()));
+  return folder;
+}
+
 BuiltinChoice read_builtin_solution(const SceneTable& t, const SolutionSetting& setting, bool motion) {
   BuiltinChoice c;
   c.name = t.choice("solution", builtin_solutions().names());

@@ -182,7 +182,7 @@ void set_cells(vtkUnstructuredGrid& grid, std::size_t count, int size, unsigned 
 }
 
 /// Writes the data set with the given XML writer (.vtu or .vti) to a temporary file beside
-/// `path` and renames it into place.
+/// `path` (io/atomic_file.hpp), flushes it to the disk and renames it into place.
 void write_dataset(const std::filesystem::path& path, vtkXMLWriter& writer, vtkDataObject& data) {
   std::error_code ec;
   if (path.has_parent_path()) {
@@ -192,8 +192,7 @@ void write_dataset(const std::filesystem::path& path, vtkXMLWriter& writer, vtkD
                               path.string(), ec.message()));
     }
   }
-  const std::filesystem::path tmp =
-      path.string() + fmt::format(".tmp{}{}", ::getpid(), path.extension().string());
+  const std::filesystem::path tmp = temporary_beside(path);  // hidden, and not *.vtu
 
   vtkNew<ErrorCollector> errors;
   writer.AddObserver(vtkCommand::ErrorEvent, errors);
@@ -214,6 +213,7 @@ void write_dataset(const std::filesystem::path& path, vtkXMLWriter& writer, vtkD
                             errors->message.empty() ? std::string("VTK's writer failed")
                                                     : tidy(errors->message)));
   }
+  sync_file(tmp);
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     const std::string why = ec.message();

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 
 namespace mfree {
 
@@ -33,6 +35,10 @@ std::pair<int, int> cell_range(double lo, double h, int cells, double a, double 
   return {first, last};
 }
 
+/// A lower bound of what a particle holds: its own arrays (positions, velocity, F, stress,
+/// mass, volume, domain) and the grid functions at it (9 to 16 nodes, value and gradient).
+constexpr double bytes_per_particle = 512.0;
+
 }  // namespace
 
 Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMMaterial>& materials, const Box& box,
@@ -57,6 +63,13 @@ Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMM
     const double density = materials.at(static_cast<std::size_t>(body.material)).density;
     const auto [i0, i1] = cell_range(box.lo.x(), h, cells_x, bb.lo.x(), bb.hi.x());
     const auto [j0, j1] = cell_range(box.lo.y(), h, cells_y, bb.lo.y(), bb.hi.y());
+    const double seeded = static_cast<double>(i1 - i0 + 1) * (j1 - j0 + 1) * n * n;  // at most
+    if (static_cast<double>(P.size()) + seeded > std::numeric_limits<Index>::max())
+      throw InputError(fmt::format("{}: body '{}' would take up to {:.3g} particles, more than the {} a problem may "
+                                   "have; use fewer cells or particles per cell",
+                                   body.where, body.name, seeded, std::numeric_limits<Index>::max()));
+    check_memory((static_cast<double>(P.size()) + seeded) * bytes_per_particle,
+                 fmt::format("{}: the particles of body '{}' (up to {:.3g})", body.where, body.name, seeded));
     const Index before = P.size();
     // Row by row of sub-cells (y outer, x inner), as fill_box() orders a full box.
     for (int j = j0 * n; j < (j1 + 1) * n; ++j)

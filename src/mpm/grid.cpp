@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 
 namespace mfree {
 
@@ -16,6 +17,9 @@ int rows_for(const Box& d, int cells_x) {
   if (!(h > 0.0) || std::abs(rows - std::round(rows)) > 1e-9 * rows || std::round(rows) < 1)
     throw InputError(fmt::format("MPM grid: the box {} x {} is not a whole number of square cells of size {}",
                                  d.size().x(), d.size().y(), h));
+  // Node arrays (mass, momentum, velocity, force, wall mask): about 96 bytes a node.
+  check_memory((cells_x + 5.0) * (std::round(rows) + 5.0) * 96.0,
+               fmt::format("the MPM grid of {} x {} cells", cells_x, std::round(rows)));
   return static_cast<int>(std::round(rows));
 }
 

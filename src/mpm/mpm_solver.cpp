@@ -5,6 +5,7 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/core/step_count.hpp"
 
 namespace mfree {
 
@@ -121,7 +122,7 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
         *settings_.time_step, h_over_c_, grid_.spacing(), grid_.spacing() / h_over_c_, *settings_.time_step / h_over_c_));
   double dt = settings_.courant * h_over_c_;
   if (settings_.time_step) dt = std::min(dt, *settings_.time_step);
-  steps_ = static_cast<int>(std::ceil(settings_.end_time / dt * (1.0 - 1e-12)));
+  steps_ = step_count(settings_.end_time, dt, "MPM");
   dt_ = settings_.end_time / steps_;
 }
 

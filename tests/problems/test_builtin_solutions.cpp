@@ -7,7 +7,8 @@
 
 using namespace mfree;
 
-TEST_CASE("built-in solutions: each entry is static or a motion, and builds what its file defines", "[problems]") {
+TEST_CASE("built-in solutions: each entry is static or a motion, and builds what its file defines",
+          "[problems]") {
   for (const std::string& name : builtin_solutions().names()) {
     INFO(name);
     const BuiltinSolution& s = builtin_solutions().value(name);
@@ -31,7 +32,8 @@ TEST_CASE("built-in solutions: each entry is static or a motion, and builds what
 
   SolutionValues amplitude;
   amplitude.numbers["amplitude"] = 0.05;
-  const SolutionSetting square{{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}, {1e7, 0.3, PlaneModel::strain}, true, 1000.0};
+  const SolutionSetting square{
+      {Vec2(0.0, 0.0), Vec2(1.0, 1.0)}, {1e7, 0.3, PlaneModel::strain}, true, 1000.0};
   const ExactMotion m = builtin_solutions().value("vibration").motion(amplitude, square);
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
   const Vec2 x(0.3, 0.8);
@@ -41,5 +43,6 @@ TEST_CASE("built-in solutions: each entry is static or a motion, and builds what
   CHECK((m.body_force(x, 0.004) - v.body_force(x, 0.004)).norm() == 0.0);
   SolutionSetting linear_law = square;
   linear_law.neo_hookean = false;
-  CHECK_THROWS_WITH(builtin_solutions().value("vibration").motion(amplitude, linear_law), Catch::Contains("neo_hookean"));
+  CHECK_THROWS_WITH(builtin_solutions().value("vibration").motion(amplitude, linear_law),
+                    Catch::Contains("neo_hookean"));
 }

@@ -5,12 +5,15 @@
 //   newton()        R(d) = 0 from a start d: K(d) delta = -R(d), d += alpha delta, with a
 //                   line search on the energy slope delta . R(d + alpha delta) (secant steps
 //                   until it is below 0.8 of its value at alpha = 0; a trial state with J <= 0
-//                   halves alpha). Converged when |R| <= tolerance |R_0| (R_0: the
-//                   residual at the start) or |R| <= absolute_tolerance. The tangent's
+//                   halves alpha). Converged when |R| <= max(tolerance |R_0|,
+//                   absolute_tolerance) (R_0: the residual at the start), or when |R| has
+//                   stagnated at round-off (below 1e-8 |R_0| and not halved by the last
+//                   iteration; NewtonOutcome::stagnated). The tangent's
 //                   pattern is analysed once (the first tangent); each iteration factorises
 //                   numerically.
 //   solve_static()  load factors 0 < lambda_1 < ... < 1 scale every load and prescribed
-//                   displacement (LoadState::factor). A step whose Newton fails (no
+//                   displacement (LoadState::factor). Without an absolute_tolerance it
+//                   takes tolerance |R(0)| at the full load, one scale for every step. A step whose Newton fails (no
 //                   convergence, no decrease, J <= 0) is cut back: the increment is halved
 //                   from the last converged state, up to max_cutbacks times in a row, then
 //                   the solve gives up with a NumericalError saying where and why.
@@ -31,7 +34,7 @@ namespace mfree {
 
 struct NewtonSettings {
   double tolerance = 1e-10;            ///< on |R| / |R_0|
-  double absolute_tolerance = 0.0;     ///< on |R|, for steps that start at equilibrium
+  double absolute_tolerance = 0.0;     ///< on |R| (force units); 0: solve_static chooses (above)
   int max_iterations = 25;
   bool line_search = true;
   int max_line_search_steps = 8;       ///< line search: trials after the full step
@@ -54,6 +57,7 @@ struct NewtonIterate {
 
 struct NewtonOutcome {
   bool converged = false;
+  bool stagnated = false;  ///< converged by stagnation at round-off
   std::string failure;  ///< why not, when not
   int factorisations = 0;
   std::vector<NewtonIterate> history;

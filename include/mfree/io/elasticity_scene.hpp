@@ -28,8 +28,10 @@
 //                 nothing, and two conditions on one part of the boundary, are errors.
 //   [nitsche]     beta (default 100: penalty beta E / h)
 //   [solver]      kind (auto | cholmod | umfpack)
-//   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance,
-//                 max_iterations, line_search, load_steps or load_factors, max_cutbacks
+//   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance
+//                 (on |R| / |R_0|), absolute_tolerance (on |R|; default tolerance times the
+//                 residual of the full load on the undeformed body), max_iterations,
+//                 line_search, load_steps or load_factors, max_cutbacks
 //   [dynamics]    scheme (central_difference | newmark), end_time, time_step,
 //                 stability_factor, energy_every (steps between energy records; 0: no
 //                 energy balance computed), frames (VTK frames over the run),

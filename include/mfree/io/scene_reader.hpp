@@ -19,10 +19,14 @@ namespace toml {
 inline namespace v3 {
 class table;
 class node;
+struct source_region;
 }  // namespace v3
 }  // namespace toml
 
 namespace mfree {
+
+/// The largest scene file read [bytes].
+inline constexpr std::size_t max_scene_bytes = 1 << 20;
 
 class SceneTable {
  public:
@@ -78,6 +82,8 @@ class SceneTable {
              std::shared_ptr<const std::filesystem::path> folder);
   const toml::node* get(std::string_view key, bool required) const;
   [[noreturn]] void fail(const toml::node* at, std::string_view key, const std::string& what) const;
+  /// The scene file, or the --set override a value came from.
+  [[nodiscard]] const std::string& origin_of(const toml::source_region& region) const;
 
   const toml::table* table_;
   std::string prefix_;

@@ -9,6 +9,7 @@
 //   a value     a number or a formula string in x, y, X, Y, t (problems/formula.hpp); a
 //               vector value is an array of two of them, e.g. ["0", "-rho * g * (H - y)"]
 
+#include <filesystem>
 #include <string>
 
 #include "mfree/core/types.hpp"
@@ -43,6 +44,10 @@ Formula read_formula(const SceneTable& t, const std::string& key, const Constant
 
 /// The two numbers or formulas under `key`.
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants);
+
+/// [output] folder: a folder of its own (not "", ".", ".." or a root), relative to the
+/// working directory; the run creates it and replaces what it held.
+std::filesystem::path read_output_folder(const SceneTable& t);
 
 /// A built-in solution as a scene names it, with its parameters' values.
 struct BuiltinChoice {
