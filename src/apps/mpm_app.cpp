@@ -295,7 +295,9 @@ int converge_mpm(const MPMScene& scene) {
   // Observed rates log2(e(h) / e(h/2)) between successive grids, at every error time.
   std::cout << fmt::format("\n{:<28} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
                            "method,update,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
-  for (const auto& [name, levels] : series)
+  for (const auto& entry : series) {
+    const std::string& name = entry.first;
+    const auto& levels = entry.second;  // a plain reference: lambdas below capture it
     for (std::size_t k = 0; k < scene.error_times.size(); ++k)
       for (std::size_t l = 0; l < levels.size(); ++l) {
         if (levels[l].second.size() <= k) continue;
@@ -311,6 +313,7 @@ int converge_mpm(const MPMScene& scene) {
                                  e.grid_velocity, rate(&ParticleErrors::grid_velocity), e.stress,
                                  rate(&ParticleErrors::stress));
       }
+  }
   const std::filesystem::path csv_path = scene.folder / "mpm_convergence.csv";
   write_file_atomically(csv_path, csv);
   std::cout << fmt::format("wrote {}\n", csv_path.filename().string());

@@ -12,8 +12,15 @@ namespace mfree {
 namespace {
 
 const NameTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
-const NameTable<std::optional<SolverKind>> solver_table{
-    {"auto", std::nullopt}, {"cholmod", SolverKind::cholmod}, {"umfpack", SolverKind::umfpack}};
+/// auto (the solver the system's symmetry picks), then every solver by name.
+const NameTable<std::optional<SolverKind>>& solver_choices() {
+  static const NameTable<std::optional<SolverKind>> table = [] {
+    std::vector<std::pair<std::string, std::optional<SolverKind>>> e{{"auto", std::nullopt}};
+    for (const auto& [name, kind] : solver_kind_names().entries()) e.emplace_back(name, kind);
+    return NameTable<std::optional<SolverKind>>(std::move(e));
+  }();
+  return table;
+}
 using ConditionType = BoundaryCondition::Type;
 const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
                                                  {"slip", ConditionType::slip},
@@ -225,7 +232,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   if (root.has("solver")) {
     const SceneTable t = root.table("solver");
-    s.solver = read_choice_or(t, "kind", solver_table, std::optional<SolverKind>{});
+    s.solver = read_choice_or(t, "kind", solver_choices(), std::optional<SolverKind>{});
     t.finish();
   }
   if (root.has("newton")) {

@@ -14,14 +14,6 @@ namespace mfree {
 
 namespace {
 
-const NameTable<MPMMethodChoice>& method_names() {
-  static const NameTable<MPMMethodChoice> table{
-      {"classic", {MPMMethod::classic, 1}},  {"ugimp", {MPMMethod::ugimp, 1}},
-      {"cpdi", {MPMMethod::cpdi, 1}},        {"bspline", {MPMMethod::bspline, 2}},
-      {"bspline_cubic", {MPMMethod::bspline, 3}}, {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
-  return table;
-}
-
 /// Particles per cell (a square number) -> per side.
 int per_side(const SceneTable& t, const std::string& key, long long n) {
   const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
@@ -132,7 +124,7 @@ MPMBody read_body(const SceneTable& t, const std::vector<MPMMaterial>& materials
 
 }  // namespace
 
-std::string method_name(const MPMMethodChoice& m) { return method_names().name(m); }
+std::string method_name(const MPMMethodChoice& m) { return mpm_method_names().name(m); }
 
 MPMMethodChoice method_of(const MPMSettings& s) {
   return {s.method, s.method == MPMMethod::bspline ? s.degree : is_bspline(s.method) ? 2 : 1};
@@ -190,7 +182,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
   }
   {
     const SceneTable& t = mpm;
-    const MPMMethodChoice m = read_choice(t, "method", method_names());
+    const MPMMethodChoice m = read_choice(t, "method", mpm_method_names());
     s.method = m.method;
     s.degree = m.degree == 1 ? 2 : m.degree;
     s.update = read_choice_or(t, "update", update_names(), UpdateScheme::usf);
@@ -253,7 +245,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       st.cells.push_back(static_cast<int>(c));
     }
     st.methods = {method_of(s)};
-    if (t.has("methods")) st.methods = read_choices(t, "methods", method_names());
+    if (t.has("methods")) st.methods = read_choices(t, "methods", mpm_method_names());
     st.updates = {s.update};
     if (t.has("updates")) st.updates = read_choices(t, "updates", update_names());
     st.particles_per_side = {s.particles_per_side};

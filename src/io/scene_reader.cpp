@@ -65,9 +65,15 @@ void apply_override(toml::table& root, const std::string& setting) {
   toml::table parsed;
   try {
     parsed = toml::parse("value = " + value, origin);
-  } catch (const toml::parse_error&) {
-    // A bare word (--set mpm.method=cpdi) is the string it spells.
-    parsed = toml::parse(fmt::format("value = \"{}\"", value), origin);
+  } catch (const toml::parse_error& as_value) {
+    // A bare word (--set mpm.method=cpdi) is the string it spells; anything else (a quote, a
+    // byte that is not UTF-8) is neither.
+    try {
+      parsed = toml::parse(fmt::format("value = \"{}\"", value), origin);
+    } catch (const toml::parse_error&) {
+      throw InputError(fmt::format("{}: '{}' is not a TOML value ({}) nor a bare word", origin, value,
+                                   as_value.description()));
+    }
   }
   toml::table* at = &root;
   std::size_t begin = 0;

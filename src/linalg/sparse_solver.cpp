@@ -8,7 +8,12 @@
 
 namespace mfree {
 
-std::string_view to_string(SolverKind kind) { return kind == SolverKind::cholmod ? "cholmod" : "umfpack"; }
+const NameTable<SolverKind>& solver_kind_names() {
+  static const NameTable<SolverKind> table{{"cholmod", SolverKind::cholmod}, {"umfpack", SolverKind::umfpack}};
+  return table;
+}
+
+std::string_view to_string(SolverKind kind) { return solver_kind_names().name(kind); }
 
 struct SparseSolver::Impl {
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholmod;

@@ -3,21 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
 
 #include "mfree/core/error.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
 
 namespace mfree {
 
+const NameTable<MPMMethodChoice>& mpm_method_names() {
+  static const NameTable<MPMMethodChoice> table{
+      {"classic", {MPMMethod::classic, 1}},  {"ugimp", {MPMMethod::ugimp, 1}},
+      {"cpdi", {MPMMethod::cpdi, 1}},        {"bspline", {MPMMethod::bspline, 2}},
+      {"bspline_cubic", {MPMMethod::bspline, 3}}, {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
+  return table;
+}
+
 std::string_view to_string(MPMMethod m) {
-  switch (m) {
-    case MPMMethod::classic: return "classic";
-    case MPMMethod::ugimp: return "ugimp";
-    case MPMMethod::cpdi: return "cpdi";
-    case MPMMethod::bspline: return "bspline";
-    case MPMMethod::bspline_mls: return "bspline_mls";
-  }
-  return "?";
+  for (const auto& [name, choice] : mpm_method_names().entries())
+    if (choice.method == m) return name;
+  throw std::logic_error("MPM: a method without a name");
 }
 
 int grid_padding(MPMMethod m) { return m == MPMMethod::ugimp || m == MPMMethod::cpdi ? 1 : 0; }

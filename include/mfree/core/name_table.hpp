@@ -16,6 +16,10 @@ template <class T>
 class NameTable {
  public:
   NameTable(std::initializer_list<std::pair<std::string, T>> entries) : entries_(entries) {}
+  explicit NameTable(std::vector<std::pair<std::string, T>> entries) : entries_(std::move(entries)) {}
+
+  /// Every name with its value, in the table's order.
+  [[nodiscard]] const std::vector<std::pair<std::string, T>>& entries() const { return entries_; }
 
   /// Every name, in the table's order (the list a scene reader offers).
   [[nodiscard]] std::vector<std::string> names() const {

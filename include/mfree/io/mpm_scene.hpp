@@ -47,13 +47,7 @@
 
 namespace mfree {
 
-/// One method as a scene names it: the weights and, for B-splines, the degree.
-struct MPMMethodChoice {
-  MPMMethod method = MPMMethod::bspline;
-  int degree = 2;  ///< 1 for the hat-function methods
-  bool operator==(const MPMMethodChoice&) const = default;
-};
-/// classic, ugimp, cpdi, bspline (quadratic), bspline_cubic, bspline_mls.
+/// The scene's name of a method (mpm/particle_basis.hpp: mpm_method_names()).
 std::string method_name(const MPMMethodChoice& m);
 /// The method of a run's settings, as a scene names it.
 MPMMethodChoice method_of(const MPMSettings& s);

@@ -11,6 +11,8 @@
 #include <memory>
 #include <string_view>
 
+#include "mfree/core/name_table.hpp"
+
 namespace mfree {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;  ///< compressed columns, int indices
@@ -20,6 +22,8 @@ enum class SolverKind {
   umfpack,  ///< general square
 };
 
+/// cholmod, umfpack: the names scenes use.
+const NameTable<SolverKind>& solver_kind_names();
 std::string_view to_string(SolverKind kind);
 
 class SparseSolver {

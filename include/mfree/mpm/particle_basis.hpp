@@ -24,6 +24,7 @@
 
 #include <string_view>
 
+#include "mfree/core/name_table.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/mpm/grid.hpp"
 
@@ -31,6 +32,15 @@ namespace mfree {
 
 enum class MPMMethod { classic, ugimp, cpdi, bspline, bspline_mls };
 
+/// One method as a scene names it: the weights and, for B-splines, the degree.
+struct MPMMethodChoice {
+  MPMMethod method = MPMMethod::bspline;
+  int degree = 2;  ///< 1 for the hat-function methods
+  bool operator==(const MPMMethodChoice&) const = default;
+};
+/// classic, ugimp, cpdi, bspline (quadratic), bspline_cubic, bspline_mls.
+const NameTable<MPMMethodChoice>& mpm_method_names();
+/// The name of the method's first entry in mpm_method_names() (bspline for every degree).
 std::string_view to_string(MPMMethod m);
 /// Grid padding (cells on every side) and B-spline degree a method needs.
 int grid_padding(MPMMethod m);
