@@ -26,7 +26,7 @@ SolidProblem solid_problem(const ElasticityProblem& problem) {
   if (problem.body_force) solid.body_force = [b = problem.body_force](const Vec2& x, double) { return b(x); };
   solid.conditions = problem.conditions;
   solid.nitsche_beta = problem.nitsche_beta;
-  solid.penalty_modulus = problem.material.youngs_modulus;
+  solid.penalty_modulus = p_wave_modulus(solid.material);
   solid.spacing = problem.spacing;
   return solid;
 }

@@ -57,11 +57,11 @@ Material make_material(std::string_view model, double youngs_modulus, double poi
   return material_models().value(model)(youngs_modulus, poisson_ratio);
 }
 
+double p_wave_modulus(const Material& m) { return tangent(m, Mat2::Identity())(0, 0); }
+
 double wave_speed(const Material& m, double density) {
   if (!(density > 0.0)) throw InputError(fmt::format("density must be positive, got {}", density));
-  // The reference tangent's normal component A_xxxx = lambda + 2 mu (plane strain), or
-  // E / (1 - nu^2) in plane stress.
-  return std::sqrt(tangent(m, Mat2::Identity())(0, 0) / density);
+  return std::sqrt(p_wave_modulus(m) / density);
 }
 
 }  // namespace mfree

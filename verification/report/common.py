@@ -36,6 +36,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 CANTILEVER = Path("verification/cantilever/cantilever.toml")
 NITSCHE = Path("verification/cantilever/nitsche_sweep.toml")
 LARGE_DEFORMATION = Path("verification/cantilever/large_deformation.toml")
+LAME = Path("verification/lame/lame.toml")
 VIBRATION = Path("verification/vibration/vibration.toml")
 MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
 MPM_LONG = Path("verification/mpm-vibration/long_run.toml")

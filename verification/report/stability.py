@@ -10,6 +10,7 @@ from the run's summary.json, its failure from the run's error message.
     quadrature ratio          1 to 6 quadrature points per node, free-stiffness eigenvalues
     negative weights          quadratic RK quadrature weights on irregular clouds
     Nitsche penalty           beta from 1 to 1e4
+    near incompressibility    nu from 0.3 to 0.4999 (volumetric locking), and past the limit
     MPM Courant number        per method and update scheme, to the empirical stability limit
     vibration amplitude       up to where det F of the exact motion approaches 0
     long runs                 ten periods, energy drift per method
@@ -21,7 +22,7 @@ import math
 import tomllib
 from pathlib import Path
 
-from common import (CANTILEVER, LARGE_DEFORMATION, MPM_LONG, MPM_METHODS, MPM_VIBRATION, NITSCHE, QUIET, VIBRATION,
+from common import (CANTILEVER, LAME, LARGE_DEFORMATION, MPM_LONG, MPM_METHODS, MPM_VIBRATION, NITSCHE, QUIET, VIBRATION,
                     Context, RunResult, Section, log_axes, new_figure, num, number, read_csv, save_figure, table)
 
 
@@ -35,6 +36,7 @@ def sections(ctx: Context) -> list[Section]:
                          ("Quadrature-to-node ratio and zero-energy modes", quadrature_ratio),
                          ("Quadratic RK: negative quadrature weights", negative_weights),
                          ("Nitsche penalty", nitsche_penalty),
+                         ("Near incompressibility", incompressibility),
                          ("MPM Courant number", mpm_courant),
                          ("Vibration amplitude up to det F -> 0", amplitude),
                          ("Long runs: energy over ten periods", long_runs),
@@ -306,7 +308,7 @@ def nitsche_penalty(ctx: Context, title: str) -> Section:
     for h in spacings:
         ax.plot(betas, [number(by[b, h]["l2_displacement"]) for b in betas], "o-", label=f"L2 u, h = {h:g}")
         ax.plot(betas, [number(by[b, h]["energy"]) for b in betas], "s--", label=f"energy, h = {h:g}")
-    log_axes(ax, "Nitsche penalty beta (penalty = beta E / h)", "relative error")
+    log_axes(ax, "Nitsche penalty beta (penalty = beta M / h, M = lambda + 2 mu)", "relative error")
     ax.legend(fontsize=8)
     figure = save_figure(fig, ctx.figure("stability_nitsche"))
     table_rows = [[b] + [number(by[b, h][k]) for h in spacings for k in ("l2_displacement", "energy")] for b in betas]
@@ -314,7 +316,7 @@ def nitsche_penalty(ctx: Context, title: str) -> Section:
     solved = [b for b in betas if not math.isnan(number(by[b, fine]["l2_displacement"]))]
     best = min(solved, key=lambda b: number(by[b, fine]["l2_displacement"]))
     refused = [f"beta = {b:g}, h = {h:g}" for b in betas for h in spacings if math.isnan(number(by[b, h]["l2_displacement"]))]
-    body = ("The cantilever's clamped end imposed by Nitsche's method with penalty beta E / h, beta swept over "
+    body = ("The cantilever's clamped end imposed by Nitsche's method with penalty beta M / h (M = lambda + 2 mu, the P-wave modulus), beta swept over "
             "four decades (linear RK, lattice, projected quadrature). Nitsche's method is consistent, so the "
             "error should be insensitive to beta once beta exceeds the stability threshold (a multiple of the "
             "trace-inverse constant); a too small beta loses coercivity, a huge one makes it a plain penalty "
@@ -327,6 +329,60 @@ def nitsche_penalty(ctx: Context, title: str) -> Section:
             + f"\nReproduce: `{ctx.command('converge', NITSCHE)}`\n")
     return Section(title, body, [("Nitsche penalty", "plateau above the stability threshold",
                                   f"best beta = {best:g}", "—")])
+
+
+# The largest Poisson's ratio a Galerkin scene accepts (galerkin/total_lagrangian.hpp,
+# max_poisson_ratio): the sweep shows what happens up to it; one point past it must be refused.
+NU_LIMIT = 0.49
+
+
+def incompressibility(ctx: Context, title: str) -> Section:
+    spacing = 0.2 if ctx.quick else 0.1
+    ratios = [0.3, 0.49, 0.4999] if ctx.quick else [0.3, 0.4, 0.45, 0.49, 0.495, 0.499, 0.4999]
+    orders = ["linear", "quadratic"]
+    errors, rows = {}, []
+    for order in orders:
+        for nu in ratios:
+            r = point(ctx, title, "run", LAME, f"stability/incompressible/{order}_{nu:g}",
+                      QUIET + [f"nodes.spacing={spacing}", f"kernel.order={order}", f"constants.nu={nu}",
+                               f"material.poisson_ratio={nu}", "material.allow_locking=true"]
+                      + (["kernel.factor=3", "quadrature.consistency=vci"] if order == "quadratic" else []))
+            errors[order, nu] = (value(r, "l2_displacement"), value(r, "energy"), value(r, "l2_stress"))
+            rows.append([order, f"{nu:g}", f"{2 * nu / (1 - 2 * nu):.4g}"] + [e if r.ok else None for e in errors[order, nu]]
+                        + ["ok" if r.ok else short(message(r), 150)])
+    past = 0.495
+    refused = point(ctx, title, "run", LAME, "stability/incompressible/past_limit",
+                    QUIET + [f"nodes.spacing={spacing}", f"constants.nu={past}", f"material.poisson_ratio={past}"])
+    clear = not refused.ok and refused.returncode == 1 and "incompressib" in message(refused)
+    fig, (ax,) = new_figure()
+    for order in orders:
+        xs = [1 / (1 - 2 * nu) for nu in ratios]
+        ax.plot(xs, [errors[order, nu][0] for nu in ratios], "o-", label=f"L2 u, {order} RK")
+        ax.plot(xs, [errors[order, nu][1] for nu in ratios], "s--", label=f"energy, {order} RK")
+        ax.plot(xs, [errors[order, nu][2] for nu in ratios], "^:", label=f"L2 stress, {order} RK")
+    log_axes(ax, "1 / (1 - 2 nu)  (lambda / mu = 2 nu / (1 - 2 nu))", "relative error")
+    ax.legend(fontsize=8)
+    figure = save_figure(fig, ctx.figure("stability_incompressible"))
+    base = errors["linear", ratios[0]][2]
+    worst = errors["linear", ratios[-1]][2]
+    body = ("The Lamé thick cylinder of section 'Lamé' (plane strain, internal pressure, exact solution as formulas) "
+            f"at node spacing {spacing} with Poisson's ratio nu driven towards 1/2: lambda / mu = 2 nu / (1 - 2 nu) "
+            "grows without bound, and a pure displacement formulation must represent a nearly divergence-free "
+            "field with its trial functions: it locks (the error grows with lambda / mu) unless the functions "
+            "can. Linear RK with the projected quadrature, quadratic RK (support 3h) with quadratic VCI; the "
+            "Nitsche penalty scales with the P-wave modulus lambda + 2 mu, so the walls stay imposed as nu -> 1/2. "
+            f"Points above nu = {NU_LIMIT:g} run with `material.allow_locking=true`.\n\n"
+            + table(["RK order", "nu", "lambda / mu", "L2 u", "energy", "L2 stress", "outcome"],
+                    rows)
+            + f"\nObserved: linear RK's L2 stress error goes from {base:.3g} at nu = {ratios[0]:g} to {worst:.3g} at "
+            f"nu = {ratios[-1]:g} ({worst / base:.3g} x). A Galerkin scene with nu above {NU_LIMIT:g} "
+            f"(lambda / mu = {2 * NU_LIMIT / (1 - 2 * NU_LIMIT):.0f}) is refused unless it allows locking: nu = {past:g} gave "
+            f"\"{short(message(refused), 200) if not refused.ok else 'no error (unexpected)'}\".\n\n"
+            + ctx.image(figure, "Lamé errors against 1 / (1 - 2 nu)")
+            + f"\nReproduce: `{ctx.command('run', LAME, ['constants.nu=0.499', 'material.poisson_ratio=0.499', 'material.allow_locking=true'])}`\n")
+    return Section(title, body, [("Near incompressibility", f"locking shown; nu > {NU_LIMIT:g} refused clearly",
+                                  f"linear L2 stress x{worst / base:.3g} from nu = {ratios[0]:g} to {ratios[-1]:g}",
+                                  "yes" if clear else "no")])
 
 
 # ---------------------------------------------------------------------------------------------

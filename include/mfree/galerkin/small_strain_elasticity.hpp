@@ -3,9 +3,14 @@
 // boundary conditions (SPEC section 4):
 //
 //   a(u, v) = sum_K w_K eps(v)_K . D eps(u)_K
-//             - int_Gu [ v . (sigma(u) n) + (sigma(v) n) . u ] + (beta E / h) int_Gu v . u
+//             - int_Gu [ v . (sigma(u) n) + (sigma(v) n) . u ] + (beta M / h) int_Gu v . u
 //   l(v)    = sum_K w_K v_K . b_K + int_Gt v . tbar
-//             - int_Gu (sigma(v) n) . ubar + (beta E / h) int_Gu v . ubar
+//             - int_Gu (sigma(v) n) . ubar + (beta M / h) int_Gu v . ubar
+//
+// M the P-wave modulus of the law (lambda + 2 mu in plane strain, E / (1 - nu^2) in plane
+// stress): the largest stiffness of the tractions sigma(u) n that the penalty must dominate.
+// Scaled by E instead, the penalty falls below the consistency terms as nu -> 1/2 (lambda / E
+// grows without bound) and the form loses coercivity.
 //
 // Domain terms at the quadrature points with the gradients of the GalerkinQuadrature (test
 // gradients may differ: VCI); boundary terms at the boundary Gauss points with the true
@@ -31,11 +36,11 @@ struct ElasticityProblem {
   LinearElastic material;
   VectorField body_force;  ///< b(x), force per volume; empty: none
   std::vector<BoundaryCondition> conditions;
-  double nitsche_beta = 100.0;  ///< penalty beta E / h (dimensionless beta)
+  double nitsche_beta = 100.0;  ///< penalty beta M / h (dimensionless beta)
   double spacing = 1.0;         ///< h in the penalty: nodal spacing
 };
 /// The same problem as the total-Lagrangian solver takes it, with the small-strain law (a
-/// caller may swap in another Material) and the penalty modulus E of that law.
+/// caller may swap in another Material) and the penalty modulus M of that law.
 SolidProblem solid_problem(const ElasticityProblem& problem);
 
 struct ElasticitySystem {

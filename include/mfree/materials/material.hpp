@@ -47,6 +47,11 @@ const NameTable<MaterialMaker>& material_models();
 /// (-1, 1/2) (the message names the value).
 Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio);
 
+/// P-wave modulus [Pa] of the reference state, the normal component A_xxxx of the tangent at
+/// F = I: lambda + 2 mu in plane strain, E / (1 - nu^2) in plane stress. The stiffness of the
+/// stiffest traction: Nitsche penalties scale with it.
+double p_wave_modulus(const Material& m);
+
 /// Dilatational wave speed sqrt((lambda + 2 mu) / rho0) of the reference state: the speed
 /// stability limits of explicit schemes and Courant numbers are measured with.
 double wave_speed(const Material& m, double density);
