@@ -6,12 +6,14 @@
 #include <iostream>
 #include <map>
 
+#include "mfree/apps/probe_study.hpp"
 #include "mfree/apps/report.hpp"
 #include "mfree/apps/solid_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 #include "mfree/io/run_summary.hpp"
@@ -161,22 +163,12 @@ int converge_linear_statics(const ElasticityScene& scene) {
               // rate of that change and the Richardson-extrapolated value (SPEC section 8).
               const Vec2 u = r.displacement({*probe})[0];
               probes.emplace_back(h, u);
-              std::string change = "-", rate = "-", extrapolated = "-";
-              const std::size_t n = probes.size();
-              if (n >= 2) change = fmt::format("{:.3e}", (u - probes[n - 2].second).norm());
-              if (n >= 3) {
-                const double e1 = (probes[n - 2].second - probes[n - 3].second).norm(), e2 = (u - probes[n - 2].second).norm();
-                const double ratio = probes[n - 2].first / h;
-                const double p = std::log(e1 / e2) / std::log(probes[n - 3].first / probes[n - 2].first);
-                if (std::isfinite(p) && p > 0.0) {
-                  rate = fmt::format("{:.2f}", p);
-                  extrapolated = fmt::format("{:.9g}", u.y() + (u.y() - probes[n - 2].second.y()) / (std::pow(ratio, p) - 1.0));
-                }
-              }
+              const ProbeLevel level = probe_level(probes);
               const std::string line = fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:>15.9e} {:>15.9e} {:>10} "
                                                    "{:>6} {:>16} {:8.3f}",
                                                    to_string(cloud), to_string(order), to_string(q), beta, h,
-                                                   2 * r.nodes.size(), u.x(), u.y(), change, rate, extrapolated, seconds);
+                                                   2 * r.nodes.size(), u.x(), u.y(), level.change, level.rate,
+                                                   level.extrapolated_y, seconds);
               table += line + "\n";
               csv += fmt::format("{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e},ok\n", to_string(cloud),
                                  to_string(order), to_string(q), beta, h, r.nodes.size(), 2 * r.nodes.size(),
@@ -230,12 +222,19 @@ int converge_linear_statics(const ElasticityScene& scene) {
 
 }  // namespace
 
-int run_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+int run_elasticity(const std::filesystem::path& path, const std::vector<std::string>& overrides,
+                   const std::filesystem::path& restart) {
   ElasticityScene scene = read_elasticity_scene(path, false, overrides);
+  if (!scene.dynamics && (!restart.empty() || scene.output.checkpoint_every > 0))
+    throw InputError(fmt::format("{}: checkpoints and --restart are for dynamics and MPM runs; this scene is a static solve",
+                                 path.string()));
+  if (scene.dynamics) {
+    const Checkpoints checkpoints(scene.output.folder, scene.output.checkpoint_every, scene_fingerprint(path, overrides),
+                                  restart);
+    return in_staged_folder(scene.output.folder, checkpoints, [&] { return run_dynamics(scene, &checkpoints); });
+  }
   return in_staged_folder(scene.output.folder, [&] {
-    if (scene.dynamics) return run_dynamics(scene);
-    if (scene.nonlinear()) return run_static(scene);
-    return run_linear_statics(scene);
+    return scene.nonlinear() ? run_static(scene) : run_linear_statics(scene);
   });
 }
 

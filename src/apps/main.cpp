@@ -1,7 +1,9 @@
 // mfree: meshfree Galerkin solid mechanics and the Material Point Method.
 //
 // Usage:
-//   mfree run SCENE.toml [--set KEY=VALUE]...   one elasticity solve or MPM run
+//   mfree run SCENE.toml [--set KEY=VALUE]... [--restart DIR]
+//                                               one elasticity solve or MPM run; --restart
+//                                               continues a run from its newest checkpoint
 //   mfree converge SCENE.toml [--set ...]       refinement study of an elasticity or MPM scene
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
@@ -23,6 +25,7 @@
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/scene_reader.hpp"
 
@@ -62,6 +65,10 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "One solve or MPM run of a scene: summary, errors, VTK fields");
   run->add_option("scene", scene, "Scene file (TOML)")->required();
   run->add_option("--set", overrides, set_help);
+  std::filesystem::path restart;
+  run->add_option("--restart", restart,
+                  "Continue a dynamics or MPM run from the newest checkpoint in this folder (the OUTPUT.checkpoints "
+                  "folder a run with [output] checkpoint_every wrote), with the same scene and --set overrides");
   CLI::App* converge = app.add_subcommand("converge", "Refinement study of a scene: CSV, PNG plots, rates");
   converge->add_option("scene", scene, "Scene file (TOML) with a [study] section")->required();
   converge->add_option("--set", overrides, set_help);
@@ -93,9 +100,12 @@ int main(int argc, char** argv) {
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
       mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);
-      return mfree::in_staged_folder(mpm.folder, [&] { return *run ? mfree::run_mpm(mpm) : mfree::converge_mpm(mpm); });
+      if (*converge) return mfree::in_staged_folder(mpm.folder, [&] { return mfree::converge_mpm(mpm); });
+      const mfree::Checkpoints checkpoints(mpm.folder, mpm.checkpoint_every, mfree::scene_fingerprint(scene, overrides),
+                                           restart);
+      return mfree::in_staged_folder(mpm.folder, checkpoints, [&] { return mfree::run_mpm(mpm, &checkpoints); });
     }
-    if (*run) return mfree::run_elasticity(scene, overrides);
+    if (*run) return mfree::run_elasticity(scene, overrides, restart);
     if (*converge) return mfree::converge_elasticity(scene, overrides);
   } catch (const mfree::NumericalError& e) {
     std::cerr << "mfree: error: " << e.what() << '\n';

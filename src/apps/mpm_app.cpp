@@ -7,12 +7,14 @@
 #include <iostream>
 #include <map>
 
+#include "mfree/apps/probe_study.hpp"
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/run_summary.hpp"
+#include "mfree/mpm/particle_probe.hpp"
 
 namespace mfree {
 
@@ -115,9 +117,110 @@ void print_bodies(const MPMProblem& problem, const MPMSettings& s, const Particl
   std::cout << fmt::format("  walls:{}{}\n", walls, s.damping > 0.0 ? fmt::format("; damping {:.4g} 1/s", s.damping) : "");
 }
 
+/// The largest particle spacing h / n over the bodies (n their particles per side).
+double particle_spacing(const MPMScene& scene, const MPMSettings& s, double h) {
+  int per_side = s.particles_per_side;
+  for (const MPMBody& b : scene.problem.bodies) per_side = std::min(per_side, b.particles_per_side > 0 ? b.particles_per_side : s.particles_per_side);
+  return h / per_side;
+}
+
+// Checkpoints: the solver's state (the particles, the time, the work of the body forces) and
+// the run's records so far (energy, errors, frames).
+
+void save_energy(CheckpointState& state, const std::vector<MPMEnergy>& energy) {
+  std::vector<double> flat;
+  for (const MPMEnergy& e : energy) {
+    flat.push_back(e.time);
+    for (const BodyEnergy* b : {&e.sum}) flat.insert(flat.end(), {b->kinetic, b->strain, b->external, b->momentum.x(), b->momentum.y()});
+    for (const BodyEnergy& b : e.bodies) flat.insert(flat.end(), {b.kinetic, b.strain, b.external, b.momentum.x(), b.momentum.y()});
+  }
+  state.put("energy", std::move(flat));
+}
+
+std::vector<MPMEnergy> restore_energy(const CheckpointState& state, std::size_t bodies) {
+  const std::vector<double>& flat = state.get("energy");
+  const std::size_t record = 1 + 5 * (bodies + 1);
+  if (flat.size() % record != 0) throw InputError(fmt::format("checkpoint {}: energy records of another problem", state.source.string()));
+  std::vector<MPMEnergy> out;
+  for (std::size_t at = 0; at < flat.size();) {
+    MPMEnergy e;
+    e.time = flat[at++];
+    const auto next = [&] {
+      BodyEnergy b;
+      b.kinetic = flat[at];
+      b.strain = flat[at + 1];
+      b.external = flat[at + 2];
+      b.momentum = Vec2(flat[at + 3], flat[at + 4]);
+      at += 5;
+      return b;
+    };
+    e.sum = next();
+    for (std::size_t k = 0; k < bodies; ++k) e.bodies.push_back(next());
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::optional<MPMFrames>& frames) {
+  CheckpointState s;
+  const Particles& P = solver.particles();
+  s.put("particles.mass", P.mass);
+  s.put("particles.volume0", P.volume0);
+  s.put("particles.volume", P.volume);
+  s.put_values("particles.reference", P.reference);
+  s.put_values("particles.position", P.position);
+  s.put_values("particles.velocity", P.velocity);
+  s.put_values("particles.deformation", P.deformation);
+  s.put_values("particles.stress", P.stress);
+  s.put_values("particles.half_size", P.half_size);
+  s.put_ints("particles.body", P.body);
+  s.put_ints("particles.material", P.material);
+  s.put("time", solver.time());
+  s.put("external_work", solver.external_work());
+  save_energy(s, run.energy);
+  std::vector<double> errors;
+  for (const ParticleErrors& e : run.errors)
+    errors.insert(errors.end(), {e.time, e.displacement, e.velocity, e.grid_velocity, e.stress});
+  s.put("errors", std::move(errors));
+  s.put("max_mass_defect", run.max_mass_defect);
+  std::vector<double> probe;
+  for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
+  s.put("probe", std::move(probe));
+  if (frames) frames->save(s);
+  return s;
+}
+
+void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::optional<MPMFrames>& frames) {
+  Particles P;
+  P.mass = s.get("particles.mass");
+  P.volume0 = s.get("particles.volume0");
+  P.volume = s.get("particles.volume");
+  P.reference = s.values<Vec2>("particles.reference");
+  P.position = s.values<Vec2>("particles.position");
+  P.velocity = s.values<Vec2>("particles.velocity");
+  P.deformation = s.values<Mat2>("particles.deformation");
+  P.stress = s.values<Mat2>("particles.stress");
+  P.half_size = s.values<Vec2>("particles.half_size");
+  P.body = s.ints("particles.body");
+  P.material = s.ints("particles.material");
+  const std::size_t n = P.mass.size();
+  for (const std::size_t size : {P.volume0.size(), P.volume.size(), P.reference.size(), P.position.size(),
+                                 P.velocity.size(), P.deformation.size(), P.stress.size(), P.body.size(), P.material.size()})
+    if (size != n) throw InputError(fmt::format("checkpoint {}: particle arrays of unequal length", s.source.string()));
+  solver.resume(std::move(P), s.scalar("time"), s.get("external_work"));
+  run.energy = restore_energy(s, static_cast<std::size_t>(solver.bodies()));
+  const std::vector<double>& errors = s.get("errors");
+  for (std::size_t at = 0; at + 5 <= errors.size(); at += 5)
+    run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3], errors[at + 4]});
+  run.max_mass_defect = s.scalar("max_mass_defect");
+  const std::vector<double>& probe = s.get("probe");
+  for (std::size_t at = 0; at + 3 <= probe.size(); at += 3) run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
+  if (frames) frames->restore(s);
+}
+
 }  // namespace
 
-MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose) {
+MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose, const Checkpoints* checkpoints) {
   const auto t0 = std::chrono::steady_clock::now();
   MPMRun run;
   MPMSolver solver(scene.problem, settings);
@@ -133,21 +236,40 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
                          scene.fields.von_mises || scene.fields.body || scene.fields.error || scene.fields.grid;
+  const CheckpointState* resume = checkpoints ? checkpoints->resume() : nullptr;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
     frames.emplace(scene.folder, scene.fields, scene.exact ? &*scene.exact : nullptr, scene.problem.materials);
-    frames->write(solver);
+    if (!resume) frames->write(solver);
   }
   const std::vector<int> at = error_steps(scene, run.steps);
-  if (scene.energy_every > 0) run.energy.push_back(solver.energy());
+  if (scene.energy_every > 0 && !resume) run.energy.push_back(solver.energy());
+  std::optional<ParticleProbe> probe;
+  if (scene.probe) {
+    probe.emplace(solver.particles(), *scene.probe, particle_spacing(scene, settings, solver.grid().spacing()));
+    if (!resume) run.probe.emplace_back(solver.time(), probe->displacement(solver.particles()));
+  }
+  int first = 1;
+  if (resume) {
+    restore_run(*resume, solver, run, frames);
+    first = static_cast<int>(checkpoints->resume_step()) + 1;
+    run.resumed_at = first - 1;
+    if (first > run.steps) throw InputError(fmt::format("checkpoint {}: step {} is past this run's {} steps",
+                                                        resume->source.string(), first - 1, run.steps));
+    if (verbose) std::cout << fmt::format("  continuing from step {} (t = {:.6g} s) of {}\n", first - 1, solver.time(),
+                                          resume->source.parent_path().string());
+  }
+  if (verbose && checkpoints && checkpoints->every() > 0)
+    std::cout << fmt::format("  checkpoints every {} steps in {}\n", checkpoints->every(), checkpoints->folder().string());
   const int report_every = std::max(1, run.steps / 10);
   try {
-    for (int n = 1; n <= run.steps; ++n) {
+    for (int n = first; n <= run.steps; ++n) {
       solver.step();
       run.max_mass_defect = std::max(run.max_mass_defect, solver.mass_defect());
       if (scene.exact)
         for (int s : at)
           if (s == n) run.errors.push_back(particle_errors(solver, *scene.exact));
       if (scene.energy_every > 0 && (n % scene.energy_every == 0 || n == run.steps)) run.energy.push_back(solver.energy());
+      if (probe) run.probe.emplace_back(solver.time(), probe->displacement(solver.particles()));
       if (n % report_every == 0 || n == run.steps) {
         check_finite(solver);
         if (verbose)
@@ -158,6 +280,10 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
       if (frames && (static_cast<long long>(n) * scene.frames) % run.steps < scene.frames) {
         check_finite(solver);
         frames->write(solver);
+      }
+      if (checkpoints && checkpoints->due(n, run.steps)) {
+        check_finite(solver);
+        checkpoints->write(n, save_run(solver, run, frames), scene.folder);
       }
     }
   } catch (const NumericalError& e) {
@@ -171,12 +297,13 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   return run;
 }
 
-int run_mpm(const MPMScene& scene) {
+int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   const MPMSettings& s = scene.settings;
   std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} thread(s))\n", scene.file.string(),
                            method_name(method_of(s)), to_string(s.update),
                            thread_count());
-  const MPMRun run = simulate_mpm(scene, s, true);
+  if (checkpoints) checkpoints->restore_output(scene.folder);
+  const MPMRun run = simulate_mpm(scene, s, true, checkpoints);
   if (!run.errors.empty()) {
     std::cout << fmt::format("  {:>10} {:>12} {:>12} {:>12} {:>12}   (RMS over the particles, seed 000 eq. 43)\n",
                              "t [s]", "u [m]", "v_p [m/s]", "v_grid [m/s]", "stress [Pa]");
@@ -201,11 +328,20 @@ int run_mpm(const MPMScene& scene) {
     write_file_atomically(scene.folder / "energy.csv", energy_csv(scene.problem, run.energy));
     std::cout << "  wrote energy.csv\n";
   }
+  if (!run.probe.empty()) {
+    const Vec2& u = run.probe.back().second;
+    std::cout << fmt::format("  probe ({:.6g}, {:.6g}): u^h = ({:.9e}, {:.9e}) at t = {:.6g} s\n", scene.probe->x(),
+                             scene.probe->y(), u.x(), u.y(), run.probe.back().first);
+    std::string csv = "time,probe_ux,probe_uy\n";
+    for (const auto& [t, p] : run.probe) csv += fmt::format("{:.9e},{:.9e},{:.9e}\n", t, p.x(), p.y());
+    write_file_atomically(scene.folder / "probe.csv", csv);
+    std::cout << "  wrote probe.csv\n";
+  }
   if (scene.particles_csv) {
     write_file_atomically(scene.folder / "particles.csv", run.particle_table);
     std::cout << "  wrote particles.csv\n";
   }
-  const double throughput = run.particles * static_cast<double>(run.steps) / run.timer.total();
+  const double throughput = run.particles * static_cast<double>(run.steps - run.resumed_at) / run.timer.total();
   std::cout << fmt::format("  {:.3e} particle-steps per second\n", throughput);
   print_stages(run.timer);
   RunSummary summary("mpm", scene.file);
@@ -216,6 +352,7 @@ int run_mpm(const MPMScene& scene) {
   summary.number("time_step", run.time_step);
   summary.number("particle_steps_per_second", throughput);
   summary.number("mass_defect", run.max_mass_defect);
+  if (!run.probe.empty()) summary.numbers("probe_displacement", {run.probe.back().second.x(), run.probe.back().second.y()});
   if (!run.energy.empty()) {
     summary.number("energy_drift", energy_drift(run.energy));
     summary.number("largest_momentum", largest_momentum(run.energy));
@@ -251,10 +388,12 @@ int converge_mpm(const MPMScene& scene) {
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
   std::string csv =
       "method,update,particles_per_cell,cells,spacing,particles,steps,time_step,seconds,time_fraction,time,"
-      "displacement,velocity,grid_velocity,stress,mass_defect,energy_drift,status\n";
+      "displacement,velocity,grid_velocity,stress,mass_defect,energy_drift,probe_ux,probe_uy,status\n";
   std::string energy_csv = "method,update,particles_per_cell,cells,time,kinetic,strain,external_work,total\n";
   // (series, error time index) -> (h, errors) over the grids, for the rate table.
   std::map<std::string, std::vector<std::pair<double, std::vector<ParticleErrors>>>> series;
+  // Without [exact]: (series) -> (h, u^h at the probe at end_time) over the grids.
+  std::map<std::string, std::vector<std::pair<double, Vec2>>> probes;
   std::size_t done = 0;
   for (int side : st.particles_per_side)
     for (const MPMMethodChoice& m : st.methods)
@@ -271,13 +410,19 @@ int converge_mpm(const MPMScene& scene) {
           const std::string name = fmt::format("{},{},{}", method_name(m), to_string(u), side * side);
           const std::string status = csv_status(run.failure);
           const double drift = energy_drift(run.energy);
-          for (std::size_t k = 0; k < run.errors.size(); ++k) {
-            const ParticleErrors& e = run.errors[k];
-            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{},{},{},{},{},{},{}\n", name, cells, h,
-                               run.particles, run.steps, run.time_step, run.seconds, scene.error_times[k], e.time,
+          const double nan = std::nan("");
+          const Vec2 at_probe = run.failure || run.probe.empty() ? Vec2(nan, nan) : run.probe.back().second;
+          // One row per error time (with [exact]), else one row with the probe.
+          const std::size_t rows = std::max<std::size_t>(run.errors.size(), scene.exact ? 0 : 1);
+          for (std::size_t k = 0; k < rows; ++k) {
+            const ParticleErrors e = k < run.errors.size() ? run.errors[k] : ParticleErrors{run.steps * run.time_step, nan, nan, nan, nan};
+            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{},{},{},{},{},{},{},{},{}\n", name, cells, h,
+                               run.particles, run.steps, run.time_step, run.seconds,
+                               k < run.errors.size() ? scene.error_times[k] : 1.0, e.time,
                                csv_number(e.displacement, "{:.9e}"), csv_number(e.velocity, "{:.9e}"),
                                csv_number(e.grid_velocity, "{:.9e}"), csv_number(e.stress, "{:.9e}"),
-                               csv_number(run.max_mass_defect, "{:.6e}"), csv_number(drift, "{:.6e}"), status);
+                               csv_number(run.max_mass_defect, "{:.6e}"), csv_number(drift, "{:.6e}"),
+                               csv_number(at_probe.x(), "{:.9e}"), csv_number(at_probe.y(), "{:.9e}"), status);
           }
           energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
           if (!run.failure) series[name].emplace_back(h, run.errors);
@@ -288,13 +433,21 @@ int converge_mpm(const MPMScene& scene) {
             line += fmt::format("  at t = {:.4f}: u {:.3e} v_p {:.3e} v_grid {:.3e} stress {:.3e}", e.time,
                                 e.displacement, e.velocity, e.grid_velocity, e.stress);
           }
+          if (!scene.exact && !run.failure) {
+            probes[name].emplace_back(h, at_probe);
+            const ProbeLevel level = probe_level(probes[name]);
+            line += fmt::format("  probe u = ({:.9e}, {:.9e}), |change| {}, rate {}, extrapolated u = ({}, {})",
+                                at_probe.x(), at_probe.y(), level.change, level.rate, level.extrapolated_x,
+                                level.extrapolated_y);
+          }
           if (scene.energy_every > 0) line += fmt::format("  energy drift {:.2e}", drift);
           if (run.failure) line += "  FAILED: " + *run.failure;
           std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
         }
   // Observed rates log2(e(h) / e(h/2)) between successive grids, at every error time.
-  std::cout << fmt::format("\n{:<28} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
-                           "method,update,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
+  if (scene.exact)
+    std::cout << fmt::format("\n{:<28} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
+                             "method,update,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
   for (const auto& entry : series) {
     const std::string& name = entry.first;
     const auto& levels = entry.second;  // a plain reference: lambdas below capture it
@@ -321,7 +474,7 @@ int converge_mpm(const MPMScene& scene) {
     write_file_atomically(scene.folder / "mpm_energy.csv", energy_csv);
     std::cout << "wrote mpm_energy.csv\n";
   }
-  plot("plot_mpm.py", csv_path, scene.folder);
+  if (scene.exact) plot("plot_mpm.py", csv_path, scene.folder);  // the plots draw errors
   return 0;
 }
 

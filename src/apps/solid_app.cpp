@@ -131,7 +131,57 @@ int run_static(const ElasticityScene& scene) {
   return 0;
 }
 
-DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose) {
+namespace {
+
+// Checkpoints of a dynamic run: the integrator's state (DynamicsProgress) and the run's
+// records so far (errors, probe history, frames, the next error and frame times).
+
+void put_vector(CheckpointState& s, const std::string& name, const Eigen::VectorXd& v) {
+  s.put(name, std::vector<double>(v.data(), v.data() + v.size()));
+}
+
+Eigen::VectorXd get_vector(const CheckpointState& s, const std::string& name) {
+  const std::vector<double>& v = s.get(name);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+void save_progress(CheckpointState& s, const DynamicsProgress& p) {
+  s.put("step", p.step);
+  put_vector(s, "d", p.d);
+  put_vector(s, "v", p.v);
+  put_vector(s, "a", p.a);
+  put_vector(s, "v_half", p.v_half);
+  put_vector(s, "g", p.g);
+  s.put("work", p.work);
+  std::vector<double> energy;
+  for (const EnergyRecord& e : p.energy) energy.insert(energy.end(), {e.time, e.kinetic, e.strain, e.external_work});
+  s.put("energy", std::move(energy));
+  s.put("newton_iterations", static_cast<double>(p.newton_iterations));
+  s.put("factorisations", static_cast<double>(p.factorisations));
+  put_vector(s, "tangent", p.tangent);
+}
+
+DynamicsProgress restore_progress(const CheckpointState& s) {
+  DynamicsProgress p;
+  p.step = static_cast<int>(s.scalar("step"));
+  p.d = get_vector(s, "d");
+  p.v = get_vector(s, "v");
+  p.a = get_vector(s, "a");
+  p.v_half = get_vector(s, "v_half");
+  p.g = get_vector(s, "g");
+  p.work = s.scalar("work");
+  const std::vector<double>& e = s.get("energy");
+  for (std::size_t at = 0; at + 4 <= e.size(); at += 4) p.energy.push_back({e[at], e[at + 1], e[at + 2], e[at + 3]});
+  p.newton_iterations = static_cast<long>(s.scalar("newton_iterations"));
+  p.factorisations = static_cast<long>(s.scalar("factorisations"));
+  p.tangent = get_vector(s, "tangent");
+  return p;
+}
+
+}  // namespace
+
+DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose,
+                    const Checkpoints* checkpoints) {
   DynamicRun run;
   StageTimer& timer = run.timer;
   if (verbose) timer.report_to(&std::cout);
@@ -181,7 +231,41 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   };
   DynamicsSettings ds = settings;
   if (verbose) ds.progress = &std::cout;
-  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step);
+  DynamicsCheckpoints dc;
+  std::optional<DynamicsProgress> resume;
+  if (checkpoints && checkpoints->resume()) {
+    const CheckpointState& s = *checkpoints->resume();
+    resume = restore_progress(s);
+    const std::vector<double>& errors = s.get("errors");
+    for (std::size_t at = 0; at + 4 <= errors.size(); at += 4)
+      run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3]});
+    next_error = run.errors.size();
+    next_frame = s.scalar("next_frame");
+    const std::vector<double>& probe = s.get("probe");
+    for (std::size_t at = 0; at + 3 <= probe.size(); at += 3) run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
+    if (frames) frames->restore(s);
+    dc.resume = &*resume;
+    if (verbose)
+      std::cout << fmt::format("  continuing from step {} of {}\n", resume->step, s.source.parent_path().string());
+  }
+  if (checkpoints && checkpoints->every() > 0) {
+    dc.every = checkpoints->every();
+    dc.save = [&](const DynamicsProgress& p) {
+      CheckpointState s;
+      save_progress(s, p);
+      std::vector<double> errors, probe;
+      for (const MotionErrors& e : run.errors) errors.insert(errors.end(), {e.time, e.displacement, e.velocity, e.stress});
+      for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
+      s.put("errors", std::move(errors));
+      s.put("probe", std::move(probe));
+      s.put("next_frame", next_frame);
+      if (frames) frames->save(s);
+      timer.time("checkpoints", [&] { checkpoints->write(p.step, s, scene.output.folder); });
+    };
+    if (verbose)
+      std::cout << fmt::format("  checkpoints every {} steps in {}\n", dc.every, checkpoints->folder().string());
+  }
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, dc);
   return run;
 }
 
@@ -206,12 +290,13 @@ double energy_drift(const std::vector<EnergyRecord>& energy) {
   return scale > 0.0 ? drift / scale : drift;
 }
 
-int run_dynamics(const ElasticityScene& scene) {
+int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   const DynamicsSettings& s = scene.dynamics->settings;
   std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {} material, {} thread(s))\n",
                            scene.file.string(), to_string(s.scheme), name(scene.material), thread_count());
   std::cout << scene.describe_conditions();
-  const DynamicRun run = simulate(scene, s, true);
+  if (checkpoints) checkpoints->restore_output(scene.output.folder);
+  const DynamicRun run = simulate(scene, s, true, checkpoints);
   const DynamicsResult& r = run.result;
   std::cout << fmt::format("  {} nodes ({} DOFs), {} steps of dt = {:.4e} s{}{}\n", run.nodes, 2 * run.nodes, r.steps,
                            r.time_step,

@@ -70,7 +70,8 @@ std::pair<double, int> equal_steps(double end_time, double requested) {
 
 DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d, Eigen::VectorXd v, const DynamicsSettings& s,
-                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step) {
+                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step,
+                                  const DynamicsCheckpoints& checkpoints) {
   if (!(s.end_time > 0.0)) throw InputError(fmt::format("dynamics: end_time must be positive, got {}", s.end_time));
   DynamicsResult out;
   const bool explicit_scheme = s.scheme == TimeScheme::central_difference;
@@ -123,17 +124,58 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
     if (energy && (step % s.energy_every == 0 || step == out.steps))
       timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work}); });
   };
-  record(0, 0.0);
 
-  // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once.
+  // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once, at the
+  // start state (the values matter to UMFPACK's pivoting: a resumed run analyses the same).
   SparseSolver solver(model.symmetric() ? SolverKind::cholmod : SolverKind::umfpack);
   SparseMatrix k;
-  if (!explicit_scheme) k = model.zero_matrix();
   const double c = 4.0 / (dt * dt);
+  const auto effective_tangent = [&](const Eigen::VectorXd& x, double t, SparseMatrix& kt) {
+    model.tangent(x, {1.0, t}, kt);
+    Eigen::Map<Eigen::VectorXd>(kt.valuePtr(), kt.nonZeros()) +=
+        c * Eigen::Map<const Eigen::VectorXd>(mass.valuePtr(), mass.nonZeros());
+  };
+  if (!explicit_scheme) {
+    k = model.zero_matrix();
+    timer.time("assembly", [&] { effective_tangent(d, 0.0, k); });
+    timer.time("factorisation", [&] { solver.analyze(k); });
+  }
 
   Eigen::VectorXd v_half = v + 0.5 * dt * a;
+  int first = 1;
+  if (const DynamicsProgress* p = checkpoints.resume) {
+    const Eigen::Index n = model.dofs();
+    if (p->d.size() != n || p->v.size() != n || p->a.size() != n || p->step < 0 || p->step >= out.steps)
+      throw InputError(fmt::format("dynamics: a saved state of {} DOFs at step {} does not fit this run ({} DOFs, {} steps)",
+                                   p->d.size(), p->step, n, out.steps));
+    d = p->d;
+    v = p->v;
+    a = p->a;
+    v_half = p->v_half;
+    if (energy) g = p->g;
+    work = p->work;
+    out.energy = p->energy;
+    out.newton_iterations = p->newton_iterations;
+    out.factorisations = p->factorisations;
+    if (!explicit_scheme && p->tangent.size() > 0) {
+      if (p->tangent.size() != k.nonZeros())
+        throw InputError("dynamics: the saved tangent does not fit this run's pattern");
+      Eigen::Map<Eigen::VectorXd>(k.valuePtr(), k.nonZeros()) = p->tangent;
+      timer.time("factorisation", [&] { solver.factorize(k); });
+    }
+    first = p->step + 1;
+  } else {
+    record(0, 0.0);
+  }
+  const auto save = [&](int n) {
+    DynamicsProgress p{n, d, v, a, v_half, energy ? g : Eigen::VectorXd(), work, out.energy, out.newton_iterations,
+                       out.factorisations, Eigen::VectorXd()};
+    if (!explicit_scheme && solver.factorized()) p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
+    checkpoints.save(p);
+  };
+
   Eigen::VectorXd d_old;  // the work term's d_n
-  for (int n = 1; n <= out.steps; ++n) {
+  for (int n = first; n <= out.steps; ++n) {
     const double t = n * dt;
     if (energy) d_old = d;
     Eigen::VectorXd g_new;  // f_ext - f_c at the new state
@@ -157,11 +199,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
             const Eigen::VectorXd acc = c * (x - base);
             return Eigen::VectorXd(mass * acc + model.internal_force(x) + model.boundary_force(x, {1.0, t}) - f_ext);
           },
-          [&](const Eigen::VectorXd& x, SparseMatrix& kt) {
-            model.tangent(x, {1.0, t}, kt);
-            Eigen::Map<Eigen::VectorXd>(kt.valuePtr(), kt.nonZeros()) +=
-                c * Eigen::Map<const Eigen::VectorXd>(mass.valuePtr(), mass.nonZeros());
-          }};
+          [&](const Eigen::VectorXd& x, SparseMatrix& kt) { effective_tangent(x, t, kt); }};
       NewtonSettings ns = s.newton;
       ns.reuse_tangent = true;  // 4 M / dt^2 dominates the effective tangent: it hardly changes
       // A good predictor starts close to the solution: judge |R| against the step's forces.
@@ -188,6 +226,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       *s.progress << fmt::format("    step {}/{}  t = {:.5f} s{}\n", n, out.steps, t,
                                  energy ? fmt::format("  energy {:.6e}", out.energy.back().total()) : "")
                   << std::flush;
+    if (checkpoints.every > 0 && checkpoints.save && n < out.steps && n % checkpoints.every == 0) save(n);
   }
   out.d = std::move(d);
   out.v = std::move(v);

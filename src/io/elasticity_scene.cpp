@@ -125,7 +125,17 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
   }
   {
-    const MaterialSection m = read_material(root);
+    const SceneTable t = root.table("material");
+    const bool allow_locking = t.boolean_or("allow_locking", false);
+    const MaterialSection m = read_material_keys(t);
+    if (m.linear.model == PlaneModel::strain && m.linear.poisson_ratio > max_poisson_ratio && !allow_locking)
+      t.error("poisson_ratio",
+              fmt::format("{} is above {}, the largest Poisson's ratio of a plane-strain law this displacement "
+                          "formulation is trusted with: near incompressibility (lambda / mu = {:.3g}) locks it, and "
+                          "its stress error grows without bound (the report's stress test 'Near incompressibility'); "
+                          "use nu <= {} or plane stress (allow_locking = true runs it anyway, for studies of locking)",
+                          m.linear.poisson_ratio, max_poisson_ratio,
+                          2 * m.linear.poisson_ratio / (1 - 2 * m.linear.poisson_ratio), max_poisson_ratio));
     s.problem.material = m.linear;
     out.material = m.material;
     out.density = m.density;
@@ -297,6 +307,11 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
     if (out.output.eigenvalues > 0 && out.nonlinear())
       t.error("eigenvalues", "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
+    out.output.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));
+    if (out.output.checkpoint_every > 0 && !out.dynamics)
+      t.error("checkpoint_every", "checkpoints are for [dynamics] runs (and MPM runs)");
+    if (out.output.checkpoint_every > 0 && want_study)
+      t.error("checkpoint_every", "a study is not checkpointed: checkpoints are for one long `mfree run`");
     t.finish();
   }
   if (want_study && !out.dynamics && out.nonlinear())

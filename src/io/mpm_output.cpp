@@ -31,7 +31,33 @@ void append_step(const std::filesystem::path& pvd, std::vector<std::pair<double,
   steps = std::move(next);
 }
 
+std::string particle_file(int frame) { return fmt::format("particles_{:04d}.vtu", frame); }
+std::string grid_file(int frame) { return fmt::format("grid_{:04d}.vti", frame); }
+
 }  // namespace
+
+void MPMFrames::save(CheckpointState& state) const {
+  std::vector<double> times, grid;
+  for (std::size_t k = 0, g = 0; k < steps_.size(); ++k) {
+    times.push_back(steps_[k].first);
+    const bool has_grid = g < grid_steps_.size() && grid_steps_[g].second == grid_file(static_cast<int>(k));
+    grid.push_back(has_grid ? 1.0 : 0.0);
+    g += has_grid;
+  }
+  state.put("frames.time", std::move(times));
+  state.put("frames.grid", std::move(grid));
+}
+
+void MPMFrames::restore(const CheckpointState& state) {
+  const std::vector<double>& times = state.get("frames.time");
+  const std::vector<double>& grid = state.get("frames.grid", times.size());
+  steps_.clear();
+  grid_steps_.clear();
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    steps_.emplace_back(times[k], particle_file(static_cast<int>(k)));
+    if (grid[k] != 0.0) grid_steps_.emplace_back(times[k], grid_file(static_cast<int>(k)));
+  }
+}
 
 std::string particle_table(const Particles& P, const std::vector<MPMBody>& bodies) {
   std::string out = "body,X,Y,x,y,vx,vy,sxx,syy,sxy\n";
@@ -89,11 +115,11 @@ void MPMFrames::write(const MPMSolver& solver) {
     fields.push_back({"stress_error", 3, std::move(se)});
   }
   const int frame = frames();
-  const std::string name = fmt::format("particles_{:04d}.vtu", frame);
+  const std::string name = particle_file(frame);
   write_point_cloud_vtu(folder_ / name, P.position, fields);
   // Both data files before either series: a failure in one leaves both series as they were.
   const bool grid_frame = fields_.grid && !solver.grid_mass().empty();
-  const std::string grid_name = fmt::format("grid_{:04d}.vti", frame);
+  const std::string grid_name = grid_file(frame);
   if (grid_frame) write_grid(solver, grid_name);
   append_step(series(), steps_, t, name);
   if (grid_frame) append_step(grid_series(), grid_steps_, t, grid_name);

@@ -1,5 +1,6 @@
 #include "mfree/io/mpm_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
@@ -235,6 +236,15 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     if (out.fields.error && !out.exact) t.error("fields", "'error' needs an [exact] section");
     out.vtk = t.boolean_or("vtk", true);
     out.particles_csv = t.boolean_or("particles_csv", false);
+    out.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));
+    if (t.has("probe")) {
+      const auto p = t.numbers("probe", 2, -1e300, 1e300);
+      out.probe = Vec2(p[0], p[1]);
+      if (std::none_of(pr.bodies.begin(), pr.bodies.end(), [&](const MPMBody& b) { return b.contains(*out.probe); }))
+        t.error("probe", "the probe lies in no body (it is a material point: a reference position inside one)");
+    }
+    if (out.checkpoint_every > 0 && want_study)
+      t.error("checkpoint_every", "a study is not checkpointed: checkpoints are for one long `mfree run`");
     t.finish();
   }
   if (want_study || root.has("study")) {
@@ -256,7 +266,9 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       st.particles_per_side.clear();
       for (const double n : t.numbers("particles_per_cell", 0, 1, 25)) st.particles_per_side.push_back(per_side(t, "particles_per_cell", std::lround(n)));
     }
-    if (!out.exact) t.error("cells", "a study needs an [exact] solution to measure errors against");
+    if (!out.exact && !out.probe)
+      t.error("cells", "a study without an [exact] solution compares the displacement at a probe between grids: give "
+                       "[output] probe = [X, Y]");
     t.finish();
     out.study = st;
   }

@@ -7,6 +7,23 @@
 
 namespace mfree {
 
+namespace {
+
+std::string frame_file(int frame) { return fmt::format("field_{:04d}.vtu", frame); }
+
+}  // namespace
+
+void SolidFrames::save(CheckpointState& state) const {
+  std::vector<double> times;
+  for (const auto& step : steps_) times.push_back(step.first);
+  state.put("frames.time", std::move(times));
+}
+
+void SolidFrames::restore(const CheckpointState& state) {
+  steps_.clear();
+  for (const double t : state.get("frames.time")) steps_.emplace_back(t, frame_file(frames()));
+}
+
 SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact)
     : output_(scene.output), material_(scene.material), exact_(exact), folder_(scene.output.folder) {
   Triangulation tri = triangulate_domain(scene.domain, disc.nodes);
@@ -54,7 +71,7 @@ void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::Vect
     fields.push_back({"displacement_error", 2, std::move(ue)});
     fields.push_back({"stress_error_xx_yy_xy", 3, std::move(se)});
   }
-  const std::string name = fmt::format("field_{:04d}.vtu", frames());
+  const std::string name = frame_file(frames());
   write_triangles_vtu(folder_ / name, points_, triangles_, fields);
   steps_.emplace_back(time, name);
   write_pvd(series(), steps_);

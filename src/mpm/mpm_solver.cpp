@@ -128,6 +128,15 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
 
 MPMSolver::~MPMSolver() = default;
 
+void MPMSolver::resume(Particles particles, double time, std::vector<double> external_work) {
+  if (particles.size() != particles_.size() || external_work.size() != external_work_.size())
+    throw InputError(fmt::format("MPM: a saved state of {} particles and {} bodies does not fit this problem's {} and {}",
+                                 particles.size(), external_work.size(), particles_.size(), external_work_.size()));
+  particles_ = std::move(particles);
+  time_ = time;
+  external_work_ = std::move(external_work);
+}
+
 void MPMSolver::step() {
   const bool first = settings_.update == UpdateScheme::usf || settings_.update == UpdateScheme::usavg;
   const bool again = settings_.update == UpdateScheme::szs || settings_.update == UpdateScheme::usavg;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mfree/core/stage_timer.hpp"
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/staged_folder.hpp"
 
 namespace mfree {
@@ -31,6 +32,20 @@ int in_staged_folder(std::filesystem::path& folder, Run&& run) {
   folder = target;
   std::cout << fmt::format("results in {}\n", target.string());
   return code;
+}
+
+/// The same for a run with checkpoints: they are removed when the run ends, with its results
+/// or with an error (a restart would meet the same error again); only a killed run keeps them.
+template <class Run>
+int in_staged_folder(std::filesystem::path& folder, const Checkpoints& checkpoints, Run&& run) {
+  try {
+    const int code = in_staged_folder(folder, run);
+    checkpoints.remove();
+    return code;
+  } catch (...) {
+    checkpoints.remove();
+    throw;
+  }
 }
 
 }  // namespace mfree

@@ -8,6 +8,7 @@
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
 namespace mfree {
@@ -16,8 +17,9 @@ namespace mfree {
 /// difference from small-strain theory at every step), a load-deflection plot, VTK frames.
 int run_static(const ElasticityScene& scene);
 
-/// One dynamic run: progress, errors at [dynamics] error_times, energy.csv, VTK frames.
-int run_dynamics(const ElasticityScene& scene);
+/// One dynamic run: progress, errors at [dynamics] error_times, energy.csv, VTK frames;
+/// checkpoints (io/checkpoint.hpp) when given.
+int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints = nullptr);
 
 /// Refinement study of a vibration scene over [study] spacings and time_schemes: errors at
 /// every error time, observed rates, run times, CSV and PNG plots.
@@ -33,7 +35,8 @@ struct DynamicRun {
 };
 
 /// The run behind run_dynamics and converge_dynamics (verbose: progress and VTK frames).
-DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose);
+DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose,
+                    const Checkpoints* checkpoints = nullptr);
 
 /// max_t |E(t) - E(0)| / max_t (kinetic + strain): the energy error of a run; NaN when no
 /// energy was recorded (energy_every = 0).

@@ -77,6 +77,29 @@ struct DynamicsResult {
   Eigen::VectorXd d, v;                   ///< at end_time
 };
 
+/// The integrator's state after a step: all that the next step starts from, so that a run
+/// saved here and resumed gives the steps an uninterrupted run gives, bit for bit.
+struct DynamicsProgress {
+  int step = 0;
+  Eigen::VectorXd d, v, a;      ///< coefficients of displacement, velocity, acceleration
+  Eigen::VectorXd v_half;       ///< central differences: v_{n+1/2}
+  Eigen::VectorXd g;            ///< f_ext - f_c at d (the work term's), when energy is recorded
+  double work = 0.0;            ///< work of f_ext - f_c so far
+  std::vector<EnergyRecord> energy;
+  long newton_iterations = 0;
+  long factorisations = 0;
+  /// Newmark: the values of the effective tangent factorised last (modified Newton keeps it
+  /// across steps), on the pattern of TotalLagrangian::zero_matrix().
+  Eigen::VectorXd tangent;
+};
+
+/// Saving and resuming a run (a checkpoint's part that the integrator owns).
+struct DynamicsCheckpoints {
+  int every = 0;                                          ///< steps between saves (0: none)
+  std::function<void(const DynamicsProgress&)> save;      ///< after every `every`-th step but the last
+  const DynamicsProgress* resume = nullptr;               ///< continue from this state
+};
+
 /// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0.
 Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
                                  const std::function<Vec2(const Vec2&)>& field);
@@ -84,10 +107,13 @@ Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
 /// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).
 double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d);
 
-/// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0).
-/// Stages "residual", "assembly", "factorisation", "solve", "energy" are timed on timer.
+/// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0),
+/// the steps a resumed run takes only. Stages "residual", "assembly", "factorisation",
+/// "solve", "energy" are timed on timer. A resumed state must come from the same model,
+/// (d0, v0) and settings (the step and the masses are derived from them again).
 DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
-                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {});
+                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {},
+                                  const DynamicsCheckpoints& checkpoints = {});
 
 }  // namespace mfree

@@ -10,7 +10,8 @@
 //                 lattice_refinement, consistency (symmetric | vci | none; vci is of the
 //                 RK order: quadratic RK gets quadratic VCI), gauss_points
 //   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
-//                 youngs_modulus, poisson_ratio, density (dynamics)
+//                 youngs_modulus, poisson_ratio (at most 0.49 in plane strain: max_poisson_ratio,
+//                 galerkin/total_lagrangian.hpp; allow_locking = true lifts that), density (dynamics)
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy] (per unit volume; numbers or formulas in X, Y, t),
 //                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
@@ -26,7 +27,7 @@
 //                 value = "exact", [vx, vy] (numbers or formulas in X, Y, t), or for pressure
 //                 p (a number or formula, positive into the body). A selector that selects
 //                 nothing, and two conditions on one part of the boundary, are errors.
-//   [nitsche]     beta (default 100: penalty beta E / h)
+//   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus)
 //   [solver]      kind (auto | cholmod | umfpack)
 //   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance
 //                 (on |R| / |R_0|), absolute_tolerance (on |R|; default tolerance times the
@@ -39,7 +40,8 @@
 //                 initial_displacement, initial_velocity = [fx, fy] (formulas in X, Y; default 0)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, error, weights),
 //                 vtk, probe = [x, y] (u^h there at every load or time step),
-//                 eigenvalues = n (the n smallest eigenvalues of the free stiffness; linear statics)
+//                 eigenvalues = n (the n smallest eigenvalues of the free stiffness; linear statics),
+//                 checkpoint_every = n (dynamics: steps between checkpoints, io/checkpoint.hpp)
 //   [study]       for `mfree converge`: spacings, clouds, orders, schemes, betas, probe, reference,
 //                 quadratic_factor, quadratic_gauss_points; time_schemes, time_steps,
 //                 time_step_check (dynamics)
@@ -82,6 +84,7 @@ struct OutputSettings {
   bool vtk = true;
   std::optional<Vec2> probe;
   int eigenvalues = 0;  ///< smallest free-stiffness eigenvalues to report (linear statics; 0: none)
+  int checkpoint_every = 0;  ///< dynamics: steps between checkpoints (io/checkpoint.hpp; 0: none)
   [[nodiscard]] bool wants(const std::string& f) const { return fields.count(f) > 0; }
 };
 

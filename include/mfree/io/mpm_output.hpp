@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/materials/material.hpp"
 #include "mfree/core/exact_motion.hpp"
 #include "mfree/mpm/mpm_solver.hpp"
@@ -66,6 +67,10 @@ class MPMFrames {
   void write(const MPMSolver& solver);
 
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
+  /// Checkpoints: the series written so far ("frames.time", "frames.grid"), and continuing
+  /// them (the files themselves come back with the checkpoint's output folder).
+  void save(CheckpointState& state) const;
+  void restore(const CheckpointState& state);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
   [[nodiscard]] std::filesystem::path grid_series() const { return folder_ / "grid.pvd"; }
 

@@ -30,8 +30,13 @@
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, body, error, grid), vtk,
-//                 particles_csv (true: particles.csv of the end state, mpm_output.hpp)
-//   [study]       for `mfree converge`: cells, methods, updates, particles_per_cell
+//                 particles_csv (true: particles.csv of the end state, mpm_output.hpp),
+//                 checkpoint_every (steps between checkpoints, io/checkpoint.hpp; 0: none; not in a study),
+//                 probe = [X, Y] (a material point inside a body: u^h there every step,
+//                 mpm/particle_probe.hpp; a study without [exact] compares it between grids)
+//   [study]       for `mfree converge`: cells, methods, updates, particles_per_cell; without
+//                 [exact], the probe's displacement at end_time per grid, its change, observed
+//                 rate and extrapolated value
 //
 // Every key is type- and range-checked; unknown keys are errors (scene_reader.hpp).
 
@@ -71,6 +76,8 @@ struct MPMScene {
   MPMFrameFields fields;
   bool vtk = true;
   bool particles_csv = false;  ///< particles.csv at the end
+  int checkpoint_every = 0;    ///< steps between checkpoints (0: none)
+  std::optional<Vec2> probe;   ///< reference position X of the probe
   std::optional<MPMStudy> study;
 };
 

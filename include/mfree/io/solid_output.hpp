@@ -18,6 +18,7 @@
 
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
 namespace mfree {
@@ -29,6 +30,9 @@ class SolidFrames {
   /// Writes frame number frames() at `time`; v may be null (statics).
   void write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v);
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
+  /// Checkpoints: the series written so far ("frames.time"), and continuing it.
+  void save(CheckpointState& state) const;
+  void restore(const CheckpointState& state);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
 
  private:

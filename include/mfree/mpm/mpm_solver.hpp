@@ -123,6 +123,13 @@ class MPMSolver {
   [[nodiscard]] double mass_defect() const { return mass_defect_; }
   [[nodiscard]] MPMEnergy energy() const;
   [[nodiscard]] int bodies() const { return bodies_; }  ///< bodies the particles belong to
+  /// Work of the body forces per body so far [J per unit thickness] (BodyEnergy::external).
+  [[nodiscard]] const std::vector<double>& external_work() const { return external_work_; }
+  /// Continues from a saved state of this problem and these settings (a checkpoint): a step
+  /// starts from the particles, the time and the work of the body forces alone; the grid
+  /// and the weights are recomputed in it. InputError when the particles or bodies differ in
+  /// number from this solver's.
+  void resume(Particles particles, double time, std::vector<double> external_work);
   [[nodiscard]] StageTimer& timer() { return timer_; }
 
  private:
