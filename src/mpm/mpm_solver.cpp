@@ -242,6 +242,12 @@ void MPMSolver::update_stress(double dt) {
       const Mat2 dF = exp_series(L, dt, kmax);
       const Vec2 f0 = dF * P.deformation[p].col(0), f1 = dF * P.deformation[p].col(1);
       const double J = f0.x() * f1.y() - f0.y() * f1.x();
+      if (!std::isfinite(J))  // the grid velocities it comes from are not finite: the step before blew up
+        throw NumericalError(fmt::format(
+            "MPM: particle {} (started at ({:.6g}, {:.6g})) has a non-finite velocity gradient at t = {:.6g} s: the "
+            "motion blew up (velocities without bound after an unstable step or a nearly inverted neighbour); use a "
+            "smaller time step, a finer grid or another method",
+            p, P.reference[p].x(), P.reference[p].y(), time_));
       if (!(J > 0.0))
         throw NumericalError(fmt::format(
             "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has J = det F = {:.4g} <= 0 at t = {:.6g} s: "
@@ -252,6 +258,12 @@ void MPMSolver::update_stress(double dt) {
       F.col(1) = f1;
       P.volume[p] = J * P.volume0[p];                      // eq. (36)
       P.stress[p] = cauchy_stress(materials[material[p]].law, F);  // eqs. (37) and (41)
+      if (!P.stress[p].allFinite())
+        throw NumericalError(fmt::format(
+            "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has a non-finite stress at J = det F = "
+            "{:.4g}, t = {:.6g} s: the material is (nearly) inverted; use a smaller time step, a finer grid or another "
+            "method",
+            p, P.position[p].x(), P.position[p].y(), P.reference[p].x(), P.reference[p].y(), J, time_));
     }
   });
 }

@@ -109,3 +109,11 @@ TEST_CASE("the variant Material dispatches, and its reference tangent is the lin
   CHECK(std::abs(sigma(0, 1) - sigma(1, 0)) <= 1e-12 * sigma.norm());
   CHECK_THROWS_WITH(make_material("neo_hookean", -1.0, 0.3), Catch::Contains("Young's modulus must be positive"));
 }
+
+TEST_CASE("the P-wave modulus is lambda + 2 mu in plane strain and E / (1 - nu^2) in plane stress", "[materials]") {
+  const double e = 3e7, nu = 0.4999;
+  const double lambda = e * nu / ((1 + nu) * (1 - 2 * nu)), mu = e / (2 * (1 + nu));
+  for (const char* model : {"plane_strain", "neo_hookean", "st_venant_kirchhoff"})
+    CHECK(p_wave_modulus(make_material(model, e, nu)) == Approx(lambda + 2 * mu).epsilon(1e-12));
+  CHECK(p_wave_modulus(make_material("plane_stress", e, nu)) == Approx(e / (1 - nu * nu)).epsilon(1e-12));
+}

@@ -168,3 +168,28 @@ TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]
   s.time_step = 1e-5;
   CHECK(MPMSolver(block_problem(), s).time_step() <= 1e-5);
 }
+
+TEST_CASE("a blown-up motion and an inverted particle stop the run with what happened, never a NaN position", "[mpm]") {
+  const double h = 0.125;
+  const Box block{Vec2(0.25, 0.25), Vec2(0.75, 0.75)};
+  const Method bspline{MPMMethod::bspline, 2};
+  // One particle's velocity is infinite (as after an unstable step): the grid velocities it
+  // reaches are not finite, and the stress update names the blow-up, not a NaN J.
+  Particles particles = fill_box(block, h, 2, 1000.0, false);
+  particles.velocity[5] = Vec2(std::numeric_limits<double>::infinity(), 0.0);
+  MPMSolver blown(block_problem(), settings_for(bspline, UpdateScheme::usf, 8), std::move(particles));
+  CHECK_THROWS_WITH(blown.step(), Catch::Contains("has a non-finite velocity gradient") && !Catch::Contains("nan"));
+  // The two halves of the block rushing into each other, with the one-term update
+  // dF = I + dt L: dt L_xx < -1 between them inverts the material, and J <= 0 is named with a
+  // finite position.
+  particles = fill_box(block, h, 2, 1000.0, false);
+  for (Index p = 0; p < particles.size(); ++p)
+    particles.velocity[p] = Vec2(particles.position[p].x() < 0.5 ? 3e3 : -3e3, 0.0);
+  MPMSettings fast = settings_for(bspline, UpdateScheme::usf, 8);
+  fast.deformation_terms = 1;
+  fast.allow_unstable_time_step = true;
+  fast.time_step = 1e-4;
+  MPMSolver inverted(block_problem(), fast, std::move(particles));
+  CHECK_THROWS_WITH(inverted.step(), Catch::Contains("<= 0 at t = ") && Catch::Contains("the material is inverted") &&
+                                         !Catch::Contains("nan"));
+}
