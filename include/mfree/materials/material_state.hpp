@@ -1,0 +1,41 @@
+#pragma once
+// The history of one material point, and what an update of a law with history returns.
+//
+// A law with history maps (F_{n+1}, state_n) -> (P_{n+1}, A = dP/dF, state_{n+1}). The state is
+// a small fixed-size value (no heap), owned by the solver in its per-point arrays (the
+// Galerkin solver's quadrature points, the MPM's particles): the solver keeps state_n while it
+// iterates on F_{n+1} and commits state_{n+1} once the step is accepted (a Newton cut-back
+// simply keeps state_n). The elastic laws have no history and leave it as it is.
+//
+// Plane strain: the plastic strain is a symmetric 3 x 3 tensor with the in-plane block and the
+// out-of-plane component (xz, yz are zero). Finite-strain laws use the Lagrangian logarithmic
+// strain E = 1/2 ln C (materials/plasticity.hpp); small-strain laws the small strain.
+
+#include "mfree/core/types.hpp"
+#include "mfree/materials/finite_strain.hpp"
+
+namespace mfree {
+
+/// How a law with history measures strain: the small strain eps = sym(F) - I (P = sigma, not
+/// objective), or the Lagrangian logarithmic strain E = 1/2 ln C, C = F^T F (objective, exact
+/// for large rotations and strains; plasticity.hpp).
+enum class Kinematics { small_strain, logarithmic };
+
+struct MaterialState {
+  Mat2 plastic_strain = Mat2::Zero();  ///< E_p, in-plane block (symmetric)
+  double plastic_strain_zz = 0.0;      ///< E_p,zz: the out-of-plane plastic strain
+  double alpha = 0.0;                  ///< equivalent plastic strain sum sqrt(2/3) |dE_p| (J2), or sum |dE_p|
+  double dissipation = 0.0;            ///< plastic work sum T : dE_p per unit reference volume [J/m^3]
+};
+
+/// One update of a law: the stress of F_{n+1}, the state after it and, when asked, the
+/// consistent (algorithmic) tangent of that stress with respect to F_{n+1}.
+struct MaterialUpdate {
+  Mat2 stress = Mat2::Zero();  ///< first Piola–Kirchhoff P (small strain: sigma)
+  double stress_zz = 0.0;      ///< out-of-plane Cauchy stress sigma_zz (plane strain)
+  double energy = 0.0;         ///< stored (elastic) energy per unit reference volume [J/m^3]
+  MaterialState state;         ///< the state after the update (commit it when the step is accepted)
+  Tangent tangent = Tangent::Zero();  ///< dP/dF, A(2 i + J, 2 k + L); only when asked for
+};
+
+}  // namespace mfree

@@ -1,0 +1,242 @@
+// Plastic laws (J2, Drucker–Prager): the consistent tangent against central differences of
+// the stress update on elastic, plastic and unloading steps; objectivity under superposed
+// rotations; the textbook radial return in closed form (uniaxial strain, loading through
+// yield and unloading) at small strain and in the logarithmic strain space; the branches of
+// the Drucker–Prager return (cone, cutoff, apex) and the plastic work.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "mfree/core/error.hpp"
+#include "mfree/materials/drucker_prager.hpp"
+#include "mfree/materials/j2_plasticity.hpp"
+
+using namespace mfree;
+
+namespace {
+
+const Lame steel = lame_constants(200e9, 0.3);
+
+J2Plasticity j2(Kinematics k, double h_iso, double h_kin, double saturation) {
+  J2Plasticity m;
+  m.lame = steel;
+  m.yield_stress = 250e6;
+  m.isotropic_modulus = h_iso;
+  m.kinematic_modulus = h_kin;
+  if (saturation > 0.0) {
+    m.saturation_stress = saturation;
+    m.saturation_rate = 40.0;
+  }
+  m.kinematics = k;
+  m.validate();
+  return m;
+}
+
+DruckerPrager sand(Kinematics k, double cohesion, double cutoff) {
+  DruckerPrager m;
+  m.lame = lame_constants(50e6, 0.3);
+  m.friction_angle = 30.0 * std::numbers::pi / 180.0;
+  m.dilatancy_angle = 5.0 * std::numbers::pi / 180.0;
+  m.cohesion = cohesion;
+  m.tension_cutoff = cutoff;
+  m.kinematics = k;
+  m.validate();
+  return m;
+}
+
+/// Largest |A - A_fd| / |A| with A_fd by central differences of P, step 1e-7 |F|.
+template <class Law>
+double tangent_error(const Law& law, const Mat2& f, const MaterialState& state) {
+  const MaterialUpdate u = law.update(f, state, true);
+  Tangent fd;
+  const double h = 1e-7;
+  for (int k = 0; k < 4; ++k) {
+    Mat2 plus = f, minus = f;
+    plus(k / 2, k % 2) += h;
+    minus(k / 2, k % 2) -= h;
+    const Mat2 dp = (law.update(plus, state, false).stress - law.update(minus, state, false).stress) / (2 * h);
+    for (int r = 0; r < 4; ++r) fd(r, k) = dp(r / 2, r % 2);
+  }
+  return (u.tangent - fd).norm() / u.tangent.norm();
+}
+
+Mat2 rotation(double angle) {
+  Mat2 q;
+  q << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  return q;
+}
+
+/// A general plane deformation: stretch and shear, rotated by `angle` (small-strain laws are
+/// not objective: they take it unrotated).
+Mat2 deformation(double stretch, double shear, double angle = 0.0) {
+  Mat2 f;
+  f << 1.0 + stretch, shear, 0.3 * shear, 1.0 - 0.4 * stretch;
+  return rotation(angle) * f;
+}
+
+}  // namespace
+
+TEST_CASE("J2: the consistent tangent matches central differences on elastic, plastic and unloading steps", "[materials]") {
+  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic})
+    for (const J2Plasticity& law : {j2(k, 0.0, 0.0, 0.0), j2(k, 2e9, 0.0, 0.0), j2(k, 1e9, 3e9, 0.0), j2(k, 1e9, 0.0, 400e6)}) {
+      INFO("kinematics " << static_cast<int>(k) << ", H_iso " << law.isotropic_modulus << ", H_kin "
+                         << law.kinematic_modulus << ", saturation " << law.saturation_stress);
+      const double angle = k == Kinematics::logarithmic ? 0.4 : 0.0;
+      const auto deformation = [&](double stretch, double shear) { return ::deformation(stretch, shear, angle); };
+      const MaterialState virgin;
+      // Elastic: well below yield (strain 2e-4 against a yield strain of about 1.6e-3).
+      const Mat2 elastic = deformation(2e-4, 1e-4);
+      CHECK(law.update(elastic, virgin, false).state.alpha == 0.0);
+      CHECK(tangent_error(law, elastic, virgin) < 1e-6);
+      // Plastic: through yield, from the virgin state.
+      const Mat2 loaded = deformation(0.02, 0.01);
+      const MaterialUpdate plastic = law.update(loaded, virgin, false);
+      CHECK(plastic.state.alpha > 0.0);
+      CHECK(tangent_error(law, loaded, virgin) < 1e-6);
+      // Unloading: from the plastic state back towards F = I (elastic), and a second plastic
+      // step further on from it.
+      const Mat2 unloaded = deformation(0.019, 0.0095);
+      CHECK(law.update(unloaded, plastic.state, false).state.alpha == plastic.state.alpha);
+      CHECK(tangent_error(law, unloaded, plastic.state) < 1e-6);
+      CHECK(tangent_error(law, deformation(0.03, 0.02), plastic.state) < 1e-6);
+    }
+}
+
+TEST_CASE("J2 and Drucker–Prager in the logarithmic space are objective: P(QF) = Q P(F), the state unchanged", "[materials]") {
+  const J2Plasticity metal = j2(Kinematics::logarithmic, 1e9, 3e9, 400e6);
+  const DruckerPrager soil = sand(Kinematics::logarithmic, 20e3, 1e300);
+  const Mat2 f = deformation(0.05, 0.04, 0.4);
+  for (const double angle : {0.3, 1.7, -2.9}) {
+    const Mat2 q = rotation(angle);
+    const MaterialUpdate a = metal.update(f, {}, false), b = metal.update(q * f, {}, false);
+    CHECK((b.stress - q * a.stress).norm() <= 1e-12 * a.stress.norm());
+    CHECK((b.state.plastic_strain - a.state.plastic_strain).norm() <= 1e-12 * a.state.plastic_strain.norm());
+    CHECK(b.state.alpha == Approx(a.state.alpha).epsilon(1e-12));
+    const MaterialUpdate c = soil.update(f, {}, false), d = soil.update(q * f, {}, false);
+    CHECK((d.stress - q * c.stress).norm() <= 1e-12 * c.stress.norm());
+    CHECK(d.state.alpha == Approx(c.state.alpha).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("J2 is the textbook radial return: uniaxial strain through yield and back, in closed form", "[materials]") {
+  // Uniaxial strain e (the other strains zero): dev e = e (2, -1, -1) / 3, n = (2, -1, -1) / sqrt(6),
+  // |xi^tr| = 2 mu sqrt(2/3) e. For monotonic loading from the virgin state with linear
+  // hardening, dgamma = (2 mu sqrt(2/3) e - sqrt(2/3) sigma_y) / (2 mu + 2/3 (H_iso + H_kin)),
+  // T_xx = lambda e + 2 mu (e - 2 dgamma / sqrt(6)), T_yy = T_zz = lambda e + 2 mu dgamma / sqrt(6).
+  const double h_iso = 2e9, h_kin = 3e9, mu = steel.mu, lambda = steel.lambda;
+  const double sy = 250e6, s23 = std::sqrt(2.0 / 3.0), s6 = std::sqrt(6.0);
+  const auto closed = [&](double e) {
+    const double dgamma = std::max(0.0, (2 * mu * s23 * e - s23 * sy) / (2 * mu + 2.0 / 3.0 * (h_iso + h_kin)));
+    return std::pair{lambda * e + 2 * mu * (e - 2 * dgamma / s6), dgamma};
+  };
+  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic}) {
+    const J2Plasticity law = j2(k, h_iso, h_kin, 0.0);
+    // The strain of each kinematics: e = F_xx - 1, or ln F_xx; P_xx = T_xx, or T_xx / F_xx.
+    const auto stretch = [&](double e) { return k == Kinematics::small_strain ? 1.0 + e : std::exp(e); };
+    const auto first_piola = [&](double t, double e) { return k == Kinematics::small_strain ? t : t / stretch(e); };
+    for (const double e : {0.5e-3, 4e-3, 0.02}) {
+      const MaterialUpdate one = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(e), 1.0).toDenseMatrix(), {}, false);
+      // In 200 increments: the same (the path is radial).
+      MaterialState s;
+      MaterialUpdate many;
+      for (int n = 1; n <= 200; ++n) {
+        many = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(e * n / 200), 1.0).toDenseMatrix(), s, false);
+        s = many.state;
+      }
+      const auto [txx, dgamma] = closed(e);
+      INFO("kinematics " << static_cast<int>(k) << ", e = " << e);
+      CHECK(one.stress(0, 0) == Approx(first_piola(txx, e)).epsilon(1e-12));
+      CHECK(many.stress(0, 0) == Approx(first_piola(txx, e)).epsilon(1e-10));
+      CHECK(one.state.plastic_strain(0, 0) == Approx(2 * dgamma / s6).epsilon(1e-12).margin(1e-300));
+      CHECK(one.state.alpha == Approx(s23 * dgamma).epsilon(1e-12).margin(1e-300));
+      CHECK(one.state.plastic_strain_zz == Approx(-dgamma / s6).epsilon(1e-12).margin(1e-300));
+    }
+    // Unloading from e = 0.004 to 0.002 is elastic (reverse yielding would start below
+    // e = 0.72e-3): the plastic strain stays, T_xx = lambda e + 2 mu (e - e_p,xx).
+    const MaterialUpdate loaded = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(0.004), 1.0).toDenseMatrix(), {}, false);
+    const MaterialUpdate back =
+        law.update(Eigen::DiagonalMatrix<double, 2>(stretch(0.002), 1.0).toDenseMatrix(), loaded.state, false);
+    CHECK(back.state.alpha == loaded.state.alpha);
+    const double unloaded = lambda * 0.002 + 2 * mu * (0.002 - loaded.state.plastic_strain(0, 0));
+    CHECK(back.stress(0, 0) == Approx(first_piola(unloaded, 0.002)).epsilon(1e-12));
+    // The plastic work: T : dE_p summed; one radial step dissipates T_{n+1} : dE_p.
+    CHECK(loaded.state.dissipation > 0.0);
+  }
+}
+
+TEST_CASE("J2 in the logarithmic space tends to the small-strain return as the strains shrink", "[materials]") {
+  const J2Plasticity small = j2(Kinematics::small_strain, 1e9, 3e9, 400e6);
+  J2Plasticity finite = small;
+  finite.kinematics = Kinematics::logarithmic;
+  double previous = 1.0;
+  for (const double scale : {1e-2, 1e-3, 1e-4}) {
+    // A plastic step: the yield stress scaled with the strain keeps it plastic.
+    J2Plasticity a = small, b = finite;
+    a.yield_stress = b.yield_stress = 0.3 * scale * 2 * steel.mu;
+    a.saturation_stress = b.saturation_stress = 0.5 * scale * 2 * steel.mu;
+    Mat2 f;
+    f << 1.0 + scale, 0.7 * scale, -0.2 * scale, 1.0 - 0.5 * scale;
+    const MaterialUpdate u = a.update(f, {}, false), v = b.update(f, {}, false);
+    CHECK(u.state.alpha > 0.0);
+    const double difference = (u.stress - v.stress).norm() / u.stress.norm();
+    CHECK(difference < 5 * scale);  // first order in the strain
+    CHECK(difference < previous);
+    previous = difference;
+  }
+}
+
+TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each; associative and not", "[materials]") {
+  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic}) {
+    const DruckerPrager cohesive = sand(k, 20e3, 1e300);  // cutoff at the apex
+    const DruckerPrager cut = sand(k, 20e3, 5e3);          // cutoff below the apex
+    const double eta = cohesive.eta(), xi = cohesive.xi();
+    const auto invariants = [&](const MaterialUpdate& u, const Mat2& f) {
+      // p and sqrt(J2) of the Cauchy stress (with sigma_zz), for the checks below.
+      const Mat2 sigma = k == Kinematics::small_strain ? u.stress : Mat2(u.stress * f.transpose() / f.determinant());
+      const double p = (sigma.trace() + u.stress_zz) / 3.0;
+      const double sxx = sigma(0, 0) - p, syy = sigma(1, 1) - p, szz = u.stress_zz - p;
+      return std::pair{p, std::sqrt(0.5 * (sxx * sxx + syy * syy + szz * szz) + sigma(0, 1) * sigma(0, 1))};
+    };
+    INFO("kinematics " << static_cast<int>(k));
+    // Shear under confinement: the cone; sqrt(J2) + eta p = xi c after the return.
+    Mat2 shear;
+    shear << 0.998, 0.02, 0.0, 0.997;
+    const MaterialUpdate cone = cohesive.update(shear, {}, true);
+    CHECK(cone.state.alpha > 0.0);
+    if (k == Kinematics::small_strain) {
+      const auto [p, q] = invariants(cone, shear);
+      CHECK(q + eta * p == Approx(xi * 20e3).epsilon(1e-10));
+    }
+    CHECK(tangent_error(cohesive, shear, {}) < 1e-6);
+    // Pure expansion: past the apex, the stress is the apex, p = xi c / eta, s = 0.
+    const Mat2 expansion = Eigen::DiagonalMatrix<double, 2>(1.01, 1.01).toDenseMatrix();
+    const MaterialUpdate apex = cohesive.update(expansion, {}, false);
+    if (k == Kinematics::small_strain) {
+      const auto [p, q] = invariants(apex, expansion);
+      CHECK(p == Approx(xi * 20e3 / eta).epsilon(1e-12));
+      CHECK(q <= 1e-9 * p);
+    }
+    // With the cutoff below the apex: p = p_t, and the shear kept when inside the cone there.
+    const Mat2 stretch = Eigen::DiagonalMatrix<double, 2>(1.001, 1.0).toDenseMatrix();
+    const MaterialUpdate cutoff = cut.update(stretch, {}, true);
+    if (k == Kinematics::small_strain) {
+      const auto [p, q] = invariants(cutoff, stretch);
+      CHECK(p == Approx(5e3).epsilon(1e-12));
+      CHECK(q + eta * p <= xi * 20e3 * (1 + 1e-12));
+    }
+    CHECK(tangent_error(cut, stretch, {}) < 1e-6);
+    CHECK(tangent_error(cohesive, Mat2(Eigen::DiagonalMatrix<double, 2>(0.99, 0.995).toDenseMatrix()), {}) < 1e-6);
+    // Plastic work is never negative, and an associative law dilates more than psi = 5 degrees.
+    CHECK(cone.state.dissipation >= 0.0);
+    DruckerPrager associative = cohesive;
+    associative.dilatancy_angle = associative.friction_angle;
+    const MaterialUpdate dilating = associative.update(shear, {}, false);
+    const double dilation = dilating.state.plastic_strain.trace() + dilating.state.plastic_strain_zz;
+    const double less = cone.state.plastic_strain.trace() + cone.state.plastic_strain_zz;
+    CHECK(dilation > less);
+    CHECK(less > 0.0);
+  }
+  DruckerPrager bad = sand(Kinematics::small_strain, 0.0, 1e300);
+  bad.dilatancy_angle = 0.7;
+  CHECK_THROWS_AS(bad.validate(), InputError);
+}
