@@ -56,9 +56,10 @@ double largest_momentum(const std::vector<MPMEnergy>& energy) {
   return m;
 }
 
-/// kinetic, strain, external_work, total (the columns of a study's mpm_energy.csv) ...
+/// kinetic, strain, dissipated, external_work, total (the columns of a study's
+/// mpm_energy.csv) ...
 std::string energy_columns(const BodyEnergy& e) {
-  return fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}", e.kinetic, e.strain, e.external, e.total());
+  return fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}", e.kinetic, e.strain, e.dissipated, e.external, e.total());
 }
 /// ... and the momentum, for every body of a run's energy.csv.
 std::string energy_and_momentum(const BodyEnergy& e) {
@@ -74,7 +75,7 @@ std::string energy_csv_rows(const std::string& prefix, const std::vector<MPMEner
 /// energy.csv of a run: time, the totals over every particle (the columns of mpm_energy.csv,
 /// then momentum_x, momentum_y), then the same per body, prefixed "NAME.".
 std::string energy_csv(const MPMProblem& problem, const std::vector<MPMEnergy>& energy) {
-  const auto columns = {"kinetic", "strain", "external_work", "total", "momentum_x", "momentum_y"};
+  const auto columns = {"kinetic", "strain", "dissipated", "external_work", "total", "momentum_x", "momentum_y"};
   std::string out = "time";
   for (const char* c : columns) out += fmt::format(",{}", c);
   for (const MPMBody& b : problem.bodies)
@@ -91,12 +92,12 @@ std::string energy_csv(const MPMProblem& problem, const std::vector<MPMEnergy>& 
 /// Per body (and in total) at the first and last record: kinetic, strain, work, momentum.
 void print_energy(const MPMProblem& problem, const std::vector<MPMEnergy>& energy) {
   const MPMEnergy &first = energy.front(), &last = energy.back();
-  std::cout << fmt::format("  {:<16} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}   (0: t = {:.4g} s, T: t = {:.4g} s)\n",
-                           "body", "kinetic(0)", "kinetic(T)", "strain(0)", "strain(T)", "work(T)", "|momentum(T)|",
-                           first.time, last.time);
+  std::cout << fmt::format("  {:<16} {:>11} {:>11} {:>11} {:>11} {:>12} {:>11} {:>11}   (0: t = {:.4g} s, T: t = {:.4g} s)\n",
+                           "body", "kinetic(0)", "kinetic(T)", "strain(0)", "strain(T)", "dissipated(T)", "work(T)",
+                           "|momentum(T)|", first.time, last.time);
   const auto row = [](const std::string& name, const BodyEnergy& a, const BodyEnergy& b) {
-    std::cout << fmt::format("  {:<16} {:11.4e} {:11.4e} {:11.4e} {:11.4e} {:11.4e} {:11.4e}\n", name, a.kinetic,
-                             b.kinetic, a.strain, b.strain, b.external, b.momentum.norm());
+    std::cout << fmt::format("  {:<16} {:11.4e} {:11.4e} {:11.4e} {:11.4e} {:12.4e} {:11.4e} {:11.4e}\n", name, a.kinetic,
+                             b.kinetic, a.strain, b.strain, b.dissipated, b.external, b.momentum.norm());
   };
   for (std::size_t k = 0; k < first.bodies.size(); ++k) row(problem.bodies[k].name, first.bodies[k], last.bodies[k]);
   if (first.bodies.size() > 1) row("total", first.sum, last.sum);
@@ -131,15 +132,15 @@ void save_energy(CheckpointState& state, const std::vector<MPMEnergy>& energy) {
   std::vector<double> flat;
   for (const MPMEnergy& e : energy) {
     flat.push_back(e.time);
-    for (const BodyEnergy* b : {&e.sum}) flat.insert(flat.end(), {b->kinetic, b->strain, b->external, b->momentum.x(), b->momentum.y()});
-    for (const BodyEnergy& b : e.bodies) flat.insert(flat.end(), {b.kinetic, b.strain, b.external, b.momentum.x(), b.momentum.y()});
+    for (const BodyEnergy* b : {&e.sum}) flat.insert(flat.end(), {b->kinetic, b->strain, b->dissipated, b->external, b->momentum.x(), b->momentum.y()});
+    for (const BodyEnergy& b : e.bodies) flat.insert(flat.end(), {b.kinetic, b.strain, b.dissipated, b.external, b.momentum.x(), b.momentum.y()});
   }
   state.put("energy", std::move(flat));
 }
 
 std::vector<MPMEnergy> restore_energy(const CheckpointState& state, std::size_t bodies) {
   const std::vector<double>& flat = state.get("energy");
-  const std::size_t record = 1 + 5 * (bodies + 1);
+  const std::size_t record = 1 + 6 * (bodies + 1);
   if (flat.size() % record != 0) throw InputError(fmt::format("checkpoint {}: energy records of another problem", state.source.string()));
   std::vector<MPMEnergy> out;
   for (std::size_t at = 0; at < flat.size();) {
@@ -149,9 +150,10 @@ std::vector<MPMEnergy> restore_energy(const CheckpointState& state, std::size_t 
       BodyEnergy b;
       b.kinetic = flat[at];
       b.strain = flat[at + 1];
-      b.external = flat[at + 2];
-      b.momentum = Vec2(flat[at + 3], flat[at + 4]);
-      at += 5;
+      b.dissipated = flat[at + 2];
+      b.external = flat[at + 3];
+      b.momentum = Vec2(flat[at + 4], flat[at + 5]);
+      at += 6;
       return b;
     };
     e.sum = next();
@@ -172,6 +174,19 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   s.put_values("particles.velocity", P.velocity);
   s.put_values("particles.deformation", P.deformation);
   s.put_values("particles.stress", P.stress);
+  s.put("particles.stress_zz", P.stress_zz);
+  std::vector<Mat2> plastic;
+  std::vector<double> plastic_zz, alpha, dissipation;
+  for (const MaterialState& m : P.state) {
+    plastic.push_back(m.plastic_strain);
+    plastic_zz.push_back(m.plastic_strain_zz);
+    alpha.push_back(m.alpha);
+    dissipation.push_back(m.dissipation);
+  }
+  s.put_values("particles.plastic_strain", plastic);
+  s.put("particles.plastic_strain_zz", std::move(plastic_zz));
+  s.put("particles.alpha", std::move(alpha));
+  s.put("particles.dissipation", std::move(dissipation));
   s.put_values("particles.half_size", P.half_size);
   s.put_ints("particles.body", P.body);
   s.put_ints("particles.material", P.material);
@@ -200,12 +215,19 @@ void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::
   P.velocity = s.values<Vec2>("particles.velocity");
   P.deformation = s.values<Mat2>("particles.deformation");
   P.stress = s.values<Mat2>("particles.stress");
+  P.stress_zz = s.get("particles.stress_zz");
+  const std::vector<Mat2> plastic = s.values<Mat2>("particles.plastic_strain");
+  const std::vector<double>& plastic_zz = s.get("particles.plastic_strain_zz", plastic.size());
+  const std::vector<double>& alpha = s.get("particles.alpha", plastic.size());
+  const std::vector<double>& dissipation = s.get("particles.dissipation", plastic.size());
+  for (std::size_t k = 0; k < plastic.size(); ++k) P.state.push_back({plastic[k], plastic_zz[k], alpha[k], dissipation[k]});
   P.half_size = s.values<Vec2>("particles.half_size");
   P.body = s.ints("particles.body");
   P.material = s.ints("particles.material");
   const std::size_t n = P.mass.size();
   for (const std::size_t size : {P.volume0.size(), P.volume.size(), P.reference.size(), P.position.size(),
-                                 P.velocity.size(), P.deformation.size(), P.stress.size(), P.body.size(), P.material.size()})
+                                 P.velocity.size(), P.deformation.size(), P.stress.size(), P.stress_zz.size(),
+                                 P.state.size(), P.body.size(), P.material.size()})
     if (size != n) throw InputError(fmt::format("checkpoint {}: particle arrays of unequal length", s.source.string()));
   solver.resume(std::move(P), s.scalar("time"), s.get("external_work"));
   run.energy = restore_energy(s, static_cast<std::size_t>(solver.bodies()));
@@ -235,7 +257,8 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   if (verbose) print_bodies(scene.problem, settings, solver.particles());
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
-                         scene.fields.von_mises || scene.fields.body || scene.fields.error || scene.fields.grid;
+                         scene.fields.von_mises || scene.fields.plastic_strain || scene.fields.body ||
+                         scene.fields.error || scene.fields.grid;
   const CheckpointState* resume = checkpoints ? checkpoints->resume() : nullptr;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
     frames.emplace(scene.folder, scene.fields, scene.exact ? &*scene.exact : nullptr, scene.problem.materials);
@@ -321,7 +344,7 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
     std::cout << fmt::format("  MLS reconstruction: grid mass differs from the particles' by up to {:.3e} (relative)\n",
                              run.max_mass_defect);
   if (!run.energy.empty()) {
-    std::cout << fmt::format("  energy: kinetic + strain - work of body forces drifts by {:.3e} of the largest "
+    std::cout << fmt::format("  energy: kinetic + strain + dissipated - work of body forces drifts by {:.3e} of the largest "
                              "kinetic + strain\n", energy_drift(run.energy));
     print_energy(scene.problem, run.energy);
     std::cout << fmt::format("  total momentum: largest |sum m_p v_p| {:.3e} kg m/s\n", largest_momentum(run.energy));
@@ -360,7 +383,8 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
     std::vector<RunSummary::Record> bodies;
     const MPMEnergy& last = run.energy.back();
     const auto record = [&](const BodyEnergy& e) -> RunSummary::Record {
-      return {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.external}, {"total", e.total()},
+      return {{"kinetic", e.kinetic}, {"strain", e.strain}, {"dissipated", e.dissipated}, {"external_work", e.external},
+              {"total", e.total()},
               {"momentum_x", e.momentum.x()}, {"momentum_y", e.momentum.y()}};
     };
     std::string names;
@@ -389,7 +413,7 @@ int converge_mpm(const MPMScene& scene) {
   std::string csv =
       "method,update,particles_per_cell,cells,spacing,particles,steps,time_step,seconds,time_fraction,time,"
       "displacement,velocity,grid_velocity,stress,mass_defect,energy_drift,probe_ux,probe_uy,status\n";
-  std::string energy_csv = "method,update,particles_per_cell,cells,time,kinetic,strain,external_work,total\n";
+  std::string energy_csv = "method,update,particles_per_cell,cells,time,kinetic,strain,dissipated,external_work,total\n";
   // (series, error time index) -> (h, errors) over the grids, for the rate table.
   std::map<std::string, std::vector<std::pair<double, std::vector<ParticleErrors>>>> series;
   // Without [exact]: (series) -> (h, u^h at the probe at end_time) over the grids.

@@ -146,6 +146,10 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
       boundary_rows_(boundary_offsets_, boundary_nodes_, nodes) {
   if (!(problem_.nitsche_beta > 0.0))
     throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
+  if (has_history(problem_.material))
+    throw InputError(fmt::format("total-Lagrangian solver: the {} law has history, which this solver does not carry "
+                                 "(it takes the elastic laws)",
+                                 name(problem_.material)));
   reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
   const bool linear = is_linear(problem_.material);
   traction_of_point_.assign(bq.size(), nullptr);

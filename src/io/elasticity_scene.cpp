@@ -128,6 +128,11 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("material");
     const bool allow_locking = t.boolean_or("allow_locking", false);
     const MaterialSection m = read_material_keys(t);
+    if (has_history(m.material))
+      t.error("model", fmt::format("'{}' (a law with history) runs in MPM scenes ([mpm]); the total-Lagrangian "
+                                   "solver takes the elastic laws (plane_stress, plane_strain, neo_hookean, "
+                                   "st_venant_kirchhoff)",
+                                   m.model));
     if (m.linear.model == PlaneModel::strain && m.linear.poisson_ratio > max_poisson_ratio && !allow_locking)
       t.error("poisson_ratio",
               fmt::format("{} is above {}, the largest Poisson's ratio of a plane-strain law this displacement "

@@ -87,14 +87,15 @@ MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const 
 void MPMFrames::write(const MPMSolver& solver) {
   const Particles& P = solver.particles();
   const double t = solver.time();
-  std::vector<double> u, v, sigma, vm, body, ue, se;
+  std::vector<double> u, v, sigma, vm, ep, body, ue, se;
   for (Index p = 0; p < P.size(); ++p) {
     const Vec2 up = P.position[p] - P.reference[p];
     const Mat2& s = P.stress[p];
     if (fields_.displacement) u.insert(u.end(), {up.x(), up.y()});
     if (fields_.velocity) v.insert(v.end(), {P.velocity[p].x(), P.velocity[p].y()});
     if (fields_.stress) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
-    if (fields_.von_mises) vm.push_back(von_mises(s, out_of_plane_stress(materials_[P.material[p]].law, P.deformation[p])));
+    if (fields_.von_mises) vm.push_back(von_mises(s, P.stress_zz[p]));
+    if (fields_.plastic_strain) ep.push_back(P.state[p].alpha);
     if (fields_.body) body.push_back(P.body[p]);
     if (fields_.error) {
       // Errors at the particle's reference position: the exact motion is Lagrangian.
@@ -109,6 +110,7 @@ void MPMFrames::write(const MPMSolver& solver) {
   if (fields_.velocity) fields.push_back({"velocity", 2, std::move(v)});
   if (fields_.stress) fields.push_back({"stress", 3, std::move(sigma)});
   if (fields_.von_mises) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (fields_.plastic_strain) fields.push_back({"plastic_strain", 1, std::move(ep)});
   if (fields_.body) fields.push_back({"body", 1, std::move(body)});
   if (fields_.error) {
     fields.push_back({"displacement_error", 2, std::move(ue)});

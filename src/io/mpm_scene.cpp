@@ -224,11 +224,13 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     const SceneTable t = root.table("output");
     out.folder = read_output_folder(t);
     if (t.has("fields") && !t.is_array_empty("fields"))
-      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "body", "error", "grid"})) {
+      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "body",
+                                                "error", "grid"})) {
         if (f == "displacement") out.fields.displacement = true;
         if (f == "velocity") out.fields.velocity = true;
         if (f == "stress") out.fields.stress = true;
         if (f == "von_mises") out.fields.von_mises = true;
+        if (f == "plastic_strain") out.fields.plastic_strain = true;
         if (f == "body") out.fields.body = true;
         if (f == "error") out.fields.error = true;
         if (f == "grid") out.fields.grid = true;

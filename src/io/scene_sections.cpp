@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <map>
+#include <numbers>
 #include <optional>
 
 #include "mfree/core/error.hpp"
+#include "mfree/io/read_choice.hpp"
 
 namespace mfree {
 
@@ -20,7 +22,31 @@ MaterialSection read_material_keys(const SceneTable& t) {
   if (!(m.linear.youngs_modulus > 0.0)) t.error("youngs_modulus", "must be positive");
   if (!(m.linear.poisson_ratio > -1.0 && m.linear.poisson_ratio < 0.5))
     t.error("poisson_ratio", "must lie strictly between -1 and 1/2");
-  m.material = make_material(m.model, m.linear.youngs_modulus, m.linear.poisson_ratio);
+  MaterialParameters p;
+  p.youngs_modulus = m.linear.youngs_modulus;
+  p.poisson_ratio = m.linear.poisson_ratio;
+  // The plastic models' constants; only they take these keys (finish() refuses them elsewhere).
+  const double degrees = std::numbers::pi / 180.0;
+  if (m.model == "j2" || m.model == "drucker_prager")
+    p.kinematics = read_choice_or(t, "kinematics", kinematics_names(), Kinematics::logarithmic);
+  if (m.model == "j2") {
+    p.yield_stress = t.number("yield_stress", 0.0, 1e300);
+    p.isotropic_modulus = t.number_or("isotropic_modulus", 0.0, 0.0, 1e300);
+    p.kinematic_modulus = t.number_or("kinematic_modulus", 0.0, 0.0, 1e300);
+    if (t.has("saturation_stress")) {
+      p.saturation_stress = t.number("saturation_stress", p.yield_stress, 1e300);
+      p.saturation_rate = t.number("saturation_rate", 0.0, 1e300);
+    }
+  }
+  if (m.model == "drucker_prager") {
+    p.friction_angle = t.number("friction_angle", 0.0, 89.9) * degrees;
+    p.dilatancy_angle = t.number_or("dilatancy_angle", 0.0, 0.0, 89.9) * degrees;
+    if (p.dilatancy_angle > p.friction_angle) t.error("dilatancy_angle", "must not exceed the friction angle");
+    p.cohesion = t.number_or("cohesion", 0.0, 0.0, 1e300);
+    if (t.has("tension_cutoff")) p.tension_cutoff = t.number("tension_cutoff", -1e300, 1e300);
+    if (p.friction_angle == 0.0 && !(p.cohesion > 0.0)) t.error("cohesion", "must be positive with a zero friction angle");
+  }
+  m.material = make_material(m.model, p);
   if (t.has("density")) {
     m.density = t.number("density", 0.0, 1e300);
     if (!(m.density > 0.0)) t.error("density", "must be positive");

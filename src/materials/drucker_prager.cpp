@@ -85,6 +85,10 @@ void DruckerPrager::validate() const {
   if (std::isnan(tension_cutoff)) throw InputError("Drucker–Prager: the tension cutoff is not a number");
 }
 
+double DruckerPrager::energy(const Mat2& f, const MaterialState& state) const {
+  return plastic::stored_energy(DPReturn{*this}, lame, kinematics, f, state);
+}
+
 MaterialUpdate DruckerPrager::update(const Mat2& f, const MaterialState& state, bool with_tangent) const {
   (void)checked_jacobian(f, "Drucker–Prager");
   return plastic::evaluate(DPReturn{*this}, lame, kinematics, f, state, with_tangent);

@@ -76,6 +76,10 @@ void J2Plasticity::validate() const {
                                  saturation_stress, yield_stress));
 }
 
+double J2Plasticity::energy(const Mat2& f, const MaterialState& state) const {
+  return plastic::stored_energy(J2Return{*this}, lame, kinematics, f, state);
+}
+
 MaterialUpdate J2Plasticity::update(const Mat2& f, const MaterialState& state, bool with_tangent) const {
   (void)checked_jacobian(f, "J2 plasticity");
   return plastic::evaluate(J2Return{*this}, lame, kinematics, f, state, with_tangent);

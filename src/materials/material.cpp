@@ -9,35 +9,110 @@
 
 namespace mfree {
 
-Mat2 cauchy_stress(const Material& m, const Mat2& f) {
-  const Mat2 p = stress(m, f);
-  if (is_linear(m)) return p;
-  return p * f.transpose() / f.determinant();
+namespace {
+
+/// Overloaded lambdas for std::visit: every law must have its case.
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+/// The update of an elastic law: no history.
+template <class Law>
+MaterialUpdate elastic_update(const Law& law, const Mat2& f, const MaterialState& state, bool with_tangent,
+                              double stress_zz) {
+  MaterialUpdate u;
+  u.stress = law.stress(f);
+  u.stress_zz = stress_zz;
+  u.state = state;
+  if (with_tangent) u.tangent = law.tangent(f);
+  return u;
 }
 
-double out_of_plane_stress(const Material& m, const Mat2& f) {
-  if (const auto* l = std::get_if<LinearElastic>(&m)) {
-    const Mat2 s = l->stress(f);
-    return l->out_of_plane_stress({s(0, 0), s(1, 1), s(0, 1)});
-  }
-  const double j = f.determinant();
-  if (const auto* n = std::get_if<NeoHookean>(&m)) return n->lame.lambda * std::log(j) / j;  // P_zz = lambda ln J
-  const auto& s = std::get<StVenantKirchhoff>(m);
-  const double tr_e = 0.5 * ((f.transpose() * f).trace() - 2.0);
-  return s.lame.lambda * tr_e / j;  // S_zz = lambda tr E, sigma_zz = S_zz / J
+}  // namespace
+
+MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& state, bool with_tangent) {
+  return std::visit(
+      Overloaded{
+          [&](const LinearElastic& l) {
+            const Mat2 s = l.stress(f);
+            return elastic_update(l, f, state, with_tangent, l.out_of_plane_stress({s(0, 0), s(1, 1), s(0, 1)}));
+          },
+          [&](const NeoHookean& n) {
+            const double j = checked_jacobian(f, "Neo-Hookean");
+            return elastic_update(n, f, state, with_tangent, n.lame.lambda * std::log(j) / j);  // P_zz = lambda ln J
+          },
+          [&](const StVenantKirchhoff& s) {
+            const double tr_e = 0.5 * ((f.transpose() * f).trace() - 2.0);
+            // S_zz = lambda tr E, sigma_zz = S_zz / J
+            return elastic_update(s, f, state, with_tangent, s.lame.lambda * tr_e / checked_jacobian(f, "St. Venant–Kirchhoff"));
+          },
+          [&](const J2Plasticity& j) { return j.update(f, state, with_tangent); },
+          [&](const DruckerPrager& d) { return d.update(f, state, with_tangent); }},
+      m);
+}
+
+double energy(const Material& m, const Mat2& f, const MaterialState& state) {
+  return std::visit(Overloaded{[&](const LinearElastic& l) { return l.energy(f); },
+                               [&](const NeoHookean& n) { return n.energy(f); },
+                               [&](const StVenantKirchhoff& s) { return s.energy(f); },
+                               [&](const J2Plasticity& j) { return j.energy(f, state); },
+                               [&](const DruckerPrager& d) { return d.energy(f, state); }},
+                    m);
+}
+
+bool has_history(const Material& m) {
+  return std::visit(Overloaded{[](const LinearElastic&) { return false; }, [](const NeoHookean&) { return false; },
+                               [](const StVenantKirchhoff&) { return false; }, [](const J2Plasticity&) { return true; },
+                               [](const DruckerPrager&) { return true; }},
+                    m);
+}
+
+bool is_small_strain(const Material& m) {
+  return std::visit(
+      Overloaded{[](const LinearElastic&) { return true; }, [](const NeoHookean&) { return false; },
+                 [](const StVenantKirchhoff&) { return false; },
+                 [](const J2Plasticity& j) { return j.kinematics == Kinematics::small_strain; },
+                 [](const DruckerPrager& d) { return d.kinematics == Kinematics::small_strain; }},
+      m);
+}
+
+Mat2 cauchy_stress(const Material& m, const Mat2& p, const Mat2& f) {
+  return is_small_strain(m) ? p : Mat2(p * f.transpose() / f.determinant());
 }
 
 std::string_view name(const Material& m) {
-  if (const auto* l = std::get_if<LinearElastic>(&m)) return to_string(l->model);
-  return std::holds_alternative<NeoHookean>(m) ? "neo_hookean" : "st_venant_kirchhoff";
+  return std::visit(
+      Overloaded{[](const LinearElastic& l) { return to_string(l.model); },
+                 [](const NeoHookean&) { return std::string_view("neo_hookean"); },
+                 [](const StVenantKirchhoff&) { return std::string_view("st_venant_kirchhoff"); },
+                 [](const J2Plasticity&) { return std::string_view("j2"); },
+                 [](const DruckerPrager&) { return std::string_view("drucker_prager"); }},
+      m);
 }
 
 namespace {
 
-Material plane_stress(double e, double nu) { return LinearElastic{e, nu, PlaneModel::stress}; }
-Material plane_strain(double e, double nu) { return LinearElastic{e, nu, PlaneModel::strain}; }
-Material neo_hookean(double e, double nu) { return NeoHookean{lame_constants(e, nu)}; }
-Material st_venant_kirchhoff(double e, double nu) { return StVenantKirchhoff{lame_constants(e, nu)}; }
+Material plane_stress(const MaterialParameters& p) { return LinearElastic{p.youngs_modulus, p.poisson_ratio, PlaneModel::stress}; }
+Material plane_strain(const MaterialParameters& p) { return LinearElastic{p.youngs_modulus, p.poisson_ratio, PlaneModel::strain}; }
+Material neo_hookean(const MaterialParameters& p) { return NeoHookean{lame_constants(p.youngs_modulus, p.poisson_ratio)}; }
+Material st_venant_kirchhoff(const MaterialParameters& p) {
+  return StVenantKirchhoff{lame_constants(p.youngs_modulus, p.poisson_ratio)};
+}
+Material j2(const MaterialParameters& p) {
+  J2Plasticity m{lame_constants(p.youngs_modulus, p.poisson_ratio), p.yield_stress, p.isotropic_modulus,
+                 p.saturation_stress, p.saturation_rate, p.kinematic_modulus, p.kinematics};
+  m.validate();
+  return m;
+}
+Material drucker_prager(const MaterialParameters& p) {
+  DruckerPrager m{lame_constants(p.youngs_modulus, p.poisson_ratio), p.friction_angle, p.dilatancy_angle, p.cohesion,
+                  p.tension_cutoff, p.kinematics};
+  m.validate();
+  return m;
+}
 
 }  // namespace
 
@@ -45,16 +120,31 @@ const NameTable<MaterialMaker>& material_models() {
   static const NameTable<MaterialMaker> table{{"plane_stress", plane_stress},
                                               {"plane_strain", plane_strain},
                                               {"neo_hookean", neo_hookean},
-                                              {"st_venant_kirchhoff", st_venant_kirchhoff}};
+                                              {"st_venant_kirchhoff", st_venant_kirchhoff},
+                                              {"j2", j2},
+                                              {"drucker_prager", drucker_prager}};
   return table;
 }
 
-Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio) {
+const NameTable<Kinematics>& kinematics_names() {
+  static const NameTable<Kinematics> table{{"logarithmic", Kinematics::logarithmic},
+                                           {"small_strain", Kinematics::small_strain}};
+  return table;
+}
+
+Material make_material(std::string_view model, const MaterialParameters& parameters) {
   const std::vector<std::string> names = material_models().names();
   if (std::find(names.begin(), names.end(), model) == names.end())
     throw InputError(fmt::format("unknown material model '{}' (models: {})", model, fmt::join(names, ", ")));
-  LinearElastic{youngs_modulus, poisson_ratio, PlaneModel::strain}.validate();
-  return material_models().value(model)(youngs_modulus, poisson_ratio);
+  LinearElastic{parameters.youngs_modulus, parameters.poisson_ratio, PlaneModel::strain}.validate();
+  return material_models().value(model)(parameters);
+}
+
+Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio) {
+  MaterialParameters p;
+  p.youngs_modulus = youngs_modulus;
+  p.poisson_ratio = poisson_ratio;
+  return make_material(model, p);
 }
 
 double p_wave_modulus(const Material& m) { return tangent(m, Mat2::Identity())(0, 0); }

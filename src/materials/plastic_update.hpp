@@ -181,6 +181,13 @@ Result<S> update(const Law& law, const Lame& lame, Kinematics kinematics, const 
   return r;
 }
 
+/// The stored (elastic) energy 1/2 T : E_e after the update of F from the state n.
+template <class Law>
+double stored_energy(const Law& law, const Lame& lame, Kinematics kinematics, const Mat2& f, const MaterialState& n) {
+  const double fd[4] = {f(0, 0), f(0, 1), f(1, 0), f(1, 1)};
+  return update<double>(law, lame, kinematics, fd, n).energy;
+}
+
 /// The update of a law in double precision and, with_tangent, again with dual numbers for
 /// dP/dF (the same code: the consistent tangent).
 template <class Law>
@@ -194,7 +201,6 @@ MaterialUpdate evaluate(const Law& law, const Lame& lame, Kinematics kinematics,
   out.state.plastic_strain_zz = r.plastic.zz;
   out.state.alpha = r.alpha;
   out.state.dissipation = r.dissipation;
-  out.energy = r.energy;
   // sigma_zz = T_zz / J (logarithmic: S_zz = T_zz since C_zz = 1), T_zz (small strain).
   out.stress_zz = kinematics == Kinematics::logarithmic ? r.stress.zz / r.jacobian : r.stress.zz;
   if (with_tangent) {

@@ -90,12 +90,17 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   if (particles_.size() == 0) throw InputError("MPM: the problem has no particles");
   if (particles_.material.size() != particles_.mass.size() || particles_.body.size() != particles_.mass.size())
     throw InputError("MPM: every particle needs a body and a material");
+  particles_.state.resize(particles_.mass.size());  // virgin states where none were given
+  particles_.stress_zz.resize(particles_.mass.size(), 0.0);
   for (Index p = 0; p < particles_.size(); ++p) {
     if (particles_.material[p] < 0 || particles_.material[p] >= static_cast<int>(problem_.materials.size()))
       throw InputError(fmt::format("MPM: particle {} has material {}, not one of the problem's {}", p,
                                    particles_.material[p], problem_.materials.size()));
     bodies_ = std::max(bodies_, particles_.body[p] + 1);
-    particles_.stress[p] = cauchy_stress(problem_.materials[particles_.material[p]].law, particles_.deformation[p]);
+    const Material& law = problem_.materials[particles_.material[p]].law;
+    const MaterialUpdate u = update(law, particles_.deformation[p], particles_.state[p], false);
+    particles_.stress[p] = cauchy_stress(law, u.stress, particles_.deformation[p]);
+    particles_.stress_zz[p] = u.stress_zz;
   }
   external_work_.assign(static_cast<std::size_t>(bodies_), 0.0);
   walls_ = grid_.wall_mask(settings_.walls);
@@ -256,8 +261,14 @@ void MPMSolver::update_stress(double dt) {
       Mat2& F = P.deformation[p];
       F.col(0) = f0;
       F.col(1) = f1;
-      P.volume[p] = J * P.volume0[p];                      // eq. (36)
-      P.stress[p] = cauchy_stress(materials[material[p]].law, F);  // eqs. (37) and (41)
+      P.volume[p] = J * P.volume0[p];  // eq. (36)
+      // eqs. (37) and (41): the law's update from the particle's state, committed at once
+      // (an explicit step is always accepted).
+      const Material& law = materials[material[p]].law;
+      const MaterialUpdate u = update(law, F, P.state[p], false);
+      P.state[p] = u.state;
+      P.stress[p] = cauchy_stress(law, u.stress, F);
+      P.stress_zz[p] = u.stress_zz;
       if (!P.stress[p].allFinite())
         throw NumericalError(fmt::format(
             "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has a non-finite stress at J = det F = "
@@ -389,14 +400,17 @@ MPMEnergy MPMSolver::energy() const {
   for (Index p = 0; p < P.size(); ++p) {
     BodyEnergy& b = e.bodies[P.body[p]];
     const double kinetic = 0.5 * P.mass[p] * P.velocity[p].squaredNorm();
-    const double strain = P.volume0[p] * mfree::energy(problem_.materials[P.material[p]].law, P.deformation[p]);
+    const double strain = P.volume0[p] * mfree::energy(problem_.materials[P.material[p]].law, P.deformation[p], P.state[p]);
+    const double dissipated = P.volume0[p] * P.state[p].dissipation;
     b.kinetic += kinetic;
     b.strain += strain;
+    b.dissipated += dissipated;
     b.momentum += P.mass[p] * P.velocity[p];
     // The sum in particle order, as one body's would be: a single body's figures are the same
     // bits in both.
     e.sum.kinetic += kinetic;
     e.sum.strain += strain;
+    e.sum.dissipated += dissipated;
     e.sum.momentum += P.mass[p] * P.velocity[p];
   }
   for (int b = 0; b < bodies_; ++b) {

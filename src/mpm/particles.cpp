@@ -29,6 +29,8 @@ Particles fill_box(const Box& box, double h, int per_side, double density, bool 
   p.velocity.assign(n, Vec2::Zero());
   p.deformation.assign(n, Mat2::Identity());
   p.stress.assign(n, Mat2::Zero());
+  p.stress_zz.assign(n, 0.0);
+  p.state.assign(n, MaterialState{});
   if (with_domains) p.half_size.assign(n, Vec2(0.5 * d, 0.5 * d));
   p.body.assign(n, 0);
   p.material.assign(n, 0);

@@ -9,7 +9,8 @@
 //   displacement        x_p - X_p
 //   velocity            v_p
 //   stress              Cauchy stress sigma_p (xx, yy, xy)
-//   von_mises           of sigma_p with the particle's law's sigma_zz at F_p
+//   von_mises           of sigma_p with the particle's sigma_zz
+//   plastic_strain      the equivalent plastic strain of the particle's state (plastic laws)
 //   body                the index of the particle's body (0, 1, ... in the scene's order)
 //   displacement_error  (x_p - X_p) - u(X_p, t)    } against the exact motion ("error";
 //   stress_error        sigma_p - sigma(X_p, t)     } needs one)
@@ -49,6 +50,7 @@ struct MPMFrameFields {
   bool velocity = false;
   bool stress = false;
   bool von_mises = false;
+  bool plastic_strain = false;  ///< the equivalent plastic strain alpha (plastic laws)
   bool body = false;   ///< the body index per particle
   bool error = false;  ///< displacement_error and stress_error
   bool grid = false;   ///< grid_NNNN.vti with velocity and mass

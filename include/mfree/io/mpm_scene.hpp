@@ -15,7 +15,13 @@
 //                 bspline_mls), deformation_terms (kmax of the dF series, default 2)
 //   [constants]   names for the formulas (optional)
 //   [[material]]  name, and the keys of an elasticity scene's [material]; density required.
-//                 Every material must be used by a body.
+//                 Every material must be used by a body. Laws with history too (the
+//                 particles carry their state): model = "j2" with yield_stress,
+//                 isotropic_modulus, kinematic_modulus, saturation_stress and saturation_rate
+//                 (materials/j2_plasticity.hpp); model = "drucker_prager" with friction_angle,
+//                 dilatancy_angle (degrees), cohesion, tension_cutoff
+//                 (materials/drucker_prager.hpp); both with kinematics = "logarithmic"
+//                 (default) or "small_strain".
 //   [[body]]      name (distinct), material (a [[material]] name), shape:
 //                   rectangle: box = [[x0, y0], [x1, y1]]
 //                   circle:    centre = [x, y], radius
@@ -29,7 +35,8 @@
 //                 its own and no gravity (the motion says what else it needs)
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
-//   [output]      folder, fields (displacement, velocity, stress, von_mises, body, error, grid), vtk,
+//   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain, body, error,
+//                 grid), vtk,
 //                 particles_csv (true: particles.csv of the end state, mpm_output.hpp),
 //                 checkpoint_every (steps between checkpoints, io/checkpoint.hpp; 0: none; not in a study),
 //                 probe = [X, Y] (a material point inside a body: u^h there every step,

@@ -41,6 +41,8 @@ struct DruckerPrager {
   /// InputError for angles out of range, a negative cohesion or psi > phi.
   void validate() const;
   [[nodiscard]] MaterialUpdate update(const Mat2& f, const MaterialState& state, bool with_tangent) const;
+  /// The stored (elastic) energy 1/2 T : E_e per unit reference volume after that update.
+  [[nodiscard]] double energy(const Mat2& f, const MaterialState& state) const;
 };
 
 }  // namespace mfree

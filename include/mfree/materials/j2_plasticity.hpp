@@ -41,9 +41,11 @@ struct J2Plasticity {
   /// InputError for a non-positive yield stress, negative moduli or a saturation stress below
   /// the yield stress.
   void validate() const;
-  /// P, sigma_zz, the stored energy 1/2 E_e : D : E_e and the state after F; with_tangent:
-  /// the consistent tangent too. NumericalError for J <= 0.
+  /// P, sigma_zz and the state after F; with_tangent: the consistent tangent too.
+  /// NumericalError for J <= 0.
   [[nodiscard]] MaterialUpdate update(const Mat2& f, const MaterialState& state, bool with_tangent) const;
+  /// The stored (elastic) energy 1/2 T : E_e per unit reference volume after that update.
+  [[nodiscard]] double energy(const Mat2& f, const MaterialState& state) const;
 };
 
 }  // namespace mfree

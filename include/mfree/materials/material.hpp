@@ -1,50 +1,83 @@
 #pragma once
-// The materials both solvers take, as one value type: a variant of the laws of
-// finite_strain.hpp (F -> W, P, A = dP/dF), chosen by a scene's [material] model.
+// The materials both solvers take, as one value type: a variant of the laws, chosen by a
+// scene's material model.
 //
 //   LinearElastic       small strain, plane stress or plane strain (not objective)
 //   StVenantKirchhoff   plane strain
 //   NeoHookean          compressible, plane strain (SPEC section 5)
+//   J2Plasticity        von Mises plasticity, radial return (j2_plasticity.hpp)
+//   DruckerPrager       pressure-dependent plasticity with a tension cutoff (drucker_prager.hpp)
 //
-// The free functions dispatch once per call; per-point loops call them directly.
+// One interface for every law: update(m, F_{n+1}, state_n) -> (P, sigma_zz, energy, state_{n+1},
+// and A = dP/dF when asked), material_state.hpp; the elastic laws leave the state as it is.
+// The dispatch names every law (a law missing from it does not compile). stress(), tangent()
+// and energy() are the response of a point without history: the elastic laws, and the
+// reference state of any law (wave speeds, the reference tangent).
 
 #include <string_view>
 #include <variant>
 
 #include "mfree/core/name_table.hpp"
+#include "mfree/materials/drucker_prager.hpp"
+#include "mfree/materials/j2_plasticity.hpp"
 #include "mfree/materials/linear_elastic.hpp"
+#include "mfree/materials/material_state.hpp"
 #include "mfree/materials/neo_hookean.hpp"
 #include "mfree/materials/st_venant_kirchhoff.hpp"
 
 namespace mfree {
 
-using Material = std::variant<LinearElastic, StVenantKirchhoff, NeoHookean>;
+using Material = std::variant<LinearElastic, StVenantKirchhoff, NeoHookean, J2Plasticity, DruckerPrager>;
 
-inline double energy(const Material& m, const Mat2& f) {
-  return std::visit([&](const auto& law) { return law.energy(f); }, m);
-}
-/// First Piola–Kirchhoff stress P (force per reference area).
-inline Mat2 stress(const Material& m, const Mat2& f) {
-  return std::visit([&](const auto& law) { return law.stress(f); }, m);
-}
-inline Tangent tangent(const Material& m, const Mat2& f) {
-  return std::visit([&](const auto& law) { return law.tangent(f); }, m);
-}
-/// Cauchy stress sigma = P F^T / J; for small strain, sigma = P.
-Mat2 cauchy_stress(const Material& m, const Mat2& f);
-/// The out-of-plane Cauchy stress sigma_zz (plane strain: F_zz = 1; plane stress: 0).
-double out_of_plane_stress(const Material& m, const Mat2& f);
-/// True for the small-strain law, whose tangent is the same at every F.
+/// The update of any law (above). NumericalError for J <= 0 (finite-strain laws).
+MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& state, bool with_tangent);
+/// The stored (elastic) energy per unit reference volume at F after the state (W(F) of the
+/// elastic laws, 1/2 T : E_e of the plastic ones); the plastic work is state.dissipation.
+double energy(const Material& m, const Mat2& f, const MaterialState& state);
+/// True for the laws whose response depends on their state (J2, Drucker–Prager).
+bool has_history(const Material& m);
+
+inline double energy(const Material& m, const Mat2& f) { return energy(m, f, MaterialState{}); }
+/// First Piola–Kirchhoff stress P (force per reference area) of a point without history.
+inline Mat2 stress(const Material& m, const Mat2& f) { return update(m, f, {}, false).stress; }
+inline Tangent tangent(const Material& m, const Mat2& f) { return update(m, f, {}, true).tangent; }
+/// True for the laws of the small strain (LinearElastic, plastic laws with small-strain
+/// kinematics), whose P is sigma.
+bool is_small_strain(const Material& m);
+/// Cauchy stress of the first Piola–Kirchhoff stress P at F: P F^T / J, or P (small strain).
+Mat2 cauchy_stress(const Material& m, const Mat2& p, const Mat2& f);
+/// Cauchy stress of a point without history at F.
+inline Mat2 cauchy_stress(const Material& m, const Mat2& f) { return cauchy_stress(m, stress(m, f), f); }
+/// The out-of-plane Cauchy stress sigma_zz of a point without history (plane strain: F_zz = 1;
+/// plane stress: 0); update() gives it with history.
+inline double out_of_plane_stress(const Material& m, const Mat2& f) { return update(m, f, {}, false).stress_zz; }
+/// True for the small-strain elastic law, whose tangent is the same at every F.
 inline bool is_linear(const Material& m) { return std::holds_alternative<LinearElastic>(m); }
 std::string_view name(const Material& m);
 
-/// The law of a model from Young's modulus and Poisson's ratio.
-using MaterialMaker = Material (*)(double youngs_modulus, double poisson_ratio);
-/// plane_stress, plane_strain, neo_hookean, st_venant_kirchhoff: the names scenes use.
-const NameTable<MaterialMaker>& material_models();
+/// What a scene gives a material model: the elastic constants, and the plastic ones of the
+/// models that take them (angles in radians).
+struct MaterialParameters {
+  double youngs_modulus = 0.0;
+  double poisson_ratio = 0.0;
+  Kinematics kinematics = Kinematics::logarithmic;
+  double yield_stress = 0.0, isotropic_modulus = 0.0, saturation_stress = 0.0, saturation_rate = 0.0,
+         kinematic_modulus = 0.0;  // J2
+  double friction_angle = 0.0, dilatancy_angle = 0.0, cohesion = 0.0, tension_cutoff = 1e300;  // Drucker–Prager
+};
 
-/// The law of a model name of material_models() with Young's modulus and Poisson's ratio; InputError for E <= 0 or nu outside
-/// (-1, 1/2) (the message names the value).
+/// The law of a model from its parameters.
+using MaterialMaker = Material (*)(const MaterialParameters&);
+/// plane_stress, plane_strain, neo_hookean, st_venant_kirchhoff, j2, drucker_prager: the
+/// names scenes use.
+const NameTable<MaterialMaker>& material_models();
+/// logarithmic, small_strain: the strain measures of the plastic models.
+const NameTable<Kinematics>& kinematics_names();
+
+/// The law of a model name of material_models(); InputError for E <= 0, nu outside (-1, 1/2)
+/// or plastic constants out of range (the message names the value).
+Material make_material(std::string_view model, const MaterialParameters& parameters);
+/// The same for the elastic constants alone (the elastic models).
 Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio);
 
 /// P-wave modulus [Pa] of the reference state, the normal component A_xxxx of the tangent at

@@ -33,7 +33,6 @@ struct MaterialState {
 struct MaterialUpdate {
   Mat2 stress = Mat2::Zero();  ///< first Piola–Kirchhoff P (small strain: sigma)
   double stress_zz = 0.0;      ///< out-of-plane Cauchy stress sigma_zz (plane strain)
-  double energy = 0.0;         ///< stored (elastic) energy per unit reference volume [J/m^3]
   MaterialState state;         ///< the state after the update (commit it when the step is accepted)
   Tangent tangent = Tangent::Zero();  ///< dP/dF, A(2 i + J, 2 k + L); only when asked for
 };

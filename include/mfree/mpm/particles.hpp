@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mfree/core/types.hpp"
+#include "mfree/materials/material_state.hpp"
 
 namespace mfree {
 
@@ -21,6 +22,10 @@ struct Particles {
   std::vector<Vec2> velocity;      ///< v_p, updated from grid accelerations (FLIP)
   std::vector<Mat2> deformation;   ///< F_p
   std::vector<Mat2> stress;        ///< Cauchy stress sigma_p
+  std::vector<double> stress_zz;   ///< its out-of-plane component sigma_zz (plane strain)
+  /// The material's history (plastic laws; materials/material_state.hpp), updated where the
+  /// stress is: the solver fills it with virgin states when it is empty.
+  std::vector<MaterialState> state;
   /// Reference half sizes (l_x, l_y) of the particle domain: only for uGIMP and CPDI, whose
   /// weights need the domain (empty otherwise).
   std::vector<Vec2> half_size;
@@ -32,7 +37,7 @@ struct Particles {
 
 /// per_side^2 particles in every cell of size h of the box, at the centres of a regular
 /// per_side x per_side subdivision of the cell; mass density * volume, F = I, zero velocity
-/// and stress, body 0 of material 0. with_domains fills half_size = (h / (2 per_side),
+/// and stress, virgin material states, body 0 of material 0. with_domains fills half_size = (h / (2 per_side),
 /// h / (2 per_side)). (Tests place blocks off the grid with it; scenes seed bodies,
 /// mpm/body.hpp.)
 /// Throws InputError for per_side outside [1, 5] or a box that is not a whole number of cells.
