@@ -2,14 +2,18 @@
 
 #include <fmt/format.h>
 #include <gmsh.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstddef>
+#include <cstring>
 #include <fstream>
 #include <map>
-#include <mutex>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -47,11 +51,10 @@ std::string accepted_extensions() {
   return list;
 }
 
-// gmsh keeps one model, one option set and one logger for the whole process.
-std::mutex gmsh_mutex;
-
 /// One gmsh session: initialised quietly (no configuration files, nothing on the terminal),
-/// its messages collected by the logger, finalised when it ends. Hold gmsh_mutex around it.
+/// its messages collected by the logger, finalised when it ends. gmsh keeps one model, one
+/// option set and one logger for a whole process: a session runs in a process of its own
+/// (read_isolated below).
 class GmshSession {
  public:
   GmshSession() {
@@ -202,6 +205,125 @@ BoundaryMesh read_boundary(const std::string& file) {
   return mesh;
 }
 
+// The boundary mesh through a pipe from the child process that read it: 'M' and the mesh
+// (nodes: tag, x, y; edges: a, b, part; part names), or 'E' and an error message.
+
+template <class T>
+void put(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+std::string serialise(const BoundaryMesh& mesh) {
+  std::string out = "M";
+  put(out, mesh.nodes.size());
+  for (const auto& [tag, x] : mesh.nodes) {
+    put(out, tag);
+    put(out, x.x());
+    put(out, x.y());
+  }
+  put(out, mesh.edges.size());
+  for (const BoundaryEdge& e : mesh.edges) put(out, e);
+  put(out, mesh.part_names.size());
+  for (const std::string& name : mesh.part_names) {
+    put(out, name.size());
+    out += name;
+  }
+  return out;
+}
+
+BoundaryMesh deserialise(const std::string& bytes, const std::string& file) {
+  std::size_t at = 1;
+  const auto take = [&](void* to, std::size_t n) {
+    if (n > bytes.size() - at) throw Error(fmt::format("{}: the gmsh reader process sent a truncated mesh", file));
+    std::memcpy(to, bytes.data() + at, n);
+    at += n;
+  };
+  const auto count = [&] {
+    std::size_t n;
+    take(&n, sizeof n);
+    if (n > bytes.size()) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
+    return n;
+  };
+  BoundaryMesh mesh;
+  for (std::size_t k = 0, n = count(); k < n; ++k) {
+    std::size_t tag;
+    double x, y;
+    take(&tag, sizeof tag);
+    take(&x, sizeof x);
+    take(&y, sizeof y);
+    mesh.nodes.emplace(tag, Vec2(x, y));
+  }
+  mesh.edges.resize(count());
+  for (BoundaryEdge& e : mesh.edges) take(&e, sizeof e);
+  mesh.part_names.resize(count());
+  for (std::string& name : mesh.part_names) {
+    name.resize(count());
+    take(name.data(), name.size());
+  }
+  return mesh;
+}
+
+/// read_boundary in a child process: libgmsh crashes on some malformed files
+/// (tests/fuzz/known_crashes), and such a crash must end as an InputError naming the file,
+/// not take the program down; gmsh's global state also stays out of this process, so reads
+/// from several threads need no lock. The child reports through a pipe and ends with _exit.
+BoundaryMesh read_isolated(const std::string& file) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error(fmt::format("{}: cannot start the gmsh reader: {}", file, std::strerror(errno)));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error(fmt::format("{}: cannot start the gmsh reader: {}", file, std::strerror(errno)));
+  }
+  if (pid == 0) {  // the child: read, send, end without running the parent's exit handlers
+    ::close(fds[0]);
+    // A crash in libgmsh ends the child by its signal, which the parent reports; handlers the
+    // parent installed (sanitizers, fuzzers) would report it as the parent's own.
+    for (const int signal : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) std::signal(signal, SIG_DFL);
+    std::string out;
+    try {
+      const GmshSession session;
+      try {
+        out = serialise(read_boundary(file));
+      } catch (const std::string& thrown) {
+        out = "E" + fmt::format("{}: gmsh cannot read it: {}", file, GmshSession::errors(thrown));
+      }
+    } catch (const std::exception& e) {
+      out = std::string("E") + e.what();
+    } catch (...) {
+      out = "E" + fmt::format("{}: gmsh cannot read it", file);
+    }
+    for (std::size_t done = 0; done < out.size();) {
+      const ssize_t n = ::write(fds[1], out.data() + done, out.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) ::_exit(2);
+      done += static_cast<std::size_t>(n);
+    }
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw InputError(fmt::format("{}: gmsh crashed reading it ({}): the file is malformed", file,
+                                 ::strsignal(WTERMSIG(status))));
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty())
+    throw Error(fmt::format("{}: the gmsh reader process failed (exit status {})", file, WEXITSTATUS(status)));
+  if (bytes[0] == 'E') throw InputError(bytes.substr(1));
+  return deserialise(bytes, file);
+}
+
 /// Closed rings from the boundary edges: every node must end exactly two edges. Returns the
 /// rings (vertices in chain order) and, per ring, the part of edge i (vertex i to i + 1).
 std::pair<std::vector<Ring>, std::vector<std::vector<int>>> chain_rings(const BoundaryMesh& mesh,
@@ -310,16 +432,7 @@ Domain read_gmsh_domain(const std::filesystem::path& file) {
   }
   if (!std::ifstream(file)) throw InputError(fmt::format("cannot read mesh file '{}'", source));
 
-  BoundaryMesh mesh;
-  {
-    const std::lock_guard<std::mutex> lock(gmsh_mutex);
-    const GmshSession session;
-    try {
-      mesh = read_boundary(source);
-    } catch (const std::string& thrown) {
-      throw InputError(fmt::format("{}: gmsh cannot read it: {}", source, GmshSession::errors(thrown)));
-    }
-  }
+  BoundaryMesh mesh = read_isolated(source);
   auto [rings, parts] = chain_rings(mesh, source);
   outer_ring_first(rings, parts, source);
   return Domain::from_rings(std::move(rings), std::move(parts), std::move(mesh.part_names), source);

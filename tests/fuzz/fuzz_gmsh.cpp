@@ -1,7 +1,6 @@
-// libFuzzer target: the gmsh domain reader (geometry/gmsh_domain.cpp, through libgmsh). The
-// first byte picks the format (.geo or .msh), the rest is the file; a refusal is an
-// mfree::Error. Not in .ci/fuzz: libgmsh 4.8 itself crashes on malformed .msh files (see
-// tests/fuzz/known_crashes/README.md), which mfree cannot catch in-process.
+// libFuzzer target: the gmsh domain reader (geometry/gmsh_domain.cpp, through libgmsh in a
+// child process). The first byte picks the format (.geo or .msh), the rest is the file; a
+// refusal is an mfree::Error, a crash of libgmsh among them (the child's signal).
 #include "fuzz_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/domain.hpp"

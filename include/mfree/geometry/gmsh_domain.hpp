@@ -21,10 +21,12 @@
 // ("Physical Curve") of its curve, -1 for curves in none; a group without a name is named by
 // its number ("7"). Domain::part_names() lists the groups on the boundary, by group tag.
 //
-// gmsh is global state: reads are serialised by a mutex, and each read runs in its own gmsh
-// session (initialise, read, finalise), so a program that uses gmsh itself must not call this
-// while its own session is open. gmsh prints nothing; OpenCASCADE's STEP parser may still
-// print its own syntax errors to standard output.
+// gmsh runs in a child process of its own for every read (a gmsh session there: initialise,
+// read, finalise), which sends the boundary back through a pipe: gmsh's global state never
+// enters this process (reads from several threads, or beside a program's own gmsh session, are
+// safe), and a file that crashes libgmsh (tests/fuzz/known_crashes) ends as an InputError
+// naming the file and the signal instead of a crash. gmsh prints nothing; OpenCASCADE's STEP
+// parser may still print its own syntax errors to standard output.
 
 #include <array>
 #include <filesystem>
@@ -46,7 +48,7 @@ inline constexpr std::array<std::string_view, 7> gmsh_extensions = {".geo",  ".m
 /// error (its messages are quoted), the model has no surface or has volumes, a node lies off the
 /// plane z = 0, a boundary curve has no 1D elements, a curve belongs to two physical groups,
 /// the boundary does not close into rings (or meets itself), the surfaces form more than one
-/// connected region, or the rings fail Domain::from_rings's checks.
+/// connected region, the rings fail Domain::from_rings's checks, or gmsh crashes on the file.
 [[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file);
 
 }  // namespace mfree
