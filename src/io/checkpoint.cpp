@@ -80,7 +80,7 @@ std::string serialise(std::uint64_t fingerprint, long long step, const Checkpoin
     append(out, static_cast<std::uint64_t>(name.size()));
     out += name;
     append(out, static_cast<std::uint64_t>(values.size()));
-    out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+    if (!values.empty()) out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
   }
   append(out, fnv1a(out));
   return out;
@@ -114,7 +114,7 @@ CheckpointState deserialise(const fs::path& file, std::uint64_t fingerprint, lon
     if (n > body.size() / sizeof(double)) throw InputError(fmt::format("checkpoint {}: truncated", file.string()));
     std::vector<double> values(n);
     const std::string_view raw = r.take(n * sizeof(double));
-    std::memcpy(values.data(), raw.data(), raw.size());
+    if (n > 0) std::memcpy(values.data(), raw.data(), raw.size());  // an empty vector's data() may be null
     state.put(name, std::move(values));
   }
   return state;
