@@ -28,11 +28,14 @@ MaterialSection read_material_keys(const SceneTable& t) {
   // The plastic models' constants; only they take these keys (finish() refuses them elsewhere).
   const double degrees = std::numbers::pi / 180.0;
   if (m.model == "j2" || m.model == "drucker_prager")
-    p.kinematics = read_choice_or(t, "kinematics", kinematics_names(), Kinematics::logarithmic);
+    p.kinematics = read_choice_or(t, "kinematics", kinematics_names(), Kinematics::multiplicative);
   if (m.model == "j2") {
     p.yield_stress = t.number("yield_stress", 0.0, 1e300);
     p.isotropic_modulus = t.number_or("isotropic_modulus", 0.0, 0.0, 1e300);
     p.kinematic_modulus = t.number_or("kinematic_modulus", 0.0, 0.0, 1e300);
+    if (p.kinematic_modulus > 0.0 && p.kinematics == Kinematics::multiplicative)
+      t.error("kinematic_modulus", "kinematic hardening needs kinematics = \"logarithmic\" or \"small_strain\" (the "
+                                   "multiplicative law, the default, hardens isotropically only)");
     if (t.has("saturation_stress")) {
       p.saturation_stress = t.number("saturation_stress", p.yield_stress, 1e300);
       p.saturation_rate = t.number("saturation_rate", 0.0, 1e300);

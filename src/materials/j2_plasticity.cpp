@@ -66,6 +66,9 @@ double J2Plasticity::flow_stress(double alpha) const {
 }
 
 void J2Plasticity::validate() const {
+  if (kinematics == Kinematics::multiplicative && kinematic_modulus != 0.0)
+    throw InputError("J2 plasticity: kinematic hardening needs kinematics = \"logarithmic\" or \"small_strain\" (the "
+                     "multiplicative state holds C_p^-1, not a plastic strain for the back stress)");
   if (!(yield_stress > 0.0) || !std::isfinite(yield_stress))
     throw InputError(fmt::format("J2 plasticity: the yield stress must be positive, got {}", yield_stress));
   if (!(isotropic_modulus >= 0.0) || !(kinematic_modulus >= 0.0) || !(saturation_rate >= 0.0))

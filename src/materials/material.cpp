@@ -128,7 +128,8 @@ const NameTable<MaterialMaker>& material_models() {
 
 const NameTable<Kinematics>& kinematics_names() {
   static const NameTable<Kinematics> table{{"logarithmic", Kinematics::logarithmic},
-                                           {"small_strain", Kinematics::small_strain}};
+                                           {"small_strain", Kinematics::small_strain},
+                                           {"multiplicative", Kinematics::multiplicative}};
   return table;
 }
 

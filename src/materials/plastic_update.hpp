@@ -10,6 +10,19 @@
 //   4. dE_p = D^-1 : (T^tr - T), dissipation += T : dE_p
 //   5. stress: S = T : 2 dE/dC (logarithmic; below), P = F S; or P = T (small strain)
 //
+// Kinematics::multiplicative instead (Simo 1992; Simo & Hughes 1998, box 9.1): the state holds
+// C_p^-1 - I (in-plane block and zz; the virgin state is C_p^-1 = I), and
+//   1. b_e^tr = F C_p,n^-1 F^T, eps_e^tr = 1/2 ln b_e^tr (Eulerian Hencky strain)
+//   2. Kirchhoff tau^tr = lambda tr(eps_e^tr) 1 + 2 mu eps_e^tr
+//   3. the law's return (isotropic: tau stays coaxial with b_e^tr), alpha's increment
+//   4. b_e = exp(2 D^-1 : tau), C_p^-1 = F^-1 b_e F^-T, dissipation += tau : D^-1 : (tau^tr - tau)
+//   5. P = tau F^-T (sigma = tau / J)
+// The yield condition then bounds the Kirchhoff stress itself at any accumulated strain. The
+// additive split of the Lagrangian E = 1/2 ln C bounds T, whose push-forward loses its shear
+// part under large shear: in simple shear sigma_xy / sigma_yy falls from 0.48 (gamma <= 1,
+// phi = 30 degrees) to 0.25 at gamma = 3 and 0.07 at gamma = 10, so granular flows in MPM
+// (unbounded shear) lose their friction.
+//
 // The 2 x 2 logarithm in closed form, smooth at equal eigenvalues (so that its derivatives
 // exist at F = I): with m = tr C / 2, q = |C - m I|^2 / 2 (eigenvalues m +- sqrt(q)),
 //   ln C = 1/2 ln(det C) I + g(q, m) (C - m I),  g = atanh(sqrt(x)) / sqrt(x) / m,  x = q / m^2,
@@ -131,6 +144,45 @@ struct LogStrain {
   }
 };
 
+/// ln A of a symmetric positive definite 2 x 2 (a_xx, a_yy, a_xy) in closed form (as LogStrain).
+template <class S>
+void log_sym2(const S& axx, const S& ayy, const S& axy, S& lxx, S& lyy, S& lxy) {
+  using std::log;
+  const S m = 0.5 * (axx + ayy), a = 0.5 * (axx - ayy);
+  const S q = a * a + axy * axy;
+  S phi, dphi;
+  atanh_ratio(S(q / (m * m)), phi, dphi);
+  const S g = phi / m, half_ln_det = 0.5 * log(axx * ayy - axy * axy);
+  lxx = half_ln_det + g * a;
+  lyy = half_ln_det - g * a;
+  lxy = g * axy;
+}
+
+/// exp B of a symmetric 2 x 2 in closed form: e^m (cosh r I + sinh r / r (B - m I)),
+/// r^2 = ((b_xx - b_yy) / 2)^2 + b_xy^2; by series in r^2 for small r (smooth derivatives).
+template <class S>
+void exp_sym2(const S& bxx, const S& byy, const S& bxy, S& exx, S& eyy, S& exy) {
+  using std::cosh;
+  using std::exp;
+  using std::sinh;
+  using std::sqrt;
+  const S m = 0.5 * (bxx + byy), a = 0.5 * (bxx - byy);
+  const S r2 = a * a + bxy * bxy;
+  S ch, sh;  // cosh r and sinh r / r
+  if (value(r2) < 1e-4) {
+    ch = 1.0 + r2 * (1.0 / 2 + r2 * (1.0 / 24 + r2 * (1.0 / 720 + r2 * (1.0 / 40320))));
+    sh = 1.0 + r2 * (1.0 / 6 + r2 * (1.0 / 120 + r2 * (1.0 / 5040 + r2 * (1.0 / 362880))));
+  } else {
+    const S r = sqrt(r2);
+    ch = cosh(r);
+    sh = sinh(r) / r;
+  }
+  const S em = exp(m);
+  exx = em * (ch + sh * a);
+  eyy = em * (ch - sh * a);
+  exy = em * sh * bxy;
+}
+
 /// What an update yields in the scalar type S.
 template <class S>
 struct Result {
@@ -148,6 +200,45 @@ template <class S, class Law>
 Result<S> update(const Law& law, const Lame& lame, Kinematics kinematics, const S f[4], const MaterialState& n) {
   Result<S> r;
   r.jacobian = f[0] * f[3] - f[1] * f[2];
+  if (kinematics == Kinematics::multiplicative) {
+    using std::exp;
+    using std::log;
+    const Sym<S> cp = sym_of<S>(n);  // C_p^-1 - I
+    const S axx = 1.0 + cp.xx, ayy = 1.0 + cp.yy, axy = cp.xy;
+    // b_e^tr = F C_p^-1 F^T (f row-major: F_xx, F_xy, F_yx, F_yy)
+    const S ux = axx * f[0] + axy * f[1], uy = axy * f[0] + ayy * f[1];  // (C_p^-1 F^T) column x
+    const S vx = axx * f[2] + axy * f[3], vy = axy * f[2] + ayy * f[3];  // column y
+    const S bxx = f[0] * ux + f[1] * uy, byy = f[2] * vx + f[3] * vy, bxy = f[0] * vx + f[1] * vy;
+    Sym<S> strain;
+    log_sym2(bxx, byy, bxy, strain.xx, strain.yy, strain.xy);
+    strain.xx *= 0.5;
+    strain.yy *= 0.5;
+    strain.xy *= 0.5;
+    strain.zz = 0.5 * log(S(1.0 + cp.zz));
+    const Sym<S> trial = elastic_stress(lame, strain);  // Kirchhoff
+    S dalpha(0.0);
+    r.stress = law.return_map(trial, n, dalpha);
+    const Sym<S> elastic = elastic_strain(lame, r.stress);
+    S exx, eyy, exy;
+    exp_sym2(S(2.0 * elastic.xx), S(2.0 * elastic.yy), S(2.0 * elastic.xy), exx, eyy, exy);  // b_e
+    // C_p^-1 = F^-1 b_e F^-T, F^-1 = [f3, -f1; -f2, f0] / J
+    const S ij = 1.0 / r.jacobian;
+    const S gxx = f[3] * ij, gxy = -f[1] * ij, gyx = -f[2] * ij, gyy = f[0] * ij;
+    const S wx = exx * gxx + exy * gxy, wy = exy * gxx + eyy * gxy;  // (b_e F^-T) column x
+    const S zx = exx * gyx + exy * gyy, zy = exy * gyx + eyy * gyy;  // column y
+    r.plastic = {gxx * wx + gxy * wy - 1.0, gyx * zx + gyy * zy - 1.0, gxx * zx + gxy * zy,
+                 exp(S(2.0 * elastic.zz)) - 1.0};
+    r.alpha = n.alpha + dalpha;
+    r.dissipation = n.dissipation + dot(r.stress, elastic_strain(lame, trial - r.stress));
+    r.energy = 0.5 * dot(r.stress, elastic);
+    // P = tau F^-T, F^-T = [f3, -f2; -f1, f0] / J
+    const Sym<S>& t = r.stress;
+    r.p[0] = (t.xx * f[3] - t.xy * f[1]) * ij;
+    r.p[1] = (t.xy * f[0] - t.xx * f[2]) * ij;
+    r.p[2] = (t.xy * f[3] - t.yy * f[1]) * ij;
+    r.p[3] = (t.yy * f[0] - t.xy * f[2]) * ij;
+    return r;
+  }
   std::optional<LogStrain<S>> log_strain;
   Sym<S> strain;
   if (kinematics == Kinematics::logarithmic) {
@@ -202,7 +293,8 @@ MaterialUpdate evaluate(const Law& law, const Lame& lame, Kinematics kinematics,
   out.state.alpha = r.alpha;
   out.state.dissipation = r.dissipation;
   // sigma_zz = T_zz / J (logarithmic: S_zz = T_zz since C_zz = 1), T_zz (small strain).
-  out.stress_zz = kinematics == Kinematics::logarithmic ? r.stress.zz / r.jacobian : r.stress.zz;
+  // multiplicative: tau_zz / J.
+  out.stress_zz = kinematics != Kinematics::small_strain ? r.stress.zz / r.jacobian : r.stress.zz;
   if (with_tangent) {
     Dual fx[4];
     for (int k = 0; k < 4; ++k) fx[k] = Dual(fd[k], 4, k);

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "mfree/core/error.hpp"
 #include "mfree/materials/drucker_prager.hpp"
@@ -77,11 +78,13 @@ Mat2 deformation(double stretch, double shear, double angle = 0.0) {
 }  // namespace
 
 TEST_CASE("J2: the consistent tangent matches central differences on elastic, plastic and unloading steps", "[materials]") {
-  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic})
-    for (const J2Plasticity& law : {j2(k, 0.0, 0.0, 0.0), j2(k, 2e9, 0.0, 0.0), j2(k, 1e9, 3e9, 0.0), j2(k, 1e9, 0.0, 400e6)}) {
+  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic, Kinematics::multiplicative}) {
+    std::vector<J2Plasticity> laws{j2(k, 0.0, 0.0, 0.0), j2(k, 2e9, 0.0, 0.0), j2(k, 1e9, 0.0, 400e6)};
+    if (k != Kinematics::multiplicative) laws.push_back(j2(k, 1e9, 3e9, 0.0));  // kinematic hardening
+    for (const J2Plasticity& law : laws) {
       INFO("kinematics " << static_cast<int>(k) << ", H_iso " << law.isotropic_modulus << ", H_kin "
                          << law.kinematic_modulus << ", saturation " << law.saturation_stress);
-      const double angle = k == Kinematics::logarithmic ? 0.4 : 0.0;
+      const double angle = k == Kinematics::small_strain ? 0.0 : 0.4;
       const auto deformation = [&](double stretch, double shear) { return ::deformation(stretch, shear, angle); };
       const MaterialState virgin;
       // Elastic: well below yield (strain 2e-4 against a yield strain of about 1.6e-3).
@@ -100,11 +103,14 @@ TEST_CASE("J2: the consistent tangent matches central differences on elastic, pl
       CHECK(tangent_error(law, unloaded, plastic.state) < 1e-6);
       CHECK(tangent_error(law, deformation(0.03, 0.02), plastic.state) < 1e-6);
     }
+  }
 }
 
-TEST_CASE("J2 and Drucker–Prager in the logarithmic space are objective: P(QF) = Q P(F), the state unchanged", "[materials]") {
-  const J2Plasticity metal = j2(Kinematics::logarithmic, 1e9, 3e9, 400e6);
-  const DruckerPrager soil = sand(Kinematics::logarithmic, 20e3, 1e300);
+TEST_CASE("J2 and Drucker–Prager at finite strain are objective: P(QF) = Q P(F), the state unchanged", "[materials]") {
+  for (const Kinematics k : {Kinematics::logarithmic, Kinematics::multiplicative}) {
+  INFO("kinematics " << static_cast<int>(k));
+  const J2Plasticity metal = j2(k, 1e9, k == Kinematics::logarithmic ? 3e9 : 0.0, 400e6);
+  const DruckerPrager soil = sand(k, 20e3, 1e300);
   const Mat2 f = deformation(0.05, 0.04, 0.4);
   for (const double angle : {0.3, 1.7, -2.9}) {
     const Mat2 q = rotation(angle);
@@ -116,6 +122,37 @@ TEST_CASE("J2 and Drucker–Prager in the logarithmic space are objective: P(QF)
     CHECK((d.stress - q * c.stress).norm() <= 1e-12 * c.stress.norm());
     CHECK(d.state.alpha == Approx(c.state.alpha).epsilon(1e-12));
   }
+  }
+}
+
+TEST_CASE("Drucker–Prager, multiplicative: simple shear keeps its friction at any shear strain", "[materials]") {
+  // Confined by a vertical compression, then sheared at constant height (F = [[1, g], [0, 1 - c]]):
+  // a cohesionless, non-dilatant soil flows at a fixed ratio sigma_xy / sigma_yy (about sin phi
+  // for plane strain with psi = 0). The multiplicative law bounds the Kirchhoff stress itself,
+  // so the ratio stays; the additive split of the Lagrangian log strain bounds a stress whose
+  // push-forward loses its shear part (ratio 0.07 at g = 10).
+  DruckerPrager soil = sand(Kinematics::multiplicative, 0.0, 1e300);
+  soil.dilatancy_angle = 0.0;
+  const double squeeze = 2e-3;
+  const auto ratio_at = [&](double until) {
+    MaterialState state;
+    MaterialUpdate u;
+    const int steps = static_cast<int>(until / 0.005);
+    for (int n = 1; n <= steps; ++n) {
+      Mat2 f;
+      f << 1.0, until * n / steps, 0.0, 1.0 - squeeze;
+      u = soil.update(f, state, false);
+      state = u.state;
+    }
+    Mat2 f;
+    f << 1.0, until, 0.0, 1.0 - squeeze;
+    const Mat2 sigma = u.stress * f.transpose() / f.determinant();
+    return std::abs(sigma(0, 1) / sigma(1, 1));
+  };
+  const double early = ratio_at(0.3), late = ratio_at(10.0);
+  INFO("sigma_xy / sigma_yy at shear 0.3: " << early << ", at shear 10: " << late);
+  CHECK(early == Approx(std::sin(30.0 * std::numbers::pi / 180.0)).epsilon(0.1));
+  CHECK(std::abs(late - early) <= 0.02 * early);
 }
 
 TEST_CASE("J2 is the textbook radial return: uniaxial strain through yield and back, in closed form", "[materials]") {

@@ -20,8 +20,10 @@
 //                 isotropic_modulus, kinematic_modulus, saturation_stress and saturation_rate
 //                 (materials/j2_plasticity.hpp); model = "drucker_prager" with friction_angle,
 //                 dilatancy_angle (degrees), cohesion, tension_cutoff
-//                 (materials/drucker_prager.hpp); both with kinematics = "logarithmic"
-//                 (default) or "small_strain".
+//                 (materials/drucker_prager.hpp); both with kinematics = "multiplicative"
+//                 (default: F = F_e F_p, Kirchhoff stress, for flows of unbounded shear),
+//                 "logarithmic" (additive in 1/2 ln C, moderate strains, kinematic
+//                 hardening) or "small_strain" (src/materials/plastic_update.hpp).
 //   [[body]]      name (distinct), material (a [[material]] name), shape:
 //                   rectangle: box = [[x0, y0], [x1, y1]]
 //                   circle:    centre = [x, y], radius

@@ -31,7 +31,7 @@ struct DruckerPrager {
   double dilatancy_angle = 0.0;  ///< psi [rad], in [0, phi] (psi = phi: associative)
   double cohesion = 0.0;         ///< c >= 0 [Pa]
   double tension_cutoff = 1e300; ///< p_t [Pa]; above the apex xi c / eta it is the apex
-  Kinematics kinematics = Kinematics::logarithmic;
+  Kinematics kinematics = Kinematics::multiplicative;
 
   [[nodiscard]] double eta() const;      ///< of phi
   [[nodiscard]] double xi() const;       ///< of phi

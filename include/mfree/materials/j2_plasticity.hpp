@@ -2,7 +2,10 @@
 // Von Mises (J2) plasticity by radial return (seed 004; Simo & Hughes 1998, Box 3.2), in plane
 // strain, with isotropic and linear kinematic hardening.
 //
-// Finite strain in the Lagrangian logarithmic strain space (Miehe, Apel & Lambrecht 2002):
+// Finite strain, Kinematics::multiplicative (the default): F = F_e F_p, the same return on the
+// Eulerian Hencky strain 1/2 ln b_e and the Kirchhoff stress (Simo 1992; isotropic hardening
+// only: its state holds C_p^-1, not a plastic strain for a back stress).
+// Kinematics::logarithmic, the Lagrangian logarithmic strain space (Miehe, Apel & Lambrecht 2002):
 // E = 1/2 ln C, C = F^T F, an additive split E = E_e + E_p, the stress T = lambda tr(E_e) 1 +
 // 2 mu E_e conjugate to E, and the second Piola–Kirchhoff stress S = T : 2 dE/dC (P = F S).
 // The return in E-space is the textbook small-strain one, so the model is objective, exact
@@ -34,7 +37,7 @@ struct J2Plasticity {
   double saturation_stress = 0.0;  ///< sigma_inf >= sigma_y of the saturation law; 0: none
   double saturation_rate = 0.0;    ///< delta >= 0 of the saturation law
   double kinematic_modulus = 0.0;  ///< H_kin >= 0 (linear kinematic hardening)
-  Kinematics kinematics = Kinematics::logarithmic;
+  Kinematics kinematics = Kinematics::multiplicative;
 
   /// The uniaxial flow stress k(alpha) (see above).
   [[nodiscard]] double flow_stress(double alpha) const;

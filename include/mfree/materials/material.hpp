@@ -60,7 +60,7 @@ std::string_view name(const Material& m);
 struct MaterialParameters {
   double youngs_modulus = 0.0;
   double poisson_ratio = 0.0;
-  Kinematics kinematics = Kinematics::logarithmic;
+  Kinematics kinematics = Kinematics::multiplicative;
   double yield_stress = 0.0, isotropic_modulus = 0.0, saturation_stress = 0.0, saturation_rate = 0.0,
          kinematic_modulus = 0.0;  // J2
   double friction_angle = 0.0, dilatancy_angle = 0.0, cohesion = 0.0, tension_cutoff = 1e300;  // Drucker–Prager
@@ -71,7 +71,7 @@ using MaterialMaker = Material (*)(const MaterialParameters&);
 /// plane_stress, plane_strain, neo_hookean, st_venant_kirchhoff, j2, drucker_prager: the
 /// names scenes use.
 const NameTable<MaterialMaker>& material_models();
-/// logarithmic, small_strain: the strain measures of the plastic models.
+/// multiplicative, logarithmic, small_strain: the strain measures of the plastic models.
 const NameTable<Kinematics>& kinematics_names();
 
 /// The law of a model name of material_models(); InputError for E <= 0, nu outside (-1, 1/2)
