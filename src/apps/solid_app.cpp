@@ -58,8 +58,8 @@ int run_static(const ElasticityScene& scene) {
   StageTimer timer;
   timer.report_to(&std::cout);
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  const TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                              disc.boundary, disc.at_boundary);
+  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                        disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
   {
     // Statics must be well posed: the reference tangent may leave no rigid-body motion free.
@@ -76,12 +76,15 @@ int run_static(const ElasticityScene& scene) {
   if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
-  if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr);
+  if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
 
   const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
   NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
   ns.log = &std::cout;
-  std::string csv = "load_factor,iterations,cutbacks,probe_ux,probe_uy,linear_probe_uy,l2_displacement_vs_linear\n";
+  // Laws with history add the plastic work and the area of the plastic zone.
+  const bool plastic = model.has_history();
+  std::string csv = fmt::format("load_factor,iterations,cutbacks,probe_ux,probe_uy,linear_probe_uy,l2_displacement_vs_linear{}\n",
+                                plastic ? ",dissipated,plastic_area" : "");
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
   const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
     const int iterations = static_cast<int>(step.history.size()) - 1;
@@ -94,13 +97,17 @@ int run_static(const ElasticityScene& scene) {
       // quadrature): the discretisation error at small loads, the nonlinearity at large ones.
       relative = (*sampler)(d, zero, step.factor, *exact).displacement / (*sampler)(zero, zero, step.factor, *exact).displacement;
     }
-    std::cout << fmt::format("    converged: load factor {:.6g} in {} iteration(s){}{}{}\n", step.factor, iterations,
+    std::cout << fmt::format("    converged: load factor {:.6g} in {} iteration(s){}{}{}{}\n", step.factor, iterations,
                              step.cutbacks ? fmt::format(" after {} cut-back(s)", step.cutbacks) : "",
                              o.probe ? fmt::format(", probe u = ({:.6g}, {:.6g})", probe.x(), probe.y()) : "",
-                             exact ? fmt::format(", L2 difference from small strain {:.3e}", relative) : "");
+                             exact ? fmt::format(", L2 difference from small strain {:.3e}", relative) : "",
+                             plastic ? fmt::format(", plastic area {:.6g}, dissipated {:.6e}", model.plastic_area(),
+                                                   model.dissipated())
+                                     : "");
     // Cells without a probe or an exact solution stay empty (never "nan").
-    csv += fmt::format("{:.9g},{},{},{},{},{},{}\n", step.factor, iterations, step.cutbacks, csv_number(probe.x(), "{:.9e}"),
-                       csv_number(probe.y(), "{:.9e}"), csv_number(linear, "{:.9e}"), csv_number(relative, "{:.6e}"));
+    csv += fmt::format("{:.9g},{},{},{},{},{},{}{}\n", step.factor, iterations, step.cutbacks, csv_number(probe.x(), "{:.9e}"),
+                       csv_number(probe.y(), "{:.9e}"), csv_number(linear, "{:.9e}"), csv_number(relative, "{:.6e}"),
+                       plastic ? fmt::format(",{:.9e},{:.9e}", model.dissipated(), model.plastic_area()) : "");
     if (frames) timer.time("output", [&] { frames->write(step.factor, d, nullptr); });
   };
   const StaticSolution sol = solve_static(model, ns, timer, on_step);
@@ -145,6 +152,30 @@ Eigen::VectorXd get_vector(const CheckpointState& s, const std::string& name) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+/// Material states as 7 numbers each: E_p (xx, yx, xy, yy), E_p,zz, alpha, dissipation.
+void put_history(CheckpointState& s, const std::string& name, const std::vector<MaterialState>& states) {
+  std::vector<double> v;
+  v.reserve(7 * states.size());
+  for (const MaterialState& m : states)
+    v.insert(v.end(), {m.plastic_strain(0, 0), m.plastic_strain(1, 0), m.plastic_strain(0, 1), m.plastic_strain(1, 1),
+                       m.plastic_strain_zz, m.alpha, m.dissipation});
+  s.put(name, std::move(v));
+}
+
+std::vector<MaterialState> get_history(const CheckpointState& s, const std::string& name) {
+  const std::vector<double>& v = s.get(name);
+  if (v.size() % 7 != 0) throw InputError(fmt::format("checkpoint: '{}' holds {} numbers, not 7 per point", name, v.size()));
+  std::vector<MaterialState> states(v.size() / 7);
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const double* x = v.data() + 7 * k;
+    states[k].plastic_strain << x[0], x[2], x[1], x[3];
+    states[k].plastic_strain_zz = x[4];
+    states[k].alpha = x[5];
+    states[k].dissipation = x[6];
+  }
+  return states;
+}
+
 void save_progress(CheckpointState& s, const DynamicsProgress& p) {
   s.put("step", p.step);
   put_vector(s, "d", p.d);
@@ -154,8 +185,11 @@ void save_progress(CheckpointState& s, const DynamicsProgress& p) {
   put_vector(s, "g", p.g);
   s.put("work", p.work);
   std::vector<double> energy;
-  for (const EnergyRecord& e : p.energy) energy.insert(energy.end(), {e.time, e.kinetic, e.strain, e.external_work});
+  for (const EnergyRecord& e : p.energy)
+    energy.insert(energy.end(), {e.time, e.kinetic, e.strain, e.external_work, e.dissipated});
   s.put("energy", std::move(energy));
+  put_history(s, "history.domain", p.history.domain);
+  put_history(s, "history.boundary", p.history.boundary);
   s.put("newton_iterations", static_cast<double>(p.newton_iterations));
   s.put("factorisations", static_cast<double>(p.factorisations));
   put_vector(s, "tangent", p.tangent);
@@ -171,7 +205,9 @@ DynamicsProgress restore_progress(const CheckpointState& s) {
   p.g = get_vector(s, "g");
   p.work = s.scalar("work");
   const std::vector<double>& e = s.get("energy");
-  for (std::size_t at = 0; at + 4 <= e.size(); at += 4) p.energy.push_back({e[at], e[at + 1], e[at + 2], e[at + 3]});
+  for (std::size_t at = 0; at + 5 <= e.size(); at += 5)
+    p.energy.push_back({e[at], e[at + 1], e[at + 2], e[at + 3], e[at + 4]});
+  p.history = {get_history(s, "history.domain"), get_history(s, "history.boundary")};
   p.newton_iterations = static_cast<long>(s.scalar("newton_iterations"));
   p.factorisations = static_cast<long>(s.scalar("factorisations"));
   p.tangent = get_vector(s, "tangent");
@@ -186,8 +222,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   StageTimer& timer = run.timer;
   if (verbose) timer.report_to(&std::cout);
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  const TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                              disc.boundary, disc.at_boundary);
+  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                        disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
   run.nodes = disc.node_count();
   run.spacing = scene.settings.nodes.spacing;
@@ -211,7 +247,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
 
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
-  if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0) frames.emplace(scene, disc, exact ? &*exact : nullptr);
+  if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0)
+    frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
   const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
   std::size_t next_error = 0;
   double next_frame = 0.0;
@@ -272,9 +309,10 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
 namespace {
 
 std::string energy_csv(const std::vector<EnergyRecord>& energy) {
-  std::string csv = "time,kinetic,strain,external_work,total\n";
+  std::string csv = "time,kinetic,strain,dissipated,external_work,total\n";
   for (const EnergyRecord& e : energy)
-    csv += fmt::format("{:.9e},{:.12e},{:.12e},{:.12e},{:.12e}\n", e.time, e.kinetic, e.strain, e.external_work, e.total());
+    csv += fmt::format("{:.9e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n", e.time, e.kinetic, e.strain, e.dissipated,
+                       e.external_work, e.total());
   return csv;
 }
 

@@ -68,7 +68,7 @@ std::pair<double, int> equal_steps(double end_time, double requested) {
 
 }  // namespace
 
-DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d, Eigen::VectorXd v, const DynamicsSettings& s,
                                   StageTimer& timer, const std::function<void(const DynamicState&)>& on_step,
                                   const DynamicsCheckpoints& checkpoints) {
@@ -122,7 +122,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
   const auto record = [&](int step, double t) {
     if (on_step) on_step({step, t, d, v});
     if (energy && (step % s.energy_every == 0 || step == out.steps))
-      timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work}); });
+      timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work, model.dissipated()}); });
   };
 
   // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once, at the
@@ -163,13 +163,15 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       Eigen::Map<Eigen::VectorXd>(k.valuePtr(), k.nonZeros()) = p->tangent;
       timer.time("factorisation", [&] { solver.factorize(k); });
     }
+    model.set_history(p->history);
     first = p->step + 1;
   } else {
+    model.commit(d);
     record(0, 0.0);
   }
   const auto save = [&](int n) {
     DynamicsProgress p{n, d, v, a, v_half, energy ? g : Eigen::VectorXd(), work, out.energy, out.newton_iterations,
-                       out.factorisations, Eigen::VectorXd()};
+                       out.factorisations, Eigen::VectorXd(), model.history()};
     if (!explicit_scheme && solver.factorized()) p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
     checkpoints.save(p);
   };
@@ -217,6 +219,7 @@ DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vecto
       d = std::move(x);
       if (energy) g_new = f_ext - timer.time("residual", [&] { return model.boundary_force(d, {1.0, t}); });
     }
+    model.commit(d);
     if (energy) {
       work += 0.5 * (g + g_new).dot(d - d_old);
       g = g_new;

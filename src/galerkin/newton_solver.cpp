@@ -133,7 +133,7 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
   return out;
 }
 
-StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& s, StageTimer& timer,
+StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& s, StageTimer& timer,
                             const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
   std::vector<double> targets = s.load_factors;
   if (targets.empty())
@@ -172,6 +172,7 @@ StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& 
       const NewtonOutcome o = newton(system, trial, k, solver, ns, timer);
       if (o.converged) {
         d = std::move(trial);
+        model.commit(d);
         out.steps.push_back({factor, cutbacks, o.history});
         if (on_step) on_step(out.steps.back(), d);
         done = factor;

@@ -146,12 +146,10 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
       boundary_rows_(boundary_offsets_, boundary_nodes_, nodes) {
   if (!(problem_.nitsche_beta > 0.0))
     throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
-  if (has_history(problem_.material))
-    throw InputError(fmt::format("total-Lagrangian solver: the {} law has history, which this solver does not carry "
-                                 "(it takes the elastic laws)",
-                                 name(problem_.material)));
+  history_laws_ = mfree::has_history(problem_.material);
   reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
   const bool linear = is_linear(problem_.material);
+  const bool dead_pressure = is_small_strain(problem_.material);
   traction_of_point_.assign(bq.size(), nullptr);
   reference_traction_.resize(at_boundary.nodes.size());
   std::vector<bool> seen(problem_.conditions.size(), false);
@@ -176,7 +174,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
           break;
         }
     if (!c) continue;
-    if (c->type == BoundaryCondition::Type::pressure && !linear) {
+    if (c->type == BoundaryCondition::Type::pressure && !dead_pressure) {
       follower_.emplace_back(p, c);
       couple_row(p);
       continue;
@@ -201,7 +199,72 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   const RowIncidence* const sets[] = {&domain_rows_, &boundary_rows_};
   pattern_ = node_pattern(sets);
   domain_symmetric_ = test_gradients == nullptr;
-  symmetric_ = domain_symmetric_ && (nitsche_.empty() || linear) && follower_.empty();
+  // The algorithmic tangents of the plastic laws are not taken as symmetric (Drucker–Prager
+  // with dilatancy below friction is not; J2's is only to round-off).
+  symmetric_ = domain_symmetric_ && follower_.empty() && (linear || (nitsche_.empty() && !history_laws_));
+  if (history_laws_) {
+    history_.domain.assign(q.size(), MaterialState{});
+    history_.boundary.assign(nitsche_.size(), MaterialState{});
+  }
+}
+
+MaterialUpdate TotalLagrangian::domain_update(Index k, const Mat2& f, bool with_tangent) const {
+  static const MaterialState none;
+  return at_point("quadrature", q_.points, k, [&] {
+    return update(problem_.material, f, history_laws_ ? history_.domain[k] : none, with_tangent);
+  });
+}
+
+MaterialUpdate TotalLagrangian::boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const {
+  static const MaterialState none;
+  return at_point("boundary", bq_.points, nitsche_[b].point, [&] {
+    return update(problem_.material, f, history_laws_ ? history_.boundary[b] : none, with_tangent);
+  });
+}
+
+Mat2 TotalLagrangian::boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const {
+  Mat2 f = Mat2::Identity();
+  for (Index s = at_boundary_.row_begin(point); s < at_boundary_.row_end(point); ++s)
+    f += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].transpose();
+  return f;
+}
+
+void TotalLagrangian::commit(const Eigen::VectorXd& d) {
+  if (!history_laws_) return;
+  parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
+    for (Index k = begin; k < end; ++k) history_.domain[k] = domain_update(k, deformation_gradient(k, d), false).state;
+  });
+  for (std::size_t b = 0; b < nitsche_.size(); ++b)
+    history_.boundary[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
+}
+
+void TotalLagrangian::set_history(PointHistory history) {
+  const std::size_t domain = history_laws_ ? static_cast<std::size_t>(q_.size()) : 0;
+  const std::size_t boundary = history_laws_ ? nitsche_.size() : 0;
+  if (history.domain.size() != domain || history.boundary.size() != boundary)
+    throw InputError(fmt::format("material history of {} quadrature and {} boundary points does not fit this model "
+                                 "({} and {})",
+                                 history.domain.size(), history.boundary.size(), domain, boundary));
+  history_ = std::move(history);
+}
+
+double TotalLagrangian::dissipated() const {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < history_.domain.size(); ++k) sum += q_.weights[k] * history_.domain[k].dissipation;
+  return sum;
+}
+
+double TotalLagrangian::plastic_area() const {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < history_.domain.size(); ++k)
+    if (history_.domain[k].alpha > 0.0) sum += q_.weights[k];
+  return sum;
+}
+
+TotalLagrangian::PointResponse TotalLagrangian::response(Index k, const Eigen::VectorXd& d) const {
+  const Mat2 f = deformation_gradient(k, d);
+  const MaterialUpdate u = domain_update(k, f, false);
+  return {cauchy_stress(problem_.material, u.stress, f), u.stress_zz, u.state};
 }
 
 Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) const {
@@ -214,8 +277,7 @@ Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const 
   std::vector<Mat2> wp(q_.size());
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index k = begin; k < end; ++k)
-      wp[k] = q_.weights[k] *
-              at_point("quadrature", q_.points, k, [&] { return stress(problem_.material, deformation_gradient(k, d)); });
+      wp[k] = q_.weights[k] * domain_update(k, deformation_gradient(k, d), false).stress;
   });
   return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
 }
@@ -223,20 +285,16 @@ Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const 
 Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const LoadState& load) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
-  for (const NitschePoint& p : nitsche_) {
+  for (std::size_t b = 0; b < nitsche_.size(); ++b) {
+    const NitschePoint& p = nitsche_[b];
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point);
-    Mat2 f_at = Mat2::Identity();
     Vec2 u = Vec2::Zero();
-    for (Index s = begin; s < end; ++s) {
-      const auto di = d.segment<2>(2 * at_boundary_.nodes[s]);
-      f_at += di * at_boundary_.grad[s].transpose();
-      u += at_boundary_.phi[s] * di;
-    }
+    for (Index s = begin; s < end; ++s) u += at_boundary_.phi[s] * d.segment<2>(2 * at_boundary_.nodes[s]);
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n, load.time));
     const Vec2 traction =
-        p.projection * (at_point("boundary", bq_.points, p.point, [&] { return stress(problem_.material, f_at); }) * n);
+        p.projection * (boundary_update(b, boundary_deformation_gradient(p.point, d), false).stress * n);
     for (Index s = begin; s < end; ++s) {
       const double phi = at_boundary_.phi[s];
       f.segment<2>(2 * at_boundary_.nodes[s]) +=
@@ -284,9 +342,7 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   const bool linear = is_linear(problem_.material);
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
-      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : at_point("quadrature", q_.points, p, [&] {
-                                 return mfree::tangent(problem_.material, deformation_gradient(p, d));
-                               }));
+      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : domain_update(p, deformation_gradient(p, d), true).tangent);
   });
   add_column_blocks(q_, domain_rows_, pattern_, domain_symmetric_, values, [&](Index kk, Index slot_j) {
     const Vec2& g = q_.grad[slot_j];
@@ -304,17 +360,15 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   // Nitsche: K_IJ = w [ -phi_I Pi T_J(F) - T0_I^T Pi phi_J + penalty phi_I phi_J Pi ].
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
   std::vector<Mat2> t;  // Pi T_J(F) for the functions of the row
-  for (const NitschePoint& p : nitsche_) {
+  for (std::size_t b = 0; b < nitsche_.size(); ++b) {
+    const NitschePoint& p = nitsche_[b];
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
-    Mat2 f_at = Mat2::Identity();
-    for (Index s = begin; s < end; ++s) f_at += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].transpose();
-    const Tangent a = linear ? reference_tangent_ : at_point("boundary", bq_.points, p.point, [&] {
-      return mfree::tangent(problem_.material, f_at);
-    });
+    const Tangent a =
+        linear ? reference_tangent_ : boundary_update(b, boundary_deformation_gradient(p.point, d), true).tangent;
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     t.resize(m);
-    for (Index b = 0; b < m; ++b) t[b] = p.projection * traction_operator(a, at_boundary_.grad[begin + b], n);
+    for (Index c = 0; c < m; ++c) t[c] = p.projection * traction_operator(a, at_boundary_.grad[begin + c], n);
     for (Index ai = 0; ai < m; ++ai) {
       const Index i = at_boundary_.nodes[begin + ai];
       const double phi_i = at_boundary_.phi[begin + ai];
@@ -349,8 +403,9 @@ double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
   parallel_ranges(q_.size(), [&](int thread, Index begin, Index end) {
     double sum = 0.0;
     for (Index k = begin; k < end; ++k)
-      sum += q_.weights[k] *
-             at_point("quadrature", q_.points, k, [&] { return energy(problem_.material, deformation_gradient(k, d)); });
+      sum += q_.weights[k] * at_point("quadrature", q_.points, k, [&] {
+               return energy(problem_.material, deformation_gradient(k, d), history_laws_ ? history_.domain[k] : MaterialState{});
+             });
     partial[thread] = sum;
   });
   double total = 0.0;

@@ -128,11 +128,6 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const SceneTable t = root.table("material");
     const bool allow_locking = t.boolean_or("allow_locking", false);
     const MaterialSection m = read_material_keys(t);
-    if (has_history(m.material))
-      t.error("model", fmt::format("'{}' (a law with history) runs in MPM scenes ([mpm]); the total-Lagrangian "
-                                   "solver takes the elastic laws (plane_stress, plane_strain, neo_hookean, "
-                                   "st_venant_kirchhoff)",
-                                   m.model));
     if (m.linear.model == PlaneModel::strain && m.linear.poisson_ratio > max_poisson_ratio && !allow_locking)
       t.error("poisson_ratio",
               fmt::format("{} is above {}, the largest Poisson's ratio of a plane-strain law this displacement "
@@ -190,6 +185,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     } else {
       e.builtin = read_builtin_solution(t, out.solution_setting(), dynamics);
     }
+    // Errors are measured from the stress of F at their own points, which hold no history.
+    if (has_history(out.material))
+      t.error(e.builtin ? "solution" : "displacement",
+              fmt::format("errors against an exact solution need an elastic law; '{}' has history (its stress "
+                          "lives at the quadrature points: ask [output] fields for it)",
+                          name(out.material)));
     // A built-in solution comes with the body force that makes it exact; another one would not.
     if (e.builtin && (out.body_force || out.gravity))
       t.error("solution", fmt::format("the {} solution sets the body force: remove [loads]", e.builtin->name));
@@ -299,8 +300,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     out.output.folder = read_output_folder(t);
     // An empty list asks for nothing: no stress recovery, no files.
     if (t.has("fields") && !(t.is_array_empty("fields")))
-      for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "error", "weights"}))
+      for (const auto& f :
+           t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error", "weights"}))
         out.output.fields.insert(f);
+    if (out.output.wants("plastic_strain") && !has_history(out.material))
+      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not '{}'",
+                                    name(out.material)));
     out.output.vtk = t.boolean_or("vtk", true);
     if (out.output.wants("velocity") && !out.dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
     if (t.has("probe")) {

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "mfree/geometry/domain_triangulation.hpp"
 #include "mfree/io/vtk_output.hpp"
 
@@ -10,6 +12,7 @@ namespace mfree {
 namespace {
 
 std::string frame_file(int frame) { return fmt::format("field_{:04d}.vtu", frame); }
+std::string point_file(int frame) { return fmt::format("points_{:04d}.vtu", frame); }
 
 }  // namespace
 
@@ -21,23 +24,59 @@ void SolidFrames::save(CheckpointState& state) const {
 
 void SolidFrames::restore(const CheckpointState& state) {
   steps_.clear();
-  for (const double t : state.get("frames.time")) steps_.emplace_back(t, frame_file(frames()));
+  point_steps_.clear();
+  for (const double t : state.get("frames.time")) {
+    steps_.emplace_back(t, frame_file(frames()));
+    if (model_) point_steps_.emplace_back(t, point_file(frames() - 1));
+  }
 }
 
-SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact)
-    : output_(scene.output), material_(scene.material), exact_(exact), folder_(scene.output.folder) {
+SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
+                         const TotalLagrangian* model)
+    : output_(scene.output),
+      material_(scene.material),
+      exact_(exact),
+      model_(has_history(scene.material) ? model : nullptr),
+      folder_(scene.output.folder) {
+  if (has_history(material_) && !model_)
+    throw std::logic_error("SolidFrames: a law with history needs the model that holds it");
   Triangulation tri = triangulate_domain(scene.domain, disc.nodes);
   points_ = std::move(tri.points);
   triangles_ = std::move(tri.triangles);
-  const bool gradients = output_.wants("stress") || output_.wants("von_mises") || output_.wants("error");
+  const bool gradients = !model_ && (output_.wants("stress") || output_.wants("von_mises") || output_.wants("error"));
   at_ = sample_shape_functions(*disc.trial, points_, gradients);
 }
 
+void SolidFrames::write_points(double time, const Eigen::VectorXd& d) {
+  const GalerkinQuadrature& q = model_->quadrature();
+  std::vector<double> u, sigma, vm, alpha;
+  for (Index k = 0; k < q.size(); ++k) {
+    if (output_.wants("displacement")) {
+      const Vec2 uk = displacement_at(q, k, d);
+      u.insert(u.end(), {uk.x(), uk.y()});
+    }
+    const TotalLagrangian::PointResponse r = model_->response(k, d);
+    if (output_.wants("stress")) sigma.insert(sigma.end(), {r.cauchy(0, 0), r.cauchy(1, 1), r.cauchy(0, 1)});
+    if (output_.wants("von_mises")) vm.push_back(von_mises(r.cauchy, r.cauchy_zz));
+    if (output_.wants("plastic_strain")) alpha.push_back(r.state.alpha);
+  }
+  std::vector<PointField> fields;
+  if (output_.wants("displacement")) fields.push_back({"displacement", 2, std::move(u)});
+  if (output_.wants("stress")) fields.push_back({"cauchy_stress_xx_yy_xy", 3, std::move(sigma)});
+  if (output_.wants("von_mises")) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (output_.wants("plastic_strain")) fields.push_back({"plastic_strain", 1, std::move(alpha)});
+  const std::string name = point_file(frames());
+  write_point_cloud_vtu(folder_ / name, q.points, fields);
+  point_steps_.emplace_back(time, name);
+  write_pvd(point_series(), point_steps_);
+}
+
 void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v) {
+  if (model_) write_points(time, d);
   const bool want_error = output_.wants("error") && exact_;
   const bool want_u = output_.wants("displacement") || want_error;
   const bool want_v = v && output_.wants("velocity");
-  const bool want_stress = output_.wants("stress") || output_.wants("von_mises") || want_error;
+  const bool want_stress = !model_ && (output_.wants("stress") || output_.wants("von_mises") || want_error);
   std::vector<double> u, vel, sigma, vm, ue, se;
   for (Index k = 0; k < at_.size(); ++k) {
     Vec2 uk = Vec2::Zero(), vk = Vec2::Zero();
@@ -65,8 +104,8 @@ void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::Vect
   std::vector<PointField> fields;
   if (output_.wants("displacement")) fields.push_back({"displacement", 2, std::move(u)});
   if (want_v) fields.push_back({"velocity", 2, std::move(vel)});
-  if (output_.wants("stress")) fields.push_back({"cauchy_stress_xx_yy_xy", 3, std::move(sigma)});
-  if (output_.wants("von_mises")) fields.push_back({"von_mises", 1, std::move(vm)});
+  if (want_stress && output_.wants("stress")) fields.push_back({"cauchy_stress_xx_yy_xy", 3, std::move(sigma)});
+  if (want_stress && output_.wants("von_mises")) fields.push_back({"von_mises", 1, std::move(vm)});
   if (want_error) {
     fields.push_back({"displacement_error", 2, std::move(ue)});
     fields.push_back({"stress_error_xx_yy_xy", 3, std::move(se)});

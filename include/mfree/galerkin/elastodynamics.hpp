@@ -20,8 +20,9 @@
 //
 // Both take dt = end_time / ceil(end_time / requested): steps of equal length that end at
 // end_time. Energy through time: kinetic 1/2 v.M v (the scheme's mass), strain sum_K w_K W(F_K),
-// and the work of the external forces f_ext - f_c (wall reactions included) accumulated by
-// the trapezoidal rule; total = kinetic + strain - work is constant for the exact motion.
+// the work of the external forces f_ext - f_c (wall reactions included) accumulated by the
+// trapezoidal rule, and the plastic work dissipated (laws with history, committed after
+// every step); total = kinetic + strain + dissipated - work is constant for the exact motion.
 
 #include <functional>
 #include <iosfwd>
@@ -56,7 +57,8 @@ struct EnergyRecord {
   double kinetic = 0.0;
   double strain = 0.0;
   double external_work = 0.0;
-  [[nodiscard]] double total() const { return kinetic + strain - external_work; }
+  double dissipated = 0.0;  ///< plastic work (laws with history)
+  [[nodiscard]] double total() const { return kinetic + strain + dissipated - external_work; }
 };
 
 /// The state handed to the caller after every step (and at t = 0, step 0).
@@ -91,6 +93,7 @@ struct DynamicsProgress {
   /// Newmark: the values of the effective tangent factorised last (modified Newton keeps it
   /// across steps), on the pattern of TotalLagrangian::zero_matrix().
   Eigen::VectorXd tangent;
+  PointHistory history;         ///< the model's committed material states (laws with history)
 };
 
 /// Saving and resuming a run (a checkpoint's part that the integrator owns).
@@ -110,8 +113,9 @@ double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& l
 /// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0),
 /// the steps a resumed run takes only. Stages "residual", "assembly", "factorisation",
 /// "solve", "energy" are timed on timer. A resumed state must come from the same model,
-/// (d0, v0) and settings (the step and the masses are derived from them again).
-DynamicsResult integrate_dynamics(const TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+/// (d0, v0) and settings (the step and the masses are derived from them again). The model's
+/// history (laws with history) is committed at d0 and after every step.
+DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
                                   StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {},
                                   const DynamicsCheckpoints& checkpoints = {});

@@ -17,6 +17,8 @@
 //                   convergence, no decrease, J <= 0) is cut back: the increment is halved
 //                   from the last converged state, up to max_cutbacks times in a row, then
 //                   the solve gives up with a NumericalError saying where and why.
+//                   A law with history is committed after every converged step (and only
+//                   then: a failed attempt leaves the history of the last converged step).
 //
 // Observed order of convergence (seed 004): p_k = log(r_{k+1} / r_k) / log(r_k / r_{k-1}),
 // 2 for Newton with an exact tangent near the solution. The log prints it per iteration.
@@ -88,8 +90,8 @@ struct StaticSolution {
 };
 
 /// Solves the static problem of `model` by load stepping; on_step(record, d) after every
-/// converged load step.
-StaticSolution solve_static(const TotalLagrangian& model, const NewtonSettings& settings, StageTimer& timer,
+/// converged load step, once the model's history is committed there.
+StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& settings, StageTimer& timer,
                             const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step = {});
 
 }  // namespace mfree

@@ -23,7 +23,15 @@
 // linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is
 // not symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
 //
-// Pressure p (positive into the body, SPEC section 9): with the small-strain law the dead
+// Laws with history (J2, Drucker–Prager; materials/material_state.hpp): every quadrature
+// point and every Nitsche point holds a MaterialState, the committed state_n. The forces and
+// tangents at d are those of update(F(d), state_n) with the consistent tangent, so Newton
+// iterates on one step without touching the history; commit(d) makes state_{n+1} the history
+// once the step is accepted (a converged load step, a time step). A failed load step,
+// cut back, leaves the history as it was. strain_energy() is the stored energy of the
+// committed state, dissipated() the plastic work.
+//
+// Pressure p (positive into the body, SPEC section 9): with a small-strain law the dead
 // traction -p N on the reference boundary; with a finite-strain law a follower load on the
 // current boundary, f_I = -p int phi_I R x,S dS (x = X + u^h, S the reference arc length,
 // R (a, b) = (b, -a) the rotation by -90 degrees), linear in the coefficients, with the load
@@ -84,6 +92,12 @@ struct LoadState {
 /// refused unless [material] allow_locking = true (studies of locking).
 inline constexpr double max_poisson_ratio = 0.49;
 
+/// The committed material states of a model's points (laws with history; empty otherwise).
+struct PointHistory {
+  std::vector<MaterialState> domain;    ///< per quadrature point
+  std::vector<MaterialState> boundary;  ///< per Nitsche point (boundary quadrature points of essential conditions)
+};
+
 struct SolidProblem {
   Material material = LinearElastic{};
   BodyForce body_force;                       ///< empty: none
@@ -126,8 +140,31 @@ class TotalLagrangian {
   /// Overwrites k's values (k from zero_matrix()) with the tangent of internal_force +
   /// boundary_force at d.
   void tangent(const Eigen::VectorXd& d, const LoadState& load, SparseMatrix& k) const;
-  /// sum_K w_K W(F_K).
+  /// sum_K w_K W(F_K, state_K): the stored energy (with history: of the committed state,
+  /// so call it after commit(d)).
   [[nodiscard]] double strain_energy(const Eigen::VectorXd& d) const;
+
+  /// True when the law has history (the points hold states, commit() updates them).
+  [[nodiscard]] bool has_history() const { return history_laws_; }
+  /// Makes the states of the update at d the committed history (an accepted step). No-op
+  /// for laws without history.
+  void commit(const Eigen::VectorXd& d);
+  [[nodiscard]] const PointHistory& history() const { return history_; }
+  /// Replaces the history (a resumed run); InputError when the sizes do not fit.
+  void set_history(PointHistory history);
+  /// sum_K w_K D_K: the plastic work per unit thickness done so far (committed) [J/m].
+  [[nodiscard]] double dissipated() const;
+  /// sum_K w_K over the points that have yielded (committed alpha > 0): the area of the
+  /// plastic zone [m^2].
+  [[nodiscard]] double plastic_area() const;
+  /// The update at quadrature point k from its committed state: Cauchy stress, sigma_zz and
+  /// the state (for output: the stress where it lives).
+  struct PointResponse {
+    Mat2 cauchy = Mat2::Zero();
+    double cauchy_zz = 0.0;
+    MaterialState state;
+  };
+  [[nodiscard]] PointResponse response(Index k, const Eigen::VectorXd& d) const;
 
   /// Consistent mass sum_K w_K rho0 phi_I phi_J (times I_2), on the tangent's pattern (so
   /// M and K add value by value).
@@ -143,7 +180,15 @@ class TotalLagrangian {
     const BoundaryCondition* condition;
   };
 
+  /// The update at quadrature point k (or Nitsche point b) from its committed state.
+  [[nodiscard]] MaterialUpdate domain_update(Index k, const Mat2& f, bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const;
+  /// F at Nitsche point p (the trial functions of at_boundary).
+  [[nodiscard]] Mat2 boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
+
   SolidProblem problem_;
+  bool history_laws_ = false;
+  PointHistory history_;
   Index nodes_;
   const GalerkinQuadrature& q_;
   const std::vector<Vec2>& test_;

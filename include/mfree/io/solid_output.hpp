@@ -10,6 +10,11 @@
 //   von_mises     of the Cauchy stress with the law's sigma_zz
 //   error         u^h - u and sigma^h - sigma against the exact motion, when there is one
 //
+// A law with history (J2, Drucker–Prager) has its stress at the quadrature points, where its
+// state lives: stress, von_mises and plastic_strain (the equivalent plastic strain alpha) are
+// then written on those points instead, as points_NNNN.vtu in points.pvd, with u^h there;
+// the triangulation keeps the displacement and velocity.
+//
 // Files are written atomically; the .pvd is rewritten after every frame, so a run stopped
 // early leaves a valid series of the frames written so far.
 
@@ -18,6 +23,7 @@
 
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
@@ -25,8 +31,11 @@ namespace mfree {
 
 class SolidFrames {
  public:
-  /// exact: the motion errors are measured against (may be null).
-  SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact);
+  /// exact: the motion errors are measured against (may be null). model: the solver whose
+  /// quadrature points hold the history (needed for a law with history, else unused); it
+  /// must outlive the frames.
+  SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
+              const TotalLagrangian* model = nullptr);
   /// Writes frame number frames() at `time`; v may be null (statics).
   void write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v);
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
@@ -34,16 +43,22 @@ class SolidFrames {
   void save(CheckpointState& state) const;
   void restore(const CheckpointState& state);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
+  /// The series of the quadrature points (a law with history).
+  [[nodiscard]] std::filesystem::path point_series() const { return folder_ / "points.pvd"; }
 
  private:
   const OutputSettings& output_;
   Material material_;
   const ExactMotion* exact_;
+  const TotalLagrangian* model_;  ///< set for a law with history
   std::filesystem::path folder_;
   std::vector<Vec2> points_;
   std::vector<std::array<Index, 3>> triangles_;
   GalerkinQuadrature at_;
-  std::vector<std::pair<double, std::string>> steps_;
+  std::vector<std::pair<double, std::string>> steps_, point_steps_;
+
+  /// The quadrature-point fields of a law with history.
+  void write_points(double time, const Eigen::VectorXd& d);
 };
 
 }  // namespace mfree
