@@ -2,8 +2,9 @@
 //
 // Usage:
 //   mfree run SCENE.toml [--set KEY=VALUE]... [--restart DIR]
-//                                               one elasticity solve or MPM run; --restart
-//                                               continues a run from its newest checkpoint
+//                                               one elasticity solve, MPM run or material-point
+//                                               path; --restart continues a run from its newest
+//                                               checkpoint
 //   mfree converge SCENE.toml [--set ...]       refinement study of an elasticity or MPM scene
 //   mfree integration SCENE.toml [--out DIR]   integration-accuracy study (seed 003)
 //   mfree --help | mfree SUBCOMMAND --help
@@ -22,6 +23,7 @@
 #include "mfree/apps/elasticity_app.hpp"
 #include "mfree/apps/integration_study.hpp"
 #include "mfree/apps/mpm_app.hpp"
+#include "mfree/apps/path_app.hpp"
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -62,7 +64,8 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> overrides;
   const std::string set_help = "Replace or add a scene key: section.key=value (TOML value; repeatable)";
-  CLI::App* run = app.add_subcommand("run", "One solve or MPM run of a scene: summary, errors, VTK fields");
+  CLI::App* run =
+      app.add_subcommand("run", "One solve, MPM run or material-point path of a scene: summary, errors, VTK fields");
   run->add_option("scene", scene, "Scene file (TOML)")->required();
   run->add_option("--set", overrides, set_help);
   std::filesystem::path restart;
@@ -97,6 +100,14 @@ int main(int argc, char** argv) {
   }
   try {
     if (*integration) return run_integration(scene, out);
+    // A scene with a [path] section drives one material point along a given F(t).
+    if ((*run || *converge) && mfree::is_path_scene(scene)) {
+      if (*converge)
+        throw mfree::InputError(fmt::format("{}: a material-point path has no refinement study; run it with mfree run "
+                                            "(and its increments with --set path.increments=N)",
+                                            scene.string()));
+      return mfree::run_path_scene(scene, overrides, restart);
+    }
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
       mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);

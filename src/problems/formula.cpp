@@ -60,6 +60,7 @@ struct Formula::Impl {
   Constants constants;
   std::optional<double> value;  ///< set when the formula is a constant
   bool time = false;
+  bool space = false;  ///< uses x, y, X or Y
   // Built on a thread's first call; each thread touches only its own entry.
   mutable std::array<std::unique_ptr<Evaluator>, max_threads> evaluators;
 
@@ -100,6 +101,7 @@ Formula::Formula(const std::string& expression, const Constants& constants, std:
                                                        : " and those of [constants]"));
       }
     impl->time = used.count("t") > 0;
+    impl->space = used.count("x") + used.count("y") + used.count("X") + used.count("Y") > 0;
     if (used.empty()) {
       const double v = e.parser.Eval();
       if (!std::isfinite(v))
@@ -149,6 +151,7 @@ void Formula::evaluate(const std::vector<Vec2>& points, double t, std::vector<do
 const std::string& Formula::expression() const { return impl_->expression; }
 const std::string& Formula::key() const { return impl_->key; }
 bool Formula::depends_on_time() const { return impl_->time; }
+bool Formula::depends_on_space() const { return impl_->space; }
 bool Formula::is_constant() const { return impl_->value.has_value(); }
 
 }  // namespace mfree

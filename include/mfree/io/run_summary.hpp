@@ -1,7 +1,7 @@
 #pragma once
 // summary.json: what one `mfree run` did, for scripts (verification/report reads it).
 //
-//   { "kind": "linear_statics" | "newton" | "dynamics" | "mpm", "scene": FILE,
+//   { "kind": "linear_statics" | "newton" | "dynamics" | "mpm" | "material_point_path", "scene": FILE,
 //     "threads": N, "stages": [{"name", "seconds", "calls"}, ...], "total_seconds": s,
 //     ...the run's own numbers (SI units, as printed) }
 //

@@ -51,6 +51,8 @@ class Formula {
   [[nodiscard]] const std::string& key() const;
   /// True when the formula uses t.
   [[nodiscard]] bool depends_on_time() const;
+  /// True when the formula uses x, y, X or Y.
+  [[nodiscard]] bool depends_on_space() const;
   /// True when the formula uses none of x, y, X, Y, t.
   [[nodiscard]] bool is_constant() const;
 
