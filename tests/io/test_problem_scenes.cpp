@@ -8,6 +8,7 @@
 
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
@@ -173,6 +174,50 @@ TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of
   INFO("L2 errors " << errors[0] << ", " << errors[1] << ": rate " << rate);
   CHECK(rate >= 1.8);
   CHECK(errors[1] < 3e-3);
+}
+
+TEST_CASE("plastic thick cylinder: elastic-plastic radius within 1.5 % of the classical one, Newton to 98 % of p_L",
+          "[io][problems][plasticity]") {
+  // verification/plastic-cylinder at h = 0.1 (the folder's run uses 0.05): J2, perfectly
+  // plastic, small strain, nu = 0.49. Classical (SPEC section 10): p = (sigma_y / sqrt 3)
+  // [2 ln(c / a) + 1 - c^2 / b^2], p_L = (2 sigma_y / sqrt 3) ln 2.
+  const ElasticityScene scene = verification_scene("plastic-cylinder/cylinder.toml", {"nodes.spacing=0.1"});
+  StageTimer timer;
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                        disc.boundary, disc.at_boundary);
+  const double sy = 1.0, a = 1.0, b = 2.0, p_limit = 2 * sy / std::sqrt(3.0) * std::log(b / a);
+  const auto hill = [&](double c) { return sy / std::sqrt(3.0) * (2 * std::log(c / a) + 1 - c * c / (b * b)); };
+  const auto radius = [&](double p) {  // c(p) by bisection
+    double lo = a, hi = b;
+    for (int i = 0; i < 100; ++i) (hill(0.5 * (lo + hi)) < p ? lo : hi) = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+  };
+  const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(a, 0.0)}, false);
+  std::vector<std::pair<double, double>> load_displacement;  // (p / p_L, u_r(a))
+  double worst = 0.0;
+  const StaticSolution sol = solve_static(model, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+    const double p = 0.98 * step.factor;
+    load_displacement.emplace_back(p, displacement_at(probe, 0, d).x());
+    CHECK(step.history.size() <= 9);  // at most 8 Newton iterations, near the limit load too
+    if (p * p_limit <= hill(a) * 0.999) {
+      CHECK(model.plastic_area() == 0.0);  // below first yield
+    } else if (p * p_limit >= hill(a) * 1.05) {
+      const double c = std::sqrt(a * a + 4 * model.plastic_area() / M_PI), exact = radius(p * p_limit);
+      INFO("p / p_L = " << p << ": c = " << c << " against " << exact);
+      worst = std::max(worst, std::abs(c - exact) / exact);
+    }
+  });
+  INFO("largest relative error of the elastic-plastic radius " << worst);
+  CHECK(worst <= 0.015);
+  REQUIRE(load_displacement.back().first == Approx(0.98));
+  // Near the limit load the body has lost most of its stiffness: du / dp at 98 % is at least
+  // five times the elastic one.
+  const auto& [p0, u0] = load_displacement.front();
+  const auto& [p1, u1] = load_displacement[load_displacement.size() - 2];
+  const auto& [p2, u2] = load_displacement.back();
+  CHECK((u2 - u1) / (p2 - p1) >= 5.0 * u0 / p0);
+  CHECK(sol.steps.size() == scene.newton->load_factors.size());  // no cut-back needed
 }
 
 TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away from the ends", "[io][problems]") {
