@@ -38,6 +38,7 @@ ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 
 import performance  # noqa: E402
+import plasticity  # noqa: E402
 import stability  # noqa: E402
 import studies  # noqa: E402
 from common import Context, Section, nonfinite_fields, table  # noqa: E402
@@ -52,6 +53,7 @@ def main() -> int:
     print(f"mfree verification report ({'quick' if ctx.quick else 'full'} mode): runs in {ctx.work}", flush=True)
 
     sections = studies.sections(ctx)
+    sections += module_sections(ctx, "Plasticity", plasticity)
     sections += module_sections(ctx, "Stability", stability)
     sections += module_sections(ctx, "Performance", performance)
 
