@@ -220,6 +220,34 @@ TEST_CASE("plastic thick cylinder: elastic-plastic radius within 1.5 % of the cl
   CHECK(sol.steps.size() == scene.newton->load_factors.size());  // no cut-back needed
 }
 
+TEST_CASE("plastic strip footing: Drucker–Prager to 98 % of Prandtl's collapse load, Newton without cut-backs",
+          "[io][problems][plasticity]") {
+  // verification/plastic-footing at h = 0.25 (the folder's run uses 0.1): associative
+  // Drucker–Prager, c = 10, phi = 20 degrees, q_u = c N_c = 148.35.
+  const ElasticityScene scene = verification_scene("plastic-footing/footing.toml", {"nodes.spacing=0.25"});
+  StageTimer timer;
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                        disc.boundary, disc.at_boundary);
+  const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);
+  std::vector<std::pair<double, double>> load_settlement;
+  std::vector<double> plastic;
+  const StaticSolution sol = solve_static(model, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+    load_settlement.emplace_back(step.factor, -displacement_at(probe, 0, d).y());
+    plastic.push_back(model.plastic_area());
+    CHECK(step.history.size() <= 11);
+  });
+  REQUIRE(sol.steps.size() == scene.newton->load_factors.size());  // no cut-back
+  CHECK(plastic.front() == 0.0);  // elastic at 0.2 of the load
+  CHECK(plastic.back() > 3.0);    // a plastic zone of square metres under the footing at 0.98 q_u
+  for (std::size_t k = 1; k < plastic.size(); ++k) CHECK(plastic[k] >= plastic[k - 1]);
+  const auto& [f0, u0] = load_settlement.front();
+  const auto& [f1, u1] = load_settlement[load_settlement.size() - 2];
+  const auto& [f2, u2] = load_settlement.back();
+  INFO("settlement " << u0 << " at " << f0 << ", " << u1 << " at " << f1 << ", " << u2 << " at " << f2);
+  CHECK((u2 - u1) / (f2 - f1) >= 2.0 * u0 / f0);  // softening towards the collapse
+}
+
 TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away from the ends", "[io][problems]") {
   const ElasticityScene scene = verification_scene("gravity-column/column.toml", {});
   const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, nullptr);

@@ -5,6 +5,7 @@
                         of the radial return in the increment
     plastic cylinder    total-Lagrangian statics to 98 % of the limit load: elastic-plastic
                         radius against the classical solution, Newton, the collapse beyond p_L
+    strip footing       Drucker–Prager (associative) to 98 % of Prandtl's collapse load, and past it
     Taylor bar          MPM impact of a J2 bar on a wall: kinetic + stored + dissipated energy
     granular collapse   MPM Drucker–Prager column collapse: runout against the experiments
 
@@ -23,6 +24,7 @@ from common import Context, Section, num, number, read_csv, table
 
 MATERIAL_POINT = Path("verification/material-point")
 CYLINDER = Path("verification/plastic-cylinder")
+FOOTING = Path("verification/plastic-footing")
 TAYLOR_BAR = Path("verification/mpm-taylor-bar")
 GRANULAR = Path("verification/mpm-granular-collapse")
 
@@ -30,6 +32,7 @@ GRANULAR = Path("verification/mpm-granular-collapse")
 def sections(ctx: Context) -> list[Section]:
     out = []
     for label, study in [("material-point paths", material_point), ("plastic cylinder", plastic_cylinder),
+                         ("strip footing", strip_footing),
                          ("Taylor bar", taylor_bar), ("granular collapse", granular_collapse)]:
         with ctx.step(f"plasticity: {label}"):
             out.append(study(ctx))
@@ -196,6 +199,47 @@ annulus, slip on the axes, h = {0.1 if ctx.quick else 0.05}. The elastic-plastic
 {ctx.image(figure, "Plastic cylinder: load against inner displacement; elastic-plastic radius against Hill's")}
 """
     return Section("Plasticity: thick cylinder to the limit load", md, headlines)
+
+
+# ---------------------------------------------------------------------------------------------
+# Strip footing on Drucker–Prager soil
+
+def strip_footing(ctx: Context) -> Section:
+    h = 0.25 if ctx.quick else 0.1
+    run = ctx.mfree_run("run", FOOTING / "footing.toml", "plastic_footing", [f"nodes.spacing={h}", "output.fields=[]"])
+    rows = read_csv(run.folder / "load_steps.csv")
+    lines = [[f"{0.98 * number(r['load_factor']):.4f}", f"{-number(r['probe_uy']):.4e}", f"{number(r['plastic_area']):.3f}",
+              r["iterations"], r["cutbacks"]] for r in rows]
+    iterations = [int(r["iterations"]) for r in rows]
+    cutbacks = sum(int(r["cutbacks"]) for r in rows)
+    headlines = [("Strip footing (Drucker–Prager): Newton to 98 % of q_u", "no cut-back, at most 10 iterations per step",
+                  f"{sum(iterations)} iterations, at most {max(iterations)} per step, {cutbacks} cut-back(s)",
+                  yes(cutbacks == 0 and max(iterations) <= 10))]
+    collapse_text = "(quick mode: the run past q_u is left to `bash verification/plastic-footing/run.sh`)"
+    if not ctx.quick:
+        beyond = ctx.mfree_run("run", FOOTING / "footing.toml", "plastic_footing_collapse",
+                               ['constants.q="1.1 * qu"', "output.fields=[]",
+                                "newton.load_factors=[0.5, 0.8, 0.85, 0.88, 0.9, 0.92, 0.94, 0.96, 0.98, 1.0]"],
+                               expect_failure=True)
+        converged = [line for line in beyond.stdout.splitlines() if "converged: load factor" in line]
+        last = 1.1 * float(converged[-1].split("load factor")[1].split()[0]) if converged else float("nan")
+        failed = not beyond.ok and "Newton gave up" in beyond.stderr
+        headlines.append(("Strip footing: collapse load", "Newton gives up within 5 % above Prandtl's q_u = c N_c",
+                          f"last converged at {last:.4f} q_u", yes(failed and 1.0 <= last <= 1.05)))
+        collapse_text = f"Pushed to 1.1 q_u, Newton converges up to {last:.4f} q_u and then gives up."
+    md = f"""**Problem** ([{FOOTING}/README.md](../{FOOTING}/README.md)). A smooth strip load on a weightless soil, associative
+Drucker–Prager matched to Mohr–Coulomb in plane strain (c = 10, φ = 20°), small strain, h = {h}; Newton with
+load steps to 98 % of Prandtl's q_u = c N_c = 148.35.
+
+**Expected**: convergence without cut-back to 0.98 q_u; past it, the discrete collapse load (an upper bound)
+a few per cent above q_u.
+
+**Observed** (settlement under the footing's centre; plastic area in m²):
+
+{table(["q / q_u", "settlement", "plastic area", "Newton", "cut-backs"], lines)}
+{collapse_text}
+"""
+    return Section("Plasticity: strip footing on Drucker–Prager soil", md, headlines)
 
 
 # ---------------------------------------------------------------------------------------------
