@@ -198,7 +198,9 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   boundary_rows_ = RowIncidence(boundary_offsets_, boundary_nodes_, nodes);
   const RowIncidence* const sets[] = {&domain_rows_, &boundary_rows_};
   pattern_ = node_pattern(sets);
-  domain_symmetric_ = test_gradients == nullptr;
+  // The domain blocks are summed for I >= J and copied, K_IJ = K_JI^T, only when that holds:
+  // test = trial gradients and a tangent with major symmetry.
+  domain_symmetric_ = test_gradients == nullptr && has_symmetric_tangent(problem_.material);
   // The algorithmic tangents of the plastic laws are not taken as symmetric (Drucker–Prager
   // with dilatancy below friction is not; J2's is only to round-off).
   symmetric_ = domain_symmetric_ && follower_.empty() && (linear || (nitsche_.empty() && !history_laws_));

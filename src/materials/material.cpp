@@ -70,6 +70,13 @@ bool has_history(const Material& m) {
                     m);
 }
 
+bool has_symmetric_tangent(const Material& m) {
+  return std::visit(Overloaded{[](const LinearElastic&) { return true; }, [](const NeoHookean&) { return true; },
+                               [](const StVenantKirchhoff&) { return true; }, [](const J2Plasticity&) { return true; },
+                               [](const DruckerPrager&) { return false; }},
+                    m);
+}
+
 bool is_small_strain(const Material& m) {
   return std::visit(
       Overloaded{[](const LinearElastic&) { return true; }, [](const NeoHookean&) { return false; },

@@ -264,8 +264,15 @@ J2Plasticity j2_law(double yield_stress) {
 
 }  // namespace
 
-TEST_CASE("TL with J2: the tangent at a plastic state with history equals finite differences", "[galerkin][tl][plasticity]") {
-  const Block block(0.0, j2_law(8.0));
+TEST_CASE("TL with J2 and Drucker–Prager: the tangent at a plastic state with history equals finite differences",
+          "[galerkin][tl][plasticity]") {
+  DruckerPrager soil;  // non-associative: psi = 0 < phi
+  soil.lame = lame_constants(1000.0, 0.3);
+  soil.friction_angle = 20.0 * M_PI / 180.0;
+  soil.cohesion = 2.0;
+  for (const Material& law : {Material(j2_law(8.0)), Material(soil)}) {
+  CAPTURE(name(law));
+  const Block block(0.0, law);
   TotalLagrangian model = block.model();
   REQUIRE(model.has_history());
   REQUIRE_FALSE(model.symmetric());
@@ -293,6 +300,7 @@ TEST_CASE("TL with J2: the tangent at a plastic state with history equals finite
     const auto [kd, fd] = directional_derivatives(residual, dense, d2, rng);
     INFO("relative difference " << (fd - kd).norm() / kd.norm());
     CHECK((fd - kd).norm() <= 1e-6 * kd.norm());
+  }
   }
 }
 

@@ -205,7 +205,7 @@ class TotalLagrangian {
   /// Per slot of a Nitsche point's row in at_boundary: (C : grad(phi_I e_i)) N as the columns
   /// i of a 2 x 2 matrix, the traction of a test function in the symmetrising term.
   std::vector<Mat2> reference_traction_;
-  bool domain_symmetric_ = true;  ///< test = trial gradients
+  bool domain_symmetric_ = true;  ///< test = trial gradients and a tangent with major symmetry
   bool symmetric_ = true;
 };
 

@@ -36,6 +36,10 @@ MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& sta
 double energy(const Material& m, const Mat2& f, const MaterialState& state);
 /// True for the laws whose response depends on their state (J2, Drucker–Prager).
 bool has_history(const Material& m);
+/// True when the tangent A = dP/dF has major symmetry, A_iJkL = A_kLiJ: the hyperelastic laws
+/// and J2 (associative flow). False for Drucker–Prager (non-associative flow, the apex and
+/// cutoff returns): a stiffness assembled from it is not symmetric.
+bool has_symmetric_tangent(const Material& m);
 
 inline double energy(const Material& m, const Mat2& f) { return energy(m, f, MaterialState{}); }
 /// First Piola–Kirchhoff stress P (force per reference area) of a point without history.
