@@ -223,7 +223,7 @@ TEST_CASE("J2 in the logarithmic space tends to the small-strain return as the s
 }
 
 TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each; associative and not", "[materials]") {
-  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic}) {
+  for (const Kinematics k : {Kinematics::small_strain, Kinematics::logarithmic, Kinematics::multiplicative}) {
     const DruckerPrager cohesive = sand(k, 20e3, 1e300);  // cutoff at the apex
     const DruckerPrager cut = sand(k, 20e3, 5e3);          // cutoff below the apex
     const double eta = cohesive.eta(), xi = cohesive.xi();
@@ -268,8 +268,13 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     DruckerPrager associative = cohesive;
     associative.dilatancy_angle = associative.friction_angle;
     const MaterialUpdate dilating = associative.update(shear, {}, false);
-    const double dilation = dilating.state.plastic_strain.trace() + dilating.state.plastic_strain_zz;
-    const double less = cone.state.plastic_strain.trace() + cone.state.plastic_strain_zz;
+    // The plastic volume change ln J_p: tr E_p, or -1/2 ln det C_p^-1 (multiplicative: the state
+    // holds C_p^-1 - I).
+    const auto volume = [&](const MaterialState& st) {
+      if (k != Kinematics::multiplicative) return st.plastic_strain.trace() + st.plastic_strain_zz;
+      return -0.5 * std::log((Mat2::Identity() + st.plastic_strain).determinant() * (1.0 + st.plastic_strain_zz));
+    };
+    const double dilation = volume(dilating.state), less = volume(cone.state);
     CHECK(dilation > less);
     CHECK(less > 0.0);
   }
