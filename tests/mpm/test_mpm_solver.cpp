@@ -193,3 +193,59 @@ TEST_CASE("a blown-up motion and an inverted particle stop the run with what hap
   CHECK_THROWS_WITH(inverted.step(), Catch::Contains("<= 0 at t = ") && Catch::Contains("the material is inverted") &&
                                          !Catch::Contains("nan"));
 }
+
+TEST_CASE("a J2 block carries each particle's history: every method and scheme updates it where the stress is",
+          "[mpm][plasticity]") {
+  // The uniform-strain motion of the test above on a J2 block that starts with a plastic
+  // history (every particle the state of F = diag(1.01, 0.99) from the virgin one, then unloaded
+  // to F = I). Interior particles see the velocity gradient L exactly, so their state and stress
+  // after one step are those of the material-point update of F = dF(dt L) from that history
+  // (USAVG: two updates, at dF(dt L / 2) and at its square).
+  const double h = 1.0 / 64.0;
+  const Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
+  const double margin = 18.0 * h;
+  Mat2 L;
+  L << 0.3, 0.2, -0.1, 0.25;
+  J2Plasticity j2;
+  j2.lame = lame_constants(1e7, 0.3);
+  j2.yield_stress = 1e4;
+  j2.isotropic_modulus = 1e5;
+  const Material law = j2;
+  const MaterialState history = update(law, Mat2(Eigen::Vector2d(1.01, 0.99).asDiagonal()), {}, false).state;
+  REQUIRE(history.alpha > 0.0);
+  const MPMProblem problem{unit, {{"metal", law, 1000.0}}, {rectangle_body("block", unit)}, {}};
+  for (const Method& m : methods)
+    for (UpdateScheme s : schemes) {
+      Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
+      for (Index p = 0; p < particles.size(); ++p) {
+        particles.velocity[p] = L * particles.position[p];
+        particles.state[p] = history;
+      }
+      const Particles start = particles;
+      MPMSolver solver(problem, settings_for(m, s, 64), std::move(particles));
+      solver.step();
+      const double dt = solver.time_step();
+      auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
+      MaterialState state = history;
+      Mat2 f = series(dt * L);
+      if (s == UpdateScheme::usavg) {
+        state = update(law, series(0.5 * dt * L), state, false).state;
+        f = series(0.5 * dt * L) * series(0.5 * dt * L);
+      }
+      const MaterialUpdate expected = update(law, f, state, false);
+      const Mat2 sigma = cauchy_stress(law, expected.stress, f);
+      const Particles& P = solver.particles();
+      double worst_stress = 0.0, worst_state = 0.0;
+      for (Index p = 0; p < P.size(); ++p) {
+        if ((start.position[p] - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() > 30 * h - margin) continue;
+        worst_stress = std::max(worst_stress, (P.stress[p] - sigma).norm() / sigma.norm());
+        worst_state = std::max({worst_state, std::abs(P.state[p].alpha - expected.state.alpha) / expected.state.alpha,
+                                (P.state[p].plastic_strain - expected.state.plastic_strain).norm() /
+                                    expected.state.plastic_strain.norm()});
+      }
+      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s) << ": stress " << worst_stress
+                               << ", state " << worst_state);
+      CHECK(worst_stress <= 1e-10);
+      CHECK(worst_state <= 1e-10);
+    }
+}
