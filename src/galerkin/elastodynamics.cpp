@@ -184,8 +184,8 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
     if (explicit_scheme) {
       d += dt * v_half;
       try {
-        g_new = applied(d, t);
-        a = (g_new - internal(d)).cwiseQuotient(lumped);
+        g_new = applied(d, t);  // Nitsche's terms from the states of step n, then the step's states committed
+        a = (g_new - timer.time("residual", [&] { return model.internal_force_committed(d); })).cwiseQuotient(lumped);
       } catch (const NumericalError& e) {  // the model knows where, the integrator when
         throw NumericalError(fmt::format("{} (central differences, step {}, t = {:.4e} s)", e.what(), n, t));
       }
@@ -219,7 +219,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
       d = std::move(x);
       if (energy) g_new = f_ext - timer.time("residual", [&] { return model.boundary_force(d, {1.0, t}); });
     }
-    model.commit(d);
+    if (!explicit_scheme) model.commit(d);  // explicit steps committed with their forces
     if (energy) {
       work += 0.5 * (g + g_new).dot(d - d_old);
       g = g_new;

@@ -240,6 +240,14 @@ void TotalLagrangian::commit(const Eigen::VectorXd& d) {
     history_.boundary[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
 }
 
+Eigen::VectorXd TotalLagrangian::internal_force_committed(const Eigen::VectorXd& d) {
+  if (!history_laws_) return internal_force(d);
+  Eigen::VectorXd f = domain_force(d, &history_.domain);
+  for (std::size_t b = 0; b < nitsche_.size(); ++b)
+    history_.boundary[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
+  return f;
+}
+
 void TotalLagrangian::set_history(PointHistory history) {
   const std::size_t domain = history_laws_ ? static_cast<std::size_t>(q_.size()) : 0;
   const std::size_t boundary = history_laws_ ? nitsche_.size() : 0;
@@ -275,11 +283,16 @@ Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) co
   return f;
 }
 
-Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const {
+Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const { return domain_force(d, nullptr); }
+
+Eigen::VectorXd TotalLagrangian::domain_force(const Eigen::VectorXd& d, std::vector<MaterialState>* commit) const {
   std::vector<Mat2> wp(q_.size());
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
-    for (Index k = begin; k < end; ++k)
-      wp[k] = q_.weights[k] * domain_update(k, deformation_gradient(k, d), false).stress;
+    for (Index k = begin; k < end; ++k) {
+      const MaterialUpdate u = domain_update(k, deformation_gradient(k, d), false);  // reads state k
+      wp[k] = q_.weights[k] * u.stress;
+      if (commit) (*commit)[k] = u.state;  // then replaces it
+    }
   });
   return gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 { return wp[k] * test_[s]; });
 }

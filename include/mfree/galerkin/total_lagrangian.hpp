@@ -149,6 +149,9 @@ class TotalLagrangian {
   /// Makes the states of the update at d the committed history (an accepted step). No-op
   /// for laws without history.
   void commit(const Eigen::VectorXd& d);
+  /// internal_force(d) and commit(d) in one pass over the points (one update per point, not
+  /// two): for explicit steps, whose every state is accepted.
+  [[nodiscard]] Eigen::VectorXd internal_force_committed(const Eigen::VectorXd& d);
   [[nodiscard]] const PointHistory& history() const { return history_; }
   /// Replaces the history (a resumed run); InputError when the sizes do not fit.
   void set_history(PointHistory history);
@@ -183,6 +186,9 @@ class TotalLagrangian {
   /// The update at quadrature point k (or Nitsche point b) from its committed state.
   [[nodiscard]] MaterialUpdate domain_update(Index k, const Mat2& f, bool with_tangent) const;
   [[nodiscard]] MaterialUpdate boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const;
+  /// sum_K w_K P(F_K) t_I from the committed states; with `commit`, each point's new state
+  /// written into it after its update.
+  [[nodiscard]] Eigen::VectorXd domain_force(const Eigen::VectorXd& d, std::vector<MaterialState>* commit) const;
   /// F at Nitsche point p (the trial functions of at_boundary).
   [[nodiscard]] Mat2 boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
 
