@@ -49,12 +49,14 @@ SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& dis
 
 void SolidFrames::write_points(double time, const Eigen::VectorXd& d) {
   const GalerkinQuadrature& q = model_->quadrature();
+  const bool want_response = output_.wants("stress") || output_.wants("von_mises") || output_.wants("plastic_strain");
   std::vector<double> u, sigma, vm, alpha;
   for (Index k = 0; k < q.size(); ++k) {
     if (output_.wants("displacement")) {
       const Vec2 uk = displacement_at(q, k, d);
       u.insert(u.end(), {uk.x(), uk.y()});
     }
+    if (!want_response) continue;
     const TotalLagrangian::PointResponse r = model_->response(k, d);
     if (output_.wants("stress")) sigma.insert(sigma.end(), {r.cauchy(0, 0), r.cauchy(1, 1), r.cauchy(0, 1)});
     if (output_.wants("von_mises")) vm.push_back(von_mises(r.cauchy, r.cauchy_zz));

@@ -87,3 +87,37 @@ TEST_CASE("VTK frames: stress is the Cauchy stress of F = I + grad u^h, zero for
   for (double s : f.arrays.at("von_mises")) worst = std::max(worst, std::abs(s));
   CHECK(worst <= 1e-6);  // Pa, against E = 1e7: round-off of a rotation reproduced by linear RK
 }
+
+TEST_CASE("VTK frames of a law with history: stress and plastic strain at the quadrature points, where they live",
+          "[io][plasticity]") {
+  const testing::ScratchFolder folder("frames_history");
+  const ElasticityScene scene = read_elasticity_scene(
+      std::string(MFREE_SOURCE_DIR) + "/verification/plastic-cylinder/cylinder.toml", false,
+      {"nodes.spacing=0.2", "output.folder=\"" + (folder.path / "out").string() + "\"",
+       "output.fields=[\"displacement\", \"stress\", \"plastic_strain\"]"});
+  StageTimer timer;
+  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
+                        disc.boundary, disc.at_boundary);
+  // A radial expansion u = 0.004 X, yielding near the inner radius, committed.
+  Eigen::VectorXd d(model.dofs());
+  for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = 0.004 * disc.nodes[i] / disc.nodes[i].squaredNorm();
+  model.commit(d);
+  SolidFrames frames(scene, disc, nullptr, &model);
+  frames.write(1.0, d, nullptr);
+  const VtuContents triangles = read_vtu(scene.output.folder / "field_0000.vtu");
+  CHECK(triangles.arrays.count("displacement") == 1);
+  CHECK(triangles.arrays.count("cauchy_stress_xx_yy_xy") == 0);  // not recomputed from F where no state lives
+  const VtuContents points = read_vtu(scene.output.folder / "points_0000.vtu");
+  REQUIRE(points.points.size() == static_cast<std::size_t>(disc.quadrature.size()));
+  const std::vector<double>& alpha = points.arrays.at("plastic_strain");
+  double yielded = 0.0, worst = 0.0;
+  for (Index k = 0; k < disc.quadrature.size(); ++k) {
+    yielded = std::max(yielded, alpha[k]);
+    worst = std::max(worst, std::abs(alpha[k] - model.history().domain[k].alpha));
+  }
+  CHECK(yielded > 0.0);
+  CHECK(worst <= 1e-12 * yielded);  // the committed state (its update at the same F changes nothing)
+  CHECK(points.arrays.count("cauchy_stress_xx_yy_xy") == 1);
+  CHECK(std::filesystem::exists(frames.point_series()));
+}
