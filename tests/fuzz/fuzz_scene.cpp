@@ -1,12 +1,14 @@
 // libFuzzer target: the scene readers. The input is a scene, optionally followed by a line
 // "%%" and --set overrides, one per line. Every scene kind is read as `mfree run` and
-// `mfree converge` read it (the MPM reader when it has [mpm]); a refusal is an mfree::Error.
+// `mfree converge` read it (the material-point reader when it has [path], the MPM reader
+// when it has [mpm]); a refusal is an mfree::Error.
 #include <vector>
 
 #include "fuzz_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 #include "mfree/io/mpm_scene.hpp"
+#include "mfree/io/path_scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view all = mfree::fuzz::text(data, size);
@@ -26,7 +28,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       reinterpret_cast<const std::uint8_t*>(scene.data()), scene.size(), "scene.toml");
   for (const bool study : {false, true}) {
     try {
-      if (mfree::is_mpm_scene(file))
+      if (mfree::is_path_scene(file))
+        (void)mfree::read_path_scene(file, overrides);
+      else if (mfree::is_mpm_scene(file))
         (void)mfree::read_mpm_scene(file, study, overrides);
       else
         (void)mfree::read_elasticity_scene(file, study, overrides);
