@@ -32,7 +32,8 @@ constexpr const char* csv_header =
     "stored_energy\n";
 constexpr double csv_bytes_per_row = 16 * 20.0;  // 16 cells of "-1.234567890123e+05,"
 
-std::string path_csv(const std::vector<PathRecord>& rows) {
+/// The CSV of the rows; Ep_* is the plastic strain of plastic_strain() (materials/material.hpp).
+std::string path_csv(const Material& law, const std::vector<PathRecord>& rows) {
   std::string out = csv_header;
   out.reserve(out.size() + static_cast<std::size_t>(csv_bytes_per_row) * rows.size());
   const auto cell = [&](double v, bool last = false) {
@@ -41,10 +42,9 @@ std::string path_csv(const std::vector<PathRecord>& rows) {
   };
   for (const PathRecord& r : rows) {
     const Mat2& f = r.deformation;
-    const Mat2& e = r.state.plastic_strain;
+    const auto [e, e_zz] = plastic_strain(law, r.state);  // one measure for every kinematics
     for (const double v : {r.time, f(0, 0), f(0, 1), f(1, 0), f(1, 1), r.cauchy(0, 0), r.cauchy(1, 1), r.cauchy(0, 1),
-                           r.stress_zz, r.state.alpha, e(0, 0), e(1, 1), e(0, 1), r.state.plastic_strain_zz,
-                           r.state.dissipation})
+                           r.stress_zz, r.state.alpha, e(0, 0), e(1, 1), e(0, 1), e_zz, r.state.dissipation})
       cell(v);
     cell(r.stored_energy, true);
   }
@@ -84,7 +84,7 @@ int run_path(const PathScene& scene) {
   std::cout << fmt::format("  at t = {:.6g}: plastic work {:.6e}, stored energy {:.6e} (per unit reference volume)\n",
                            end.time, end.state.dissipation, end.stored_energy);
 
-  timer.time("output", [&] { write_file_atomically(scene.folder / "path.csv", path_csv(rows)); });
+  timer.time("output", [&] { write_file_atomically(scene.folder / "path.csv", path_csv(m, rows)); });
   std::cout << "  wrote path.csv\n";
   std::cout << "stages:\n";
   print_stages(timer);

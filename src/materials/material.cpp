@@ -4,6 +4,9 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <optional>
+
+#include <Eigen/Eigenvalues>
 
 #include "mfree/core/error.hpp"
 
@@ -75,6 +78,23 @@ bool has_symmetric_tangent(const Material& m) {
                                [](const StVenantKirchhoff&) { return true; }, [](const J2Plasticity&) { return true; },
                                [](const DruckerPrager&) { return false; }},
                     m);
+}
+
+std::pair<Mat2, double> plastic_strain(const Material& m, const MaterialState& state) {
+  const auto kinematics = std::visit(
+      Overloaded{[](const LinearElastic&) { return std::optional<Kinematics>(); },
+                 [](const NeoHookean&) { return std::optional<Kinematics>(); },
+                 [](const StVenantKirchhoff&) { return std::optional<Kinematics>(); },
+                 [](const J2Plasticity& j) { return std::optional<Kinematics>(j.kinematics); },
+                 [](const DruckerPrager& d) { return std::optional<Kinematics>(d.kinematics); }},
+      m);
+  if (!kinematics) return {Mat2::Zero(), 0.0};
+  if (*kinematics != Kinematics::multiplicative) return {state.plastic_strain, state.plastic_strain_zz};
+  // -1/2 ln of the symmetric positive definite C_p^-1, by its eigen-decomposition.
+  const Eigen::SelfAdjointEigenSolver<Mat2> eigen(Mat2::Identity() + state.plastic_strain);
+  const Mat2 log = eigen.eigenvectors() * eigen.eigenvalues().array().log().matrix().asDiagonal() *
+                   eigen.eigenvectors().transpose();
+  return {-0.5 * log, -0.5 * std::log1p(state.plastic_strain_zz)};
 }
 
 bool is_small_strain(const Material& m) {

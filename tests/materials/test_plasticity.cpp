@@ -11,6 +11,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/materials/drucker_prager.hpp"
 #include "mfree/materials/j2_plasticity.hpp"
+#include "mfree/materials/material.hpp"
 
 using namespace mfree;
 
@@ -281,4 +282,24 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
   DruckerPrager bad = sand(Kinematics::small_strain, 0.0, 1e300);
   bad.dilatancy_angle = 0.7;
   CHECK_THROWS_AS(bad.validate(), InputError);
+}
+
+TEST_CASE("plastic_strain() is one measure for every kinematics: coaxial stretches agree", "[materials]") {
+  // On a stretch along fixed axes both finite-strain forms follow the same return in the same
+  // principal log strains, so 1/2 ln C_p of the multiplicative state (which holds C_p^-1 - I)
+  // must equal the logarithmic state's E_p.
+  const Mat2 f1 = Eigen::Vector2d(1.03, 0.98).asDiagonal(), f2 = Eigen::Vector2d(1.05, 0.97).asDiagonal();
+  const Material log_law = j2(Kinematics::logarithmic, 1e9, 0.0, 400e6), mult_law = j2(Kinematics::multiplicative, 1e9, 0.0, 400e6);
+  MaterialState a, b;
+  for (const Mat2& f : {f1, f2}) {
+    a = update(log_law, f, a, false).state;
+    b = update(mult_law, f, b, false).state;
+  }
+  const auto [ea, za] = plastic_strain(log_law, a);
+  const auto [eb, zb] = plastic_strain(mult_law, b);
+  INFO("E_p " << ea << " zz " << za << " against 1/2 ln C_p " << eb << " zz " << zb);
+  REQUIRE(ea.norm() > 1e-3);
+  CHECK((ea - eb).norm() <= 1e-10 * ea.norm());
+  CHECK(std::abs(za - zb) <= 1e-10 * ea.norm());
+  CHECK(plastic_strain(Material(NeoHookean{steel}), a).first.norm() == 0.0);
 }

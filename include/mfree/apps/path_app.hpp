@@ -9,7 +9,8 @@
 //
 //   path.csv      every recorded increment: time, F_xx, F_xy, F_yx, F_yy, sigma_xx, sigma_yy,
 //                 sigma_xy, sigma_zz (Cauchy), alpha, Ep_xx, Ep_yy, Ep_xy, Ep_zz (plastic
-//                 strain), dissipation (plastic work per unit reference volume), stored_energy
+//                 strain, plastic_strain() of materials/material.hpp: E_p, or 1/2 ln C_p with
+//                 multiplicative kinematics), dissipation (plastic work per unit reference volume), stored_energy
 //   summary.json  the run's summary (io/run_summary.hpp; kind "material_point_path")
 //
 // A failure on the way (J <= 0, a stress that is not finite) is a NumericalError naming the

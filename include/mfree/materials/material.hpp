@@ -15,6 +15,7 @@
 // reference state of any law (wave speeds, the reference tangent).
 
 #include <string_view>
+#include <utility>
 #include <variant>
 
 #include "mfree/core/name_table.hpp"
@@ -45,6 +46,11 @@ inline double energy(const Material& m, const Mat2& f) { return energy(m, f, Mat
 /// First Piola–Kirchhoff stress P (force per reference area) of a point without history.
 inline Mat2 stress(const Material& m, const Mat2& f) { return update(m, f, {}, false).stress; }
 inline Tangent tangent(const Material& m, const Mat2& f) { return update(m, f, {}, true).tangent; }
+/// The plastic strain a state holds, in-plane block and zz, as one measure for every
+/// kinematics: E_p (small strain, logarithmic), or the Lagrangian plastic log strain
+/// 1/2 ln C_p = -1/2 ln C_p^-1 (multiplicative, whose state holds C_p^-1 - I); zero for the
+/// elastic laws.
+std::pair<Mat2, double> plastic_strain(const Material& m, const MaterialState& state);
 /// True for the laws of the small strain (LinearElastic, plastic laws with small-strain
 /// kinematics), whose P is sigma.
 bool is_small_strain(const Material& m);
