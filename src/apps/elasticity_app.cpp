@@ -36,10 +36,10 @@ int run_linear_statics(const ElasticityScene& scene) {
                            r.nodes.size(), 2 * r.nodes.size(), r.quadrature.size(), to_string(s.scheme),
                            to_string(s.order), to_string(s.nodes.kind), s.nodes.spacing);
   std::cout << fmt::format(
-      "  integration consistency defect: {:.2e} -> {:.2e} ({}), solver {}\n", r.consistency_before,
+      "  integration consistency defect: {:.2e} -> {:.2e} ({}{})\n  solver: {}\n", r.consistency_before,
       r.consistency_after,
       to_string(s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none),
-      to_string(r.solver));
+      r.correction_solver.empty() ? "" : ", node system: " + r.correction_solver, r.solver);
   if (r.errors)
     std::cout << fmt::format(
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
@@ -57,6 +57,8 @@ int run_linear_statics(const ElasticityScene& scene) {
   summary.number("quadrature_points", static_cast<double>(r.quadrature.size()));
   summary.number("consistency_before", r.consistency_before);
   summary.number("consistency_after", r.consistency_after);
+  summary.text("solver", r.solver);
+  if (!r.correction_solver.empty()) summary.text("consistency_solver", r.correction_solver);
   {
     // Negative quadrature weights (quadratic RK on irregular quadrature clouds, SPEC 3).
     double negative = 0.0, most_negative = 0.0, largest = 0.0;

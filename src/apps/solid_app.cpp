@@ -80,6 +80,7 @@ int run_static(const ElasticityScene& scene) {
 
   const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
   NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
+  ns.solver = scene.settings.solver;
   ns.log = &std::cout;
   // Laws with history add the plastic work and the area of the plastic zone.
   const bool plastic = model.has_history();
@@ -110,14 +111,14 @@ int run_static(const ElasticityScene& scene) {
                        plastic ? fmt::format(",{:.9e},{:.9e}", model.dissipated(), model.plastic_area()) : "");
     if (frames) timer.time("output", [&] { frames->write(step.factor, d, nullptr); });
   };
-  const StaticSolution sol = solve_static(model, ns, timer, on_step);
+  const StaticSolution sol = solve_static(model, disc.nodes, ns, timer, on_step);
   std::cout << fmt::format("  {} load steps, {} Newton iterations, solver {}\n", sol.steps.size(),
                            [&] {
                              int n = 0;
                              for (const auto& s : sol.steps) n += static_cast<int>(s.history.size()) - 1;
                              return n;
                            }(),
-                           to_string(sol.solver));
+                           sol.solver);
   const std::filesystem::path csv_path = o.folder / "load_steps.csv";
   write_file_atomically(csv_path, csv);
   std::cout << fmt::format("  wrote {}\n", csv_path.filename().string());
@@ -127,6 +128,7 @@ int run_static(const ElasticityScene& scene) {
   print_stages(timer);
   RunSummary summary("newton", scene.file);
   summary.number("dofs", static_cast<double>(model.dofs()));
+  summary.text("solver", sol.solver);
   std::vector<RunSummary::Record> steps;
   for (const LoadStepRecord& step : sol.steps)
     steps.push_back({{"load_factor", step.factor},
@@ -236,8 +238,10 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   // coefficients of RK functions are not nodal values); zero otherwise.
   const auto initial = [&](const std::optional<VectorFormula>& f, bool velocity) -> Eigen::VectorXd {
     if (exact && velocity)
-      return project_velocity(model, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); });
-    if (f) return project_velocity(model, settings.density, [&](const Vec2& x) { return (*f)(x); });
+      return project_velocity(model, disc.nodes, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); },
+                              scene.settings.solver);
+    if (f) return project_velocity(model, disc.nodes, settings.density, [&](const Vec2& x) { return (*f)(x); },
+                                   scene.settings.solver);
     return Eigen::VectorXd::Zero(model.dofs());
   };
   const Eigen::VectorXd v0 = timer.time("initial velocity", [&] { return initial(dyn.initial_velocity, true); });
@@ -340,6 +344,7 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
                            r.time_step,
                            r.stability_limit ? fmt::format(" (stability limit {:.4e} s by power iteration)", *r.stability_limit) : "",
                            s.scheme == TimeScheme::newmark ? fmt::format(", {} Newton iterations, {} factorisations", r.newton_iterations, r.factorisations) : "");
+  if (!r.solver.empty()) std::cout << fmt::format("  solver: {}\n", r.solver);
   if (!run.errors.empty()) {
     std::cout << fmt::format("  {:>10} {:>12} {:>12} {:>12}   (RMS over the body, independent Gauss cells)\n", "t [s]",
                              "displacement", "velocity", "stress");
@@ -373,6 +378,7 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   summary.number("time_step", r.time_step);
   if (r.stability_limit) summary.number("stability_limit", *r.stability_limit);
   summary.number("energy_drift", energy_drift(r.energy));
+  if (!r.solver.empty()) summary.text("solver", r.solver);
   std::vector<RunSummary::Record> errors;
   for (const MotionErrors& e : run.errors)
     errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity}, {"stress", e.stress}});

@@ -7,7 +7,6 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/linalg/node_pattern.hpp"
-#include "mfree/linalg/sparse_solver.hpp"
 
 namespace mfree {
 
@@ -123,7 +122,7 @@ std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
 }
 
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                              const std::vector<Vec2>& residuals) {
+                                              const std::vector<Vec2>& residuals, const SolverSettings& settings) {
   const Index nk = q.size();
   const Index n = static_cast<Index>(nodes.size());
   // Per row: centre, scale and the inverse Gram matrix (P^T P)^-1 of P = [1, (x_I - x_K) / s].
@@ -195,16 +194,17 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
       }
     }
   });
-  SparseSolver solver(SolverKind::cholmod);
-  solver.analyze(a);
-  solver.factorize(a);
+  const std::unique_ptr<LinearSolver> solver =
+      make_linear_solver(settings, {"consistency node", true, 1, nodes}, n);
+  solver->analyze(a);
+  solver->factorize(a);
 
   SymmetricCorrection report;
   for (int c = 0; c < 2; ++c) {
     Eigen::VectorXd r(n);
     for (Index i = 0; i < n; ++i) r[i] = residuals[i][c];
     for (Index i : {p0, p1, p2}) r[i] = 0.0;
-    const Eigen::VectorXd lambda = solver.solve(r);
+    const Eigen::VectorXd lambda = solver->solve(r);
     const double rn = r.norm();
     if (rn > 0.0) report.residual = std::max(report.residual, (a * lambda - r).norm() / rn);
     // delta_K = w_K (I - Q_K) lambda_K on every row.
@@ -218,6 +218,7 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
       }
     });
   }
+  report.solver = summary(*solver);
   return report;
 }
 

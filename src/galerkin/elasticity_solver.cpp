@@ -97,9 +97,10 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   res.consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
   timer.time("consistency", [&] {
     if (res.consistency == Consistency::symmetric) {
-      const SymmetricCorrection c = make_consistent_symmetric(res.quadrature, res.nodes,
-                                                                conditions.linear_residuals(res.quadrature.grad));
+      const SymmetricCorrection c = make_consistent_symmetric(
+          res.quadrature, res.nodes, conditions.linear_residuals(res.quadrature.grad), s.solver);
       res.correction_residual = c.residual;
+      res.correction_solver = c.solver;
       res.consistency_after = conditions.defect(res.quadrature.grad);
     } else if (res.consistency == Consistency::vci) {
       res.test_gradients = conditions.vci_test_gradients();
@@ -125,15 +126,15 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
                                res.at_boundary);
   });
   check_rigid_body_modes(sys.stiffness, res.nodes);
-  res.solver = s.solver.value_or(sys.symmetric ? SolverKind::cholmod : SolverKind::umfpack);
-  if (res.solver == SolverKind::cholmod && !sys.symmetric)
-    throw InputError("solver: CHOLMOD needs a symmetric system; VCI makes it non-symmetric (use umfpack)");
-  SparseSolver solver(res.solver);
+  const std::unique_ptr<LinearSolver> solver =
+      make_linear_solver(s.solver, {"stiffness", sys.symmetric, 2, res.nodes},
+                         sys.stiffness.rows());
   timer.time("factorisation", [&] {
-    solver.analyze(sys.stiffness);
-    solver.factorize(sys.stiffness);
+    solver->analyze(sys.stiffness);
+    solver->factorize(sys.stiffness);
   });
-  res.coefficients = timer.time("solve", [&] { return solver.solve(sys.load); });
+  res.coefficients = timer.time("solve", [&] { return solver->solve(sys.load); });
+  res.solver = summary(*solver);
 
   if (exact) {
     res.errors = timer.time("errors", [&] {

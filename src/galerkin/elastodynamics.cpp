@@ -17,8 +17,8 @@ const NameTable<TimeScheme>& time_scheme_names() {
 
 std::string_view to_string(TimeScheme s) { return time_scheme_names().name(s); }
 
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
-                                 const std::function<Vec2(const Vec2&)>& field) {
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes, double density,
+                                 const std::function<Vec2(const Vec2&)>& field, const SolverSettings& settings) {
   const GalerkinQuadrature& q = model.quadrature();
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(model.dofs());
   for (Index k = 0; k < q.size(); ++k) {
@@ -26,10 +26,10 @@ Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
     for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
   }
   const SparseMatrix m = model.mass_matrix(density);
-  SparseSolver solver(SolverKind::cholmod);
-  solver.analyze(m);
-  solver.factorize(m);
-  return solver.solve(rhs);
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver(settings, {"mass", true, 2, nodes}, model.dofs());
+  solver->analyze(m);
+  solver->factorize(m);
+  return solver->solve(rhs);
 }
 
 double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d) {
@@ -104,13 +104,14 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   const auto internal = [&](const Eigen::VectorXd& x) { return timer.time("residual", [&] { return model.internal_force(x); }); };
   Eigen::VectorXd g = applied(d, 0.0);
   Eigen::VectorXd a;
-  SparseSolver mass_solver(SolverKind::cholmod);
   if (explicit_scheme) {
     a = (g - internal(d)).cwiseQuotient(lumped);
   } else {
-    mass_solver.analyze(mass);
-    mass_solver.factorize(mass);
-    a = mass_solver.solve(g - internal(d));
+    const std::unique_ptr<LinearSolver> mass_solver =
+        make_linear_solver(s.newton.solver, {"mass", true, 2, node_positions}, model.dofs());
+    mass_solver->analyze(mass);
+    mass_solver->factorize(mass);
+    a = mass_solver->solve(g - internal(d));
   }
   const auto kinetic = [&](const Eigen::VectorXd& vel) {
     return 0.5 * (explicit_scheme ? vel.dot(lumped.cwiseProduct(vel)) : vel.dot(mass * vel));
@@ -127,7 +128,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
 
   // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once, at the
   // start state (the values matter to UMFPACK's pivoting: a resumed run analyses the same).
-  SparseSolver solver(model.symmetric() ? SolverKind::cholmod : SolverKind::umfpack);
+  std::unique_ptr<LinearSolver> solver;
   SparseMatrix k;
   const double c = 4.0 / (dt * dt);
   const auto effective_tangent = [&](const Eigen::VectorXd& x, double t, SparseMatrix& kt) {
@@ -138,7 +139,8 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   if (!explicit_scheme) {
     k = model.zero_matrix();
     timer.time("assembly", [&] { effective_tangent(d, 0.0, k); });
-    timer.time("factorisation", [&] { solver.analyze(k); });
+    solver = make_linear_solver(s.newton.solver, {"effective tangent", model.symmetric(), 2, node_positions}, model.dofs());
+    timer.time("factorisation", [&] { solver->analyze(k); });
   }
 
   Eigen::VectorXd v_half = v + 0.5 * dt * a;
@@ -161,7 +163,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
       if (p->tangent.size() != k.nonZeros())
         throw InputError("dynamics: the saved tangent does not fit this run's pattern");
       Eigen::Map<Eigen::VectorXd>(k.valuePtr(), k.nonZeros()) = p->tangent;
-      timer.time("factorisation", [&] { solver.factorize(k); });
+      timer.time("factorisation", [&] { solver->factorize(k); });
     }
     model.set_history(p->history);
     first = p->step + 1;
@@ -172,7 +174,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   const auto save = [&](int n) {
     DynamicsProgress p{n, d, v, a, v_half, energy ? g : Eigen::VectorXd(), work, out.energy, out.newton_iterations,
                        out.factorisations, Eigen::VectorXd(), model.history()};
-    if (!explicit_scheme && solver.factorized()) p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
+    if (!explicit_scheme && solver->factorized()) p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
     checkpoints.save(p);
   };
 
@@ -207,7 +209,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
       // A good predictor starts close to the solution: judge |R| against the step's forces.
       ns.absolute_tolerance = std::max(ns.absolute_tolerance, ns.tolerance * (f_ext.norm() + (mass * a).norm()));
       Eigen::VectorXd x = base + 0.25 * dt * dt * a;  // predictor: a_n+1 = a_n
-      const NewtonOutcome o = newton(system, x, k, solver, ns, timer);
+      const NewtonOutcome o = newton(system, x, k, *solver, ns, timer);
       if (!o.converged)
         throw NumericalError(fmt::format("Newmark step {} (t = {:.4e} s): Newton failed: {}. Use a smaller time_step.",
                                          n, t, o.failure));
@@ -231,6 +233,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
                   << std::flush;
     if (checkpoints.every > 0 && checkpoints.save && n < out.steps && n % checkpoints.every == 0) save(n);
   }
+  if (solver) out.solver = summary(*solver);
   out.d = std::move(d);
   out.v = std::move(v);
   return out;

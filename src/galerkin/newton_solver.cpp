@@ -33,7 +33,7 @@ double observed_order(const std::vector<NewtonIterate>& h) {
 
 }  // namespace
 
-NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, SparseSolver& solver,
+NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, LinearSolver& solver,
                      const NewtonSettings& s, StageTimer& timer) {
   NewtonOutcome out;
   Eigen::VectorXd r;
@@ -133,7 +133,8 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
   return out;
 }
 
-StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& s, StageTimer& timer,
+StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes, const NewtonSettings& s,
+                            StageTimer& timer,
                             const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
   std::vector<double> targets = s.load_factors;
   if (targets.empty())
@@ -144,8 +145,8 @@ StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& s, Sta
                                    i ? targets[i - 1] : 0.0));
 
   StaticSolution out;
-  out.solver = model.symmetric() ? SolverKind::cholmod : SolverKind::umfpack;
-  SparseSolver solver(out.solver);
+  const std::unique_ptr<LinearSolver> solver =
+      make_linear_solver(s.solver, {"tangent stiffness", model.symmetric(), 2, nodes}, model.dofs());
   SparseMatrix k = model.zero_matrix();
 
   const Eigen::VectorXd f_unit = model.external_force({});
@@ -169,7 +170,7 @@ StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& s, Sta
           },
           [&](const Eigen::VectorXd& x, SparseMatrix& t) { model.tangent(x, {factor, 0.0}, t); }};
       Eigen::VectorXd trial = d;
-      const NewtonOutcome o = newton(system, trial, k, solver, ns, timer);
+      const NewtonOutcome o = newton(system, trial, k, *solver, ns, timer);
       if (o.converged) {
         d = std::move(trial);
         model.commit(d);
@@ -191,6 +192,7 @@ StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& s, Sta
     }
   }
   out.coefficients = std::move(d);
+  out.solver = summary(*solver);
   return out;
 }
 

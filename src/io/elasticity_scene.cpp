@@ -248,7 +248,27 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   if (root.has("solver")) {
     const SceneTable t = root.table("solver");
-    s.solver = read_choice_or(t, "kind", solver_choices(), std::optional<SolverKind>{});
+    SolverSettings& v = s.solver;
+    v.kind = read_choice_or(t, "kind", solver_choices(), std::optional<SolverKind>{});
+    // Keys the chosen solver would not read are errors, not silently dropped: the Krylov
+    // settings with a direct kind, the crossing size with a kind that is fixed.
+    if (v.kind && is_direct(*v.kind))
+      for (const char* key : {"preconditioner", "tolerance", "max_iterations"})
+        if (t.has(key))
+          t.error(key, fmt::format("is a setting of the Krylov solvers (cg, gmres, auto), not of kind = \"{}\"",
+                                   to_string(*v.kind)));
+    // VCI's test gradients differ from the trial ones: its stiffness is not symmetric.
+    if (v.kind && (*v.kind == SolverKind::cholmod || *v.kind == SolverKind::cg) &&
+        s.scheme == QuadratureScheme::projected && s.consistency == Consistency::vci)
+      t.error("kind", fmt::format("\"{}\" needs a symmetric positive definite system; the stiffness of "
+                                  "consistency = \"vci\" is not symmetric (use {} or auto)",
+                                  to_string(*v.kind), *v.kind == SolverKind::cg ? "gmres" : "umfpack"));
+    if (v.kind && t.has("direct_limit"))
+      t.error("direct_limit", "is the size at which kind = \"auto\" turns iterative; kind is not auto");
+    if (t.has("preconditioner")) v.preconditioner = read_choice(t, "preconditioner", preconditioner_names());
+    v.tolerance = t.number_or("tolerance", v.tolerance, 1e-15, 0.1);
+    v.max_iterations = static_cast<int>(t.integer_or("max_iterations", v.max_iterations, 1, 1000000));
+    v.direct_limit = static_cast<Index>(t.integer_or("direct_limit", v.direct_limit, 0, 2000000000));
     t.finish();
   }
   if (root.has("newton")) {
@@ -267,6 +287,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     }
     n.load_steps = static_cast<int>(t.integer_or("load_steps", n.load_steps, 1, 100000));
     n.max_cutbacks = static_cast<int>(t.integer_or("max_cutbacks", n.max_cutbacks, 0, 50));
+    n.solver = s.solver;
     t.finish();
     out.newton = n;
   }
@@ -292,6 +313,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (!(out.density > 0.0)) t.error("scheme", "dynamics needs [material] density");
     d.density = out.density;
     if (out.newton) d.newton = *out.newton;
+    d.newton.solver = s.solver;
     t.finish();
     out.dynamics = dyn;
   }

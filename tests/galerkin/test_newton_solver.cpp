@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
 
 using namespace mfree;
 

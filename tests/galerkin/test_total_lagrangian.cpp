@@ -56,7 +56,7 @@ Eigen::VectorXd smooth_field(const std::vector<Vec2>& nodes, double amplitude) {
 StaticSolution solve_logged(TotalLagrangian& model, NewtonSettings s, std::ostringstream& log) {
   s.log = &log;
   StageTimer timer;
-  return solve_static(model, s, timer);
+  return solve_static(model, {}, s, timer);
 }
 
 /// K dir and the central difference of `residual` at d along dir, for a random dir.
@@ -147,7 +147,7 @@ TEST_CASE("an inverting load gives up with a clear message naming J <= 0 and the
   s.max_cutbacks = 1;
   s.line_search = false;
   StageTimer timer;
-  const std::string m = testing::message_of<NumericalError>([&] { (void)solve_static(model, s, timer); });
+  const std::string m = testing::message_of<NumericalError>([&] { (void)solve_static(model, block.disc.nodes, s, timer); });
   CHECK_THAT(m, Catch::Contains("Newton gave up at load factor"));
   CHECK_THAT(m, Catch::Contains("J = det F"));
   CHECK_THAT(m, Catch::Contains("<= 0"));
@@ -371,7 +371,7 @@ TEST_CASE("TL with J2: Newton keeps quadratic convergence through yield, and his
   std::ostringstream log;
   s.log = &log;
   StageTimer timer;
-  const StaticSolution sol = solve_static(model, s, timer, [&](const LoadStepRecord&, const Eigen::VectorXd&) {
+  const StaticSolution sol = solve_static(model, block.disc.nodes, s, timer, [&](const LoadStepRecord&, const Eigen::VectorXd&) {
     dissipated.push_back(model.dissipated());
   });
   INFO(log.str());

@@ -196,7 +196,7 @@ TEST_CASE("plastic thick cylinder: elastic-plastic radius within 1.5 % of the cl
   const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(a, 0.0)}, false);
   std::vector<std::pair<double, double>> load_displacement;  // (p / p_L, u_r(a))
   double worst = 0.0;
-  const StaticSolution sol = solve_static(model, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+  const StaticSolution sol = solve_static(model, disc.nodes, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
     const double p = 0.98 * step.factor;
     load_displacement.emplace_back(p, displacement_at(probe, 0, d).x());
     CHECK(step.history.size() <= 9);  // at most 8 Newton iterations, near the limit load too
@@ -237,7 +237,7 @@ TEST_CASE("plastic strip footing: Drucker–Prager to 98 % of Prandtl's collapse
   const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);
   std::vector<std::pair<double, double>> load_settlement;
   std::vector<double> plastic;
-  const StaticSolution sol = solve_static(model, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+  const StaticSolution sol = solve_static(model, disc.nodes, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
     load_settlement.emplace_back(step.factor, -displacement_at(probe, 0, d).y());
     plastic.push_back(model.plastic_area());
     CHECK(step.history.size() <= 11);

@@ -2,28 +2,11 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/linalg/sparse_solver.hpp"
+#include "model_matrices.hpp"
 
 using namespace mfree;
 
-namespace {
-/// The 2D five-point Laplacian plus `shift` on the diagonal, n x n grid; optionally a
-/// non-symmetric convection term.
-SparseMatrix laplacian(int n, double shift, double convection) {
-  std::vector<Eigen::Triplet<double>> t;
-  const auto id = [n](int i, int j) { return j * n + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0 - convection);
-      if (i + 1 < n) t.emplace_back(id(i, j), id(i + 1, j), -1.0 + convection);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0);
-      if (j + 1 < n) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  SparseMatrix a(n * n, n * n);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
-}  // namespace
+using testing::laplacian;
 
 TEST_CASE("CHOLMOD and UMFPACK solve to round-off and reuse the symbolic analysis", "[linalg]") {
   for (SolverKind kind : {SolverKind::cholmod, SolverKind::umfpack}) {

@@ -21,6 +21,7 @@
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/problems/timoshenko_beam.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
 
 namespace {
 

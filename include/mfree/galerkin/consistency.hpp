@@ -49,6 +49,7 @@
 #include "mfree/core/name_table.hpp"
 #include "mfree/galerkin/boundary_quadrature.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/linalg/linear_solver.hpp"
 #include "mfree/linalg/node_pattern.hpp"
 
 namespace mfree {
@@ -93,10 +94,12 @@ class ConsistencyConditions {
 
 struct SymmetricCorrection {
   double residual = 0.0;     ///< relative residual |A lambda - r| / |r| (worst component)
+  std::string solver;        ///< the node system's solver and its statistics
 };
 /// Applies the symmetric correction to q.grad in place; r: the residuals of (IC_1) of q.grad
-/// (ConsistencyConditions::linear_residuals).
+/// (ConsistencyConditions::linear_residuals). The node system A is solved by the solver of
+/// `solver` (linear_solver.hpp).
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                              const std::vector<Vec2>& r);
+                                              const std::vector<Vec2>& r, const SolverSettings& solver);
 
 }  // namespace mfree

@@ -51,7 +51,7 @@ struct ElasticitySettings {
   int lattice_refinement = 2;           ///< lattice spacing = quadrature spacing / this
   Consistency consistency = Consistency::symmetric;
   int gauss_points = 4;                 ///< per direction per background cell
-  std::optional<SolverKind> solver;     ///< default: CHOLMOD if symmetric, else UMFPACK
+  SolverSettings solver;                ///< every linear solve ([solver], linear_solver.hpp)
 
   ElasticityProblem problem;
   int error_gauss_points = 6;           ///< independent error quadrature, per cell of h/2
@@ -71,6 +71,7 @@ struct Discretisation {
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
   double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
+  std::string correction_solver;        ///< symmetric correction: its solver and statistics
 
   [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }
   [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
@@ -84,7 +85,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 struct ElasticityResult : Discretisation {
   Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
   StageTimer timer;
-  SolverKind solver = SolverKind::cholmod;
+  std::string solver;                   ///< the stiffness's solver and its statistics
   std::optional<ElasticErrors> errors;
 
   /// u^h at arbitrary points.

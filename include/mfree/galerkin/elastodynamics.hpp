@@ -48,7 +48,7 @@ struct DynamicsSettings {
   std::optional<double> time_step;      ///< requested dt (required for newmark)
   double stability_factor = 0.5;        ///< explicit without time_step: dt = factor x limit
   int energy_every = 1;                 ///< steps between energy records (work is summed every step); 0: none
-  NewtonSettings newton;                ///< newmark
+  NewtonSettings newton;                ///< newmark; newton.solver: every linear solve
   std::ostream* progress = nullptr;     ///< a line per tenth of the run
 };
 
@@ -77,6 +77,7 @@ struct DynamicsResult {
   long factorisations = 0;                ///< newmark: tangents factorised (modified Newton)
   std::vector<EnergyRecord> energy;       ///< empty when energy_every = 0
   Eigen::VectorXd d, v;                   ///< at end_time
+  std::string solver;                     ///< newmark: the linear solver and its statistics
 };
 
 /// The integrator's state after a step: all that the next step starts from, so that a run
@@ -103,9 +104,10 @@ struct DynamicsCheckpoints {
   const DynamicsProgress* resume = nullptr;               ///< continue from this state
 };
 
-/// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0.
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, double density,
-                                 const std::function<Vec2(const Vec2&)>& field);
+/// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0,
+/// M solved by the solver of `solver` (on `nodes`).
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes, double density,
+                                 const std::function<Vec2(const Vec2&)>& field, const SolverSettings& solver);
 
 /// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).
 double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d);

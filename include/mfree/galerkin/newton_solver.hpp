@@ -30,7 +30,7 @@
 
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
-#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/linalg/linear_solver.hpp"
 
 namespace mfree {
 
@@ -47,6 +47,7 @@ struct NewtonSettings {
   std::vector<double> load_factors;    ///< static: increasing, ending at 1 (empty: uniform steps)
   int load_steps = 10;                 ///< static: uniform steps when load_factors is empty
   int max_cutbacks = 8;                ///< static: consecutive halvings of a failed increment
+  SolverSettings solver;               ///< the linear solver of every iteration ([solver])
   std::ostream* log = nullptr;         ///< one line per iteration, if set
 };
 
@@ -74,7 +75,7 @@ struct NonlinearSystem {
 /// Newton from d (updated in place); k holds the tangent's pattern. The solver analyses the
 /// first tangent it sees and keeps that analysis for every later one.
 /// Stages "assembly", "factorisation", "solve", "residual" are timed on `timer`.
-NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, SparseSolver& solver,
+NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMatrix& k, LinearSolver& solver,
                      const NewtonSettings& settings, StageTimer& timer);
 
 struct LoadStepRecord {
@@ -86,12 +87,14 @@ struct LoadStepRecord {
 struct StaticSolution {
   Eigen::VectorXd coefficients;
   std::vector<LoadStepRecord> steps;
-  SolverKind solver = SolverKind::cholmod;
+  std::string solver;  ///< the linear solver and its statistics (summary())
 };
 
-/// Solves the static problem of `model` by load stepping; on_step(record, d) after every
-/// converged load step, once the model's history is committed there.
-StaticSolution solve_static(TotalLagrangian& model, const NewtonSettings& settings, StageTimer& timer,
+/// Solves the static problem of `model` (on `nodes`, whose rigid-body modes an AMG
+/// preconditioner takes) by load stepping; on_step(record, d) after every converged load
+/// step, once the model's history is committed there.
+StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes, const NewtonSettings& settings,
+                            StageTimer& timer,
                             const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step = {});
 
 }  // namespace mfree

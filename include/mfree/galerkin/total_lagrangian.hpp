@@ -49,7 +49,7 @@
 #include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/linalg/node_pattern.hpp"
-#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/linalg/linear_solver.hpp"
 #include "mfree/materials/material.hpp"
 
 namespace mfree {

@@ -28,7 +28,12 @@
 //                 p (a number or formula, positive into the body). A selector that selects
 //                 nothing, and two conditions on one part of the boundary, are errors.
 //   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus)
-//   [solver]      kind (auto | cholmod | umfpack)
+//   [solver]      every linear solve (linalg/linear_solver.hpp): kind (auto | cholmod |
+//                 umfpack | cg | gmres; auto: direct up to direct_limit unknowns, default
+//                 300000, Krylov above), and for the Krylov methods preconditioner (gamg |
+//                 boomeramg | jacobi; default gamg, boomeramg for VCI's non-symmetric
+//                 stiffness), tolerance (on |b - A x| / |b|, default 1e-10),
+//                 max_iterations (default 2000)
 //   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance
 //                 (on |R| / |R_0|), absolute_tolerance (on |R|; default tolerance times the
 //                 residual of the full load on the undeformed body), max_iterations,

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "mfree/core/types.hpp"
-#include "mfree/linalg/sparse_solver.hpp"
+#include "mfree/linalg/linear_solver.hpp"
 
 namespace mfree {
 

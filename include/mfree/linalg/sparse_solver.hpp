@@ -7,44 +7,26 @@
 // matrices of that same pattern (Newton iterations, load and time steps) without
 // repeating the analysis. SuiteSparse headers stay in sparse_solver.cpp.
 
-#include <Eigen/SparseCore>
 #include <memory>
-#include <string_view>
 
-#include "mfree/core/name_table.hpp"
+#include "mfree/linalg/linear_solver.hpp"
 
 namespace mfree {
 
-using SparseMatrix = Eigen::SparseMatrix<double>;  ///< compressed columns, int indices
-
-enum class SolverKind {
-  cholmod,  ///< symmetric positive definite (only the lower triangle is read)
-  umfpack,  ///< general square
-};
-
-/// cholmod, umfpack: the names scenes use.
-const NameTable<SolverKind>& solver_kind_names();
-std::string_view to_string(SolverKind kind);
-
-class SparseSolver {
+class SparseSolver final : public LinearSolver {
  public:
+  /// kind: cholmod or umfpack.
   explicit SparseSolver(SolverKind kind);
-  SparseSolver(SparseSolver&&) noexcept;
-  SparseSolver& operator=(SparseSolver&&) noexcept;
-  ~SparseSolver();
+  ~SparseSolver() override;
 
-  [[nodiscard]] SolverKind kind() const { return kind_; }
-  [[nodiscard]] bool analyzed() const;
-  [[nodiscard]] bool factorized() const;
-  /// Symbolic analysis of a's pattern (a compressed square matrix). UMFPACK also reads the
-  /// values to choose its strategy (a zero diagonal makes it pick the unsymmetric one, with
-  /// orderings several times costlier here): analyse a matrix holding real values.
-  void analyze(const SparseMatrix& a);
-  /// Numeric factorisation; analyze() first. Throws NumericalError when the matrix is not
-  /// positive definite (CHOLMOD) or is singular (UMFPACK).
-  void factorize(const SparseMatrix& a);
-  /// x with a x = b for the last factorised matrix.
-  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  [[nodiscard]] SolverKind kind() const override { return kind_; }
+  [[nodiscard]] std::string description() const override;
+  /// CHOLMOD reads only the lower triangle. UMFPACK also reads the values to choose its
+  /// strategy (a zero diagonal makes it pick the unsymmetric one, with orderings several
+  /// times costlier here): analyse a matrix holding real values.
+  void analyze(const SparseMatrix& a) override;
+  void factorize(const SparseMatrix& a) override;
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
 
  private:
   struct Impl;

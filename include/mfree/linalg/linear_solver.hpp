@@ -1,0 +1,121 @@
+#pragma once
+// Every linear solve of mfree goes through one interface, made by one factory from the
+// scene's [solver] table:
+//
+//   cholmod    supernodal Cholesky (SuiteSparse), symmetric positive definite systems
+//   umfpack    sparse LU (SuiteSparse), any non-singular system
+//   cg         conjugate gradients (PETSc), symmetric positive definite systems
+//   gmres      restarted GMRES (PETSc, right-preconditioned), any system
+//
+// The Krylov methods take a preconditioner: gamg (PETSc's smoothed-aggregation algebraic
+// multigrid, given the rigid-body modes of the nodes as its near-null space), boomeramg
+// (hypre's classical algebraic multigrid), or jacobi. By default gamg for symmetric systems
+// and boomeramg for the others: GAMG's Chebyshev smoothers assume a symmetric positive
+// definite matrix, and GMRES with GAMG broke down at |b - A x| / |b| = 1e-6 on a small VCI
+// stiffness of a random cloud that GMRES with BoomerAMG solves to 1e-12. Their tolerance is on the true
+// residual, |b - A x| <= tolerance |b|, for both methods (CG on the unpreconditioned norm,
+// GMRES preconditioned on the right); a solve that does not reach it within max_iterations
+// is a NumericalError naming the method, the system, the iterations and the residual.
+//
+// `auto` picks a direct method up to direct_limit unknowns (CHOLMOD for symmetric systems,
+// UMFPACK otherwise) and a Krylov method above it (CG, GMRES): a factorisation's fill grows
+// faster than the matrix, an AMG cycle does not (verification/benchmarks/README.md measures
+// where they cross on this code's matrices).
+//
+// The life of a solver follows Newton's: analyze() once per sparsity pattern (orderings,
+// symbolic factorisation; for Krylov methods the matrix structure), factorize() whenever
+// the values change (numeric factorisation; for Krylov methods the preconditioner's setup),
+// solve() for every right-hand side. Matrices are Eigen's compressed columns holding every
+// entry (both triangles, also for symmetric systems).
+
+#include <Eigen/SparseCore>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "mfree/core/name_table.hpp"
+#include "mfree/core/types.hpp"
+
+namespace mfree {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;  ///< compressed columns, int indices
+
+enum class SolverKind { cholmod, umfpack, cg, gmres };
+/// cholmod, umfpack, cg, gmres: the names scenes use.
+const NameTable<SolverKind>& solver_kind_names();
+std::string_view to_string(SolverKind kind);
+[[nodiscard]] constexpr bool is_direct(SolverKind k) { return k == SolverKind::cholmod || k == SolverKind::umfpack; }
+
+enum class Preconditioner { gamg, boomeramg, jacobi };
+/// gamg, boomeramg, jacobi: the names scenes use.
+const NameTable<Preconditioner>& preconditioner_names();
+std::string_view to_string(Preconditioner p);
+
+/// A scene's [solver] table.
+struct SolverSettings {
+  std::optional<SolverKind> kind;         ///< nullopt: auto
+  std::optional<Preconditioner> preconditioner;  ///< nullopt: gamg if symmetric, else boomeramg
+  double tolerance = 1e-10;               ///< |b - A x| / |b| of the Krylov methods
+  int max_iterations = 2000;              ///< per Krylov solve
+  Index direct_limit = 300000;            ///< auto: direct up to this many unknowns
+};
+
+/// What a solve knows of its system beyond the matrix.
+struct SystemDescription {
+  std::string name;                       ///< "stiffness", "mass", ...: for messages and summaries
+  bool symmetric = true;                  ///< symmetric positive definite
+  /// Unknowns per node (2: displacements, unknown 2 I + c), and the node coordinates whose
+  /// rigid-body modes (two translations, one rotation for 2 unknowns per node; 1, x, y for
+  /// one) AMG takes as its near-null space. Empty: constants only.
+  int block_size = 1;
+  std::span<const Vec2> nodes;
+};
+
+/// What the solves of one solver did, for run summaries.
+struct SolveStatistics {
+  int solves = 0;
+  long iterations = 0;                    ///< Krylov iterations, all solves together
+  int most_iterations = 0;                ///< of one solve
+  double worst_residual = 0.0;            ///< largest |b - A x| / |b| of one solve (Krylov)
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+
+  [[nodiscard]] virtual SolverKind kind() const = 0;
+  /// "cholmod", "cg + gamg (tolerance 1e-10)", ...
+  [[nodiscard]] virtual std::string description() const = 0;
+  [[nodiscard]] bool analyzed() const { return analyzed_; }
+  [[nodiscard]] bool factorized() const { return factorized_; }
+  [[nodiscard]] const SolveStatistics& statistics() const { return statistics_; }
+
+  /// Symbolic work for a's pattern (a compressed square matrix with real values).
+  virtual void analyze(const SparseMatrix& a) = 0;
+  /// Numeric work for a, of the analysed pattern. Throws NumericalError when a direct
+  /// method finds the matrix singular or (CHOLMOD) not positive definite.
+  virtual void factorize(const SparseMatrix& a) = 0;
+  /// x with A x = b for the last factorised matrix. Throws NumericalError when a Krylov
+  /// method does not converge, or the solution is not finite.
+  [[nodiscard]] virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
+
+ protected:
+  bool analyzed_ = false, factorized_ = false;
+  SolveStatistics statistics_;
+};
+
+/// The method `settings` choose for a system of `size` unknowns: its kind, or by the auto
+/// rule. Throws InputError when CHOLMOD or CG is asked for a non-symmetric system.
+[[nodiscard]] SolverKind choose_solver(const SolverSettings& settings, const SystemDescription& system, Index size);
+
+/// The solver of choose_solver(settings, system, size). `system.nodes` is viewed, not
+/// copied: it must outlive the solver.
+[[nodiscard]] std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings,
+                                                               const SystemDescription& system, Index size);
+
+/// One line for run summaries: the solver and its statistics.
+[[nodiscard]] std::string summary(const LinearSolver& solver);
+
+}  // namespace mfree

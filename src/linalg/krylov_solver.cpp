@@ -1,0 +1,265 @@
+#include "mfree/linalg/krylov_solver.hpp"
+
+#include <petscksp.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <vector>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+namespace {
+
+/// Throws NumericalError with PETSc's own message when a PETSc call failed.
+void check(PetscErrorCode code, const char* call) {
+  if (!code) return;
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  throw NumericalError(fmt::format("PETSc: {} failed: {}", call, text ? text : "unknown error"));
+}
+
+/// PETSc (and MPI, as one process) from the first Krylov solver to the program's exit.
+/// PETSc's signal handler stays off, so that crashes reach mfree's and the sanitizers' own
+/// reports; its errors are returned, not printed, and become exceptions (check()).
+void start_petsc() {
+  static const bool started = [] {
+    PetscBool initialised = PETSC_FALSE;
+    check(PetscInitialized(&initialised), "PetscInitialized");
+    if (!initialised) {
+      check(PetscOptionsSetValue(nullptr, "-no_signal_handler", "true"), "PetscOptionsSetValue");
+      check(PetscInitializeNoArguments(), "PetscInitialize");
+      std::atexit([] { PetscFinalize(); });
+    }
+    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+    return true;
+  }();
+  (void)started;
+}
+
+/// Orthonormalises the columns of v (modified Gram-Schmidt).
+void orthonormalise(std::vector<Eigen::VectorXd>& v) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) v[i] -= v[j].dot(v[i]) * v[j];
+    v[i].normalize();
+  }
+}
+
+}  // namespace
+
+struct KrylovSolver::Impl {
+  Mat a = nullptr;
+  KSP ksp = nullptr;
+  PetscInt size = 0;
+  std::vector<PetscInt> row_start, columns;
+  /// Non-symmetric matrices: value k of the row-compressed copy is value gather[k] of
+  /// Eigen's column-compressed one. Empty for symmetric ones (the two layouts coincide).
+  std::vector<std::int64_t> gather;
+  std::vector<double> values;
+
+  ~Impl() {
+    KSPDestroy(&ksp);
+    MatDestroy(&a);
+  }
+
+  /// The values of `m` in the row-compressed order of the PETSc matrix.
+  void gather_values(const SparseMatrix& m) {
+    const double* v = m.valuePtr();
+    if (gather.empty()) values.assign(v, v + m.nonZeros());
+    else
+      for (std::size_t k = 0; k < gather.size(); ++k) values[k] = v[gather[k]];
+  }
+};
+
+KrylovSolver::KrylovSolver(SolverKind kind, const SolverSettings& settings, const SystemDescription& system)
+    : kind_(kind),
+      settings_(settings),
+      system_(system),
+      preconditioner_(settings.preconditioner.value_or(system.symmetric ? Preconditioner::gamg : Preconditioner::boomeramg)),
+      impl_(std::make_unique<Impl>()) {
+  if (is_direct(kind)) throw std::logic_error("KrylovSolver: not a Krylov method");
+  start_petsc();
+}
+
+KrylovSolver::~KrylovSolver() = default;
+
+std::string KrylovSolver::description() const {
+  return fmt::format("{} + {} (tolerance {:.0e})", to_string(kind_), to_string(preconditioner_),
+                     settings_.tolerance);
+}
+
+void KrylovSolver::analyze(const SparseMatrix& m) {
+  if (m.rows() != m.cols())
+    throw Error(fmt::format("{}: the {} matrix is {} x {}, not square", description(), system_.name, m.rows(), m.cols()));
+  if (!m.isCompressed()) throw std::logic_error("KrylovSolver: the matrix is not compressed");
+  const int bs = system_.block_size;
+  if (bs < 1 || m.rows() % bs)
+    throw std::logic_error(fmt::format("KrylovSolver: {} rows are not blocks of {}", m.rows(), bs));
+  Impl& p = *impl_;
+  KSPDestroy(&p.ksp);
+  MatDestroy(&p.a);
+  p.size = static_cast<PetscInt>(m.rows());
+  const PetscInt n = p.size;
+
+  // Row-compressed structure: a symmetric matrix's columns are its rows.
+  p.row_start.assign(n + 1, 0);
+  p.columns.assign(static_cast<std::size_t>(m.nonZeros()), 0);
+  p.gather.clear();
+  if (system_.symmetric) {
+    std::copy(m.outerIndexPtr(), m.outerIndexPtr() + n + 1, p.row_start.begin());
+    std::copy(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros(), p.columns.begin());
+  } else {
+    p.gather.assign(p.columns.size(), 0);
+    for (std::int64_t k = 0; k < m.nonZeros(); ++k) ++p.row_start[m.innerIndexPtr()[k] + 1];
+    for (PetscInt i = 0; i < n; ++i) p.row_start[i + 1] += p.row_start[i];
+    std::vector<PetscInt> next(p.row_start.begin(), p.row_start.end() - 1);
+    for (PetscInt j = 0; j < n; ++j)
+      for (std::int64_t k = m.outerIndexPtr()[j]; k < m.outerIndexPtr()[j + 1]; ++k) {
+        const PetscInt slot = next[m.innerIndexPtr()[k]]++;
+        p.columns[slot] = j;
+        p.gather[slot] = k;
+      }
+  }
+  p.values.resize(p.columns.size());
+  p.gather_values(m);
+
+  check(MatCreate(PETSC_COMM_SELF, &p.a), "MatCreate");
+  check(MatSetSizes(p.a, n, n, n, n), "MatSetSizes");
+  check(MatSetType(p.a, MATSEQAIJ), "MatSetType");
+  check(MatSetBlockSize(p.a, bs), "MatSetBlockSize");
+  check(MatSeqAIJSetPreallocationCSR(p.a, p.row_start.data(), p.columns.data(), p.values.data()),
+        "MatSeqAIJSetPreallocationCSR");
+  if (system_.symmetric) {
+    check(MatSetOption(p.a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    check(MatSetOption(p.a, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  }
+
+  // The near-null space of AMG: the rigid-body modes of the nodes.
+  if (!system_.nodes.empty() && (bs == 1 || bs == 2)) {
+    const auto nodes = static_cast<Index>(system_.nodes.size());
+    if (nodes * bs != n)
+      throw std::logic_error(fmt::format("KrylovSolver: {} nodes for {} unknowns of block size {}", nodes, n, bs));
+    std::vector<Eigen::VectorXd> modes(3, Eigen::VectorXd::Zero(n));
+    for (Index i = 0; i < nodes; ++i) {
+      const Vec2& x = system_.nodes[i];
+      if (bs == 1) {
+        modes[0][i] = 1.0, modes[1][i] = x.x(), modes[2][i] = x.y();
+      } else {
+        modes[0][2 * i] = 1.0, modes[1][2 * i + 1] = 1.0;
+        modes[2][2 * i] = -x.y(), modes[2][2 * i + 1] = x.x();
+      }
+    }
+    orthonormalise(modes);
+    Vec vecs[3];
+    for (int k = 0; k < 3; ++k) {
+      check(VecCreateSeq(PETSC_COMM_SELF, n, &vecs[k]), "VecCreateSeq");
+      PetscScalar* v = nullptr;
+      check(VecGetArray(vecs[k], &v), "VecGetArray");
+      std::memcpy(v, modes[k].data(), sizeof(double) * n);
+      check(VecRestoreArray(vecs[k], &v), "VecRestoreArray");
+    }
+    MatNullSpace space = nullptr;
+    check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, 3, vecs, &space), "MatNullSpaceCreate");
+    check(MatSetNearNullSpace(p.a, space), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&space);
+    for (Vec& v : vecs) VecDestroy(&v);
+  }
+
+  check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
+  check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
+  if (kind_ == SolverKind::cg) {
+    check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
+    check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  } else {
+    check(KSPSetType(p.ksp, KSPGMRES), "KSPSetType");
+    check(KSPSetPCSide(p.ksp, PC_RIGHT), "KSPSetPCSide");
+    check(KSPGMRESSetRestart(p.ksp, 60), "KSPGMRESSetRestart");
+  }
+  check(KSPSetTolerances(p.ksp, settings_.tolerance, 0.0, PETSC_DEFAULT, settings_.max_iterations), "KSPSetTolerances");
+  PC pc = nullptr;
+  check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
+  switch (preconditioner_) {
+    case Preconditioner::gamg:
+      check(PCSetType(pc, PCGAMG), "PCSetType");
+      // Newton and time steps change the values, not the graph: the aggregates and
+      // prolongators of the first setup serve them all (the Galerkin coarse operators are
+      // recomputed).
+      check(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+      // The smoothers estimate their own eigenvalue bounds at every setup: the estimate of the
+      // prolongator's smoothing (the default) belongs to the first matrix only, and with
+      // reused interpolation would make a later, stiffer matrix's Chebyshev smoother diverge
+      // (a test shifts the diagonal by 0.5/4 to catch it).
+      check(PCGAMGSetUseSAEstEig(pc, PETSC_FALSE), "PCGAMGSetUseSAEstEig");
+      break;
+    case Preconditioner::boomeramg:
+      check(PCSetType(pc, PCHYPRE), "PCSetType");
+      check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+      break;
+    case Preconditioner::jacobi:
+      check(PCSetType(pc, PCJACOBI), "PCSetType");
+      break;
+  }
+  check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
+  analyzed_ = true;
+  factorized_ = false;
+}
+
+void KrylovSolver::factorize(const SparseMatrix& m) {
+  Impl& p = *impl_;
+  if (!analyzed_ || m.rows() != p.size || static_cast<std::size_t>(m.nonZeros()) != p.columns.size())
+    throw Error(fmt::format("{}: factorize() needs analyze() of a matrix of the same pattern first", description()));
+  p.gather_values(m);
+  PetscScalar* v = nullptr;
+  check(MatSeqAIJGetArray(p.a, &v), "MatSeqAIJGetArray");
+  std::memcpy(v, p.values.data(), sizeof(double) * p.values.size());
+  check(MatSeqAIJRestoreArray(p.a, &v), "MatSeqAIJRestoreArray");
+  check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
+  check(KSPSetUp(p.ksp), "KSPSetUp (the preconditioner's setup)");
+  factorized_ = true;
+}
+
+Eigen::VectorXd KrylovSolver::solve(const Eigen::VectorXd& b) {
+  Impl& p = *impl_;
+  if (!factorized_) throw Error(fmt::format("{}: solve() before factorize()", description()));
+  if (b.size() != p.size)
+    throw Error(fmt::format("{}: a right-hand side of {} entries for {} unknowns", description(), b.size(), p.size));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.size);
+  const double bn = b.norm();
+  ++statistics_.solves;
+  if (bn == 0.0) return x;
+  if (!std::isfinite(bn))
+    throw NumericalError(fmt::format("{}: the right-hand side of the {} system is not finite", description(), system_.name));
+  Vec vb = nullptr, vx = nullptr;
+  check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, p.size, b.data(), &vb), "VecCreateSeqWithArray");
+  check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, p.size, x.data(), &vx), "VecCreateSeqWithArray");
+  const PetscErrorCode solved = KSPSolve(p.ksp, vb, vx);
+  VecDestroy(&vb);
+  VecDestroy(&vx);
+  check(solved, "KSPSolve");
+  KSPConvergedReason reason;
+  PetscInt iterations = 0;
+  PetscReal residual = 0.0;
+  check(KSPGetConvergedReason(p.ksp, &reason), "KSPGetConvergedReason");
+  check(KSPGetIterationNumber(p.ksp, &iterations), "KSPGetIterationNumber");
+  check(KSPGetResidualNorm(p.ksp, &residual), "KSPGetResidualNorm");
+  const double relative = residual / bn;
+  statistics_.iterations += iterations;
+  statistics_.most_iterations = std::max(statistics_.most_iterations, static_cast<int>(iterations));
+  statistics_.worst_residual = std::max(statistics_.worst_residual, relative);
+  if (reason < 0)
+    throw NumericalError(fmt::format(
+        "{} on the {} system ({} unknowns): no convergence after {} iterations, |b - A x| / |b| = {:.3e} ({}){}",
+        description(), system_.name, p.size, iterations, relative, KSPConvergedReasons[reason],
+        reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC
+            ? ": the matrix is not positive definite (missing boundary conditions, a Nitsche penalty too small, "
+              "or too few quadrature points)"
+            : "; raise [solver] max_iterations or use a direct solver"));
+  if (!x.allFinite()) throw NumericalError(fmt::format("{}: the solution of the {} system is not finite", description(), system_.name));
+  return x;
+}
+
+}  // namespace mfree

@@ -1,0 +1,58 @@
+#include "mfree/linalg/linear_solver.hpp"
+
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/linalg/krylov_solver.hpp"
+#include "mfree/linalg/sparse_solver.hpp"
+
+namespace mfree {
+
+const NameTable<SolverKind>& solver_kind_names() {
+  static const NameTable<SolverKind> table{{"cholmod", SolverKind::cholmod},
+                                           {"umfpack", SolverKind::umfpack},
+                                           {"cg", SolverKind::cg},
+                                           {"gmres", SolverKind::gmres}};
+  return table;
+}
+
+std::string_view to_string(SolverKind kind) { return solver_kind_names().name(kind); }
+
+const NameTable<Preconditioner>& preconditioner_names() {
+  static const NameTable<Preconditioner> table{{"gamg", Preconditioner::gamg},
+                                               {"boomeramg", Preconditioner::boomeramg},
+                                               {"jacobi", Preconditioner::jacobi}};
+  return table;
+}
+
+std::string_view to_string(Preconditioner p) { return preconditioner_names().name(p); }
+
+SolverKind choose_solver(const SolverSettings& settings, const SystemDescription& system, Index size) {
+  if (!settings.kind) {
+    if (size <= settings.direct_limit) return system.symmetric ? SolverKind::cholmod : SolverKind::umfpack;
+    return system.symmetric ? SolverKind::cg : SolverKind::gmres;
+  }
+  const SolverKind k = *settings.kind;
+  if (!system.symmetric && (k == SolverKind::cholmod || k == SolverKind::cg))
+    throw InputError(fmt::format(
+        "[solver] kind = \"{}\" needs a symmetric positive definite system, and the {} system is not symmetric "
+        "(use {} or auto)",
+        to_string(k), system.name, k == SolverKind::cholmod ? "umfpack" : "gmres"));
+  return k;
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings, const SystemDescription& system,
+                                                 Index size) {
+  const SolverKind k = choose_solver(settings, system, size);
+  if (is_direct(k)) return std::make_unique<SparseSolver>(k);
+  return std::make_unique<KrylovSolver>(k, settings, system);
+}
+
+std::string summary(const LinearSolver& solver) {
+  const SolveStatistics& s = solver.statistics();
+  if (is_direct(solver.kind())) return fmt::format("{}, {} solves", solver.description(), s.solves);
+  return fmt::format("{}, {} solves, {} iterations (at most {} in one), |b - A x| / |b| <= {:.1e}",
+                     solver.description(), s.solves, s.iterations, s.most_iterations, s.worst_residual);
+}
+
+}  // namespace mfree
