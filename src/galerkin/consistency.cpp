@@ -167,33 +167,50 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
     const double area = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
     if (area > best) best = area, p2 = i;
   }
-  const auto pinned = [&](Index i) { return i == p0 || i == p1 || i == p2; };
 
   // A_IJ = sum over rows K holding I and J of w_K^2 (d_IJ - P_K(I)^T M_K P_K(J)), on the
-  // node-to-node pattern of the rows, column by column: each thread owns whole columns.
+  // node-to-node pattern of the rows, column by column: each thread owns whole columns and
+  // finds entry (I, J) through a dense map of P_J. Only I >= J is summed (a row's nodes are
+  // sorted: from J's own slot on); the upper triangle is copied from the lower, so that A is
+  // symmetric to the last bit.
   const RowIncidence incidence(q.offsets, q.nodes, n);
   const RowIncidence* sets[] = {&incidence};
   const NodePattern pattern = node_pattern(sets);
   SparseMatrix a = block_matrix(pattern, 1);
   double* values = a.valuePtr();
-  parallel_blocks(n, 256, [&](Index begin, Index end) {
+  parallel_ranges(n, [&](int, Index begin, Index end) {
+    std::vector<Index> at(n);  // at[I] = p with P_J[p] = I, for the current J
     for (Index j = begin; j < end; ++j) {
+      const std::span<const Index> p = pattern.neighbours(j);
+      for (std::size_t e = 0; e < p.size(); ++e) at[p[e]] = static_cast<Index>(e);
+      double* column = values + pattern.offsets[j];
       const std::span<const Index> rows = incidence.rows_of(j), slots = incidence.slots_of(j);
       for (std::size_t m = 0; m < rows.size(); ++m) {
         const Index k = rows[m];
         const double w2 = q.weights[k] * q.weights[k];
         const Eigen::Vector3d mj = gram_inv[k] * basis(k, slots[m]);
-        for (Index s2 = q.row_begin(k); s2 < q.row_end(k); ++s2) {
+        for (Index s2 = slots[m]; s2 < q.row_end(k); ++s2) {
           const Index i = q.nodes[s2];
-          values[pattern.offsets[j] + pattern.position(i, j)] += w2 * ((i == j) - basis(k, s2).dot(mj));
+          column[at[i]] += w2 * ((i == j) - basis(k, s2).dot(mj));
         }
-      }
-      for (std::int64_t e = pattern.offsets[j]; e < pattern.offsets[j + 1]; ++e) {
-        const Index i = pattern.nodes[e];
-        if (pinned(i) || pinned(j)) values[e] = i == j ? 1.0 : 0.0;
       }
     }
   });
+  parallel_blocks(n, 1024, [&](Index begin, Index end) {
+    for (Index j = begin; j < end; ++j) {
+      for (std::int64_t e = pattern.offsets[j]; e < pattern.offsets[j + 1] && pattern.nodes[e] < j; ++e) {
+        const Index i = pattern.nodes[e];
+        values[e] = values[pattern.offsets[i] + pattern.position(j, i)];
+      }
+    }
+  });
+  // The pinned equations, after the copy: their rows and columns of the identity.
+  for (Index pin : {p0, p1, p2})
+    for (std::int64_t e = pattern.offsets[pin]; e < pattern.offsets[pin + 1]; ++e) {
+      const Index i = pattern.nodes[e];
+      values[e] = i == pin ? 1.0 : 0.0;
+      values[pattern.offsets[i] + pattern.position(pin, i)] = i == pin ? 1.0 : 0.0;
+    }
   const std::unique_ptr<LinearSolver> solver =
       make_linear_solver(settings, {"consistency node", true, 1, nodes}, n);
   solver->analyze(a);
@@ -219,6 +236,7 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
     });
   }
   report.solver = summary(*solver);
+  report.statistics = solver->statistics();
   return report;
 }
 

@@ -194,6 +194,15 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
       // reused interpolation would make a later, stiffer matrix's Chebyshev smoother diverge
       // (a test shifts the diagonal by 0.5/4 to catch it).
       check(PCGAMGSetUseSAEstEig(pc, PETSC_FALSE), "PCGAMGSetUseSAEstEig");
+      {
+        // Connections weaker than 3 % of the diagonal do not bind nodes into one aggregate.
+        // The wide RK stencils (a node couples with about 110 others) otherwise give
+        // aggregates that a smoother cannot serve: on the 10^5-DOF cantilever the node system
+        // of the consistency correction took 213 CG iterations per solve without dropping,
+        // 65 at 1 %, 52 at 2 %, 44 at 3 %; the stiffness 42, 41, 38, 38.
+        PetscReal threshold[] = {0.03};
+        check(PCGAMGSetThreshold(pc, threshold, 1), "PCGAMGSetThreshold");
+      }
       break;
     case Preconditioner::boomeramg:
       check(PCSetType(pc, PCHYPRE), "PCSetType");

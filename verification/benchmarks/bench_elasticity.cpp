@@ -33,6 +33,7 @@ constexpr int error_limit = 250;  ///< n from which the error is not measured
 
 void BM_cantilever_stages(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const bool krylov = state.range(1) == 1;
   const Domain domain = Domain::rectangle(Vec2(0.0, -0.5 * depth), Vec2(length, 0.5 * depth));
   ElasticitySettings s;
   s.nodes.spacing = depth / n;
@@ -43,15 +44,22 @@ void BM_cantilever_stages(benchmark::State& state) {
        [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "x = 0"},
       {BoundaryCondition::Type::traction, select_part(domain, "right"),
        [&](const Vec2& x, const Vec2& normal, double) { return exact.traction(x, normal); }, "x = L"}};
+  // The second argument: 0 direct solvers (CHOLMOD), 1 Krylov (CG + GAMG) for both the
+  // stiffness and the node system of the consistency correction.
+  if (krylov) s.solver.kind = SolverKind::cg;
+  else s.solver.kind = SolverKind::cholmod;
   const bool with_error = n < error_limit;
 
   StageTimer stages;  // summed over the iterations
   double dofs = 0.0, error = 0.0;
+  long iterations = 0, node_iterations = 0;
   for (auto _ : state) {
     const ElasticityResult r = solve_elasticity(domain, s, with_error ? &exact : nullptr);
     for (const auto& [name, seconds] : r.timer.stages()) stages.add(name, seconds);
     dofs = static_cast<double>(r.coefficients.size());
     if (r.errors) error = r.errors->l2_displacement;
+    iterations = r.solver_statistics.iterations;
+    node_iterations = r.correction_statistics.iterations;
   }
   for (auto [name, seconds] : stages.stages()) {
     std::replace(name.begin(), name.end(), ' ', '_');
@@ -60,10 +68,11 @@ void BM_cantilever_stages(benchmark::State& state) {
   state.counters["dofs"] = dofs;
   if (with_error) state.counters["l2_error"] = error;
   state.counters["threads"] = thread_count();
+  state.counters["iterations"] = static_cast<double>(iterations);
+  state.counters["node_system_iterations"] = static_cast<double>(node_iterations);
 }
 
 }  // namespace
 
-BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(35)->Arg(112)->Unit(benchmark::kSecond)->UseRealTime();
-BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(250)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
-BENCHMARK(BM_cantilever_stages)->Name("cantilever")->Arg(353)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_cantilever_stages)->Name("cantilever")->ArgsProduct({{35, 112}, {0, 1}})->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_cantilever_stages)->Name("cantilever")->ArgsProduct({{250, 353}, {0, 1}})->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();

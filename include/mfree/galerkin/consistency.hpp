@@ -95,6 +95,7 @@ class ConsistencyConditions {
 struct SymmetricCorrection {
   double residual = 0.0;     ///< relative residual |A lambda - r| / |r| (worst component)
   std::string solver;        ///< the node system's solver and its statistics
+  SolveStatistics statistics;
 };
 /// Applies the symmetric correction to q.grad in place; r: the residuals of (IC_1) of q.grad
 /// (ConsistencyConditions::linear_residuals). The node system A is solved by the solver of

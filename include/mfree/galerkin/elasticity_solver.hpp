@@ -72,6 +72,7 @@ struct Discretisation {
   double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
   std::string correction_solver;        ///< symmetric correction: its solver and statistics
+  SolveStatistics correction_statistics;
 
   [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }
   [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
@@ -86,6 +87,7 @@ struct ElasticityResult : Discretisation {
   Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
   StageTimer timer;
   std::string solver;                   ///< the stiffness's solver and its statistics
+  SolveStatistics solver_statistics;
   std::optional<ElasticErrors> errors;
 
   /// u^h at arbitrary points.
