@@ -76,7 +76,7 @@ TEST_CASE("linear patch test to 1e-8 with Nitsche boundaries, consistent project
       }
 }
 
-TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov methods (CG or GMRES, GAMG)",
+TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov methods (CG with GAMG, GMRES with BoomerAMG)",
           "[galerkin][krylov]") {
   SolverSettings krylov;
   krylov.direct_limit = 0;  // auto: Krylov at every size

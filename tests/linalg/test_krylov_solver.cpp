@@ -25,7 +25,7 @@ SolverSettings krylov(SolverKind kind, Preconditioner p, double tolerance = 1e-1
 
 }  // namespace
 
-TEST_CASE("CG and GMRES reach their tolerance on the true residual with every preconditioner, and refactorise in place",
+TEST_CASE("PETSc CG and GMRES reach their tolerance on the true residual with every preconditioner, and refactorise in place",
           "[linalg][krylov]") {
   for (SolverKind kind : {SolverKind::cg, SolverKind::gmres})
     for (Preconditioner p : {Preconditioner::gamg, Preconditioner::boomeramg, Preconditioner::jacobi}) {
@@ -51,7 +51,7 @@ TEST_CASE("CG and GMRES reach their tolerance on the true residual with every pr
     }
 }
 
-TEST_CASE("Algebraic multigrid: CG iterations hardly grow with the grid, Jacobi's double", "[linalg][krylov]") {
+TEST_CASE("PETSc algebraic multigrid: CG iterations hardly grow with the grid, Jacobi's double", "[linalg][krylov]") {
   const auto iterations = [](int n, Preconditioner p) {
     const SparseMatrix a = testing::laplacian(n, 0.0, 0.0);
     KrylovSolver solver(SolverKind::cg, krylov(SolverKind::cg, p, 1e-8), {"test", true, 1, {}});
@@ -67,7 +67,7 @@ TEST_CASE("Algebraic multigrid: CG iterations hardly grow with the grid, Jacobi'
   CHECK(iterations(128, Preconditioner::jacobi) >= 3.0 * iterations(32, Preconditioner::jacobi));
 }
 
-TEST_CASE("GAMG with the rigid-body modes of the nodes: elasticity solved to tolerance, fewer iterations than without",
+TEST_CASE("PETSc GAMG with the rigid-body modes of the nodes: elasticity solved to tolerance, fewer iterations than without",
           "[linalg][krylov]") {
   std::vector<Vec2> nodes;
   const SparseMatrix k = testing::elasticity(48, nodes);
@@ -92,7 +92,7 @@ TEST_CASE("GAMG with the rigid-body modes of the nodes: elasticity solved to tol
   CHECK(with_modes < constants_only);
 }
 
-TEST_CASE("A Krylov solve that does not converge is an error naming the method, the system, the iterations and the "
+TEST_CASE("A PETSc Krylov solve that does not converge is an error naming the method, the system, the iterations and the "
           "residual",
           "[linalg][krylov]") {
   const SparseMatrix a = testing::laplacian(40, 0.0, 0.0);
@@ -108,7 +108,7 @@ TEST_CASE("A Krylov solve that does not converge is an error naming the method, 
   CHECK(solver.solve(Eigen::VectorXd::Zero(a.rows())).norm() == 0.0);
 }
 
-TEST_CASE("The solver factory: auto is direct up to direct_limit, Krylov above; symmetric-only methods refuse others",
+TEST_CASE("The solver factory (PETSc above the limit): auto is direct up to direct_limit, Krylov above, and symmetric-only methods refuse others",
           "[linalg]") {
   SolverSettings s;
   s.direct_limit = 100;

@@ -30,7 +30,7 @@
 //   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus)
 //   [solver]      every linear solve (linalg/linear_solver.hpp): kind (auto | cholmod |
 //                 umfpack | cg | gmres; auto: direct up to direct_limit unknowns, default
-//                 300000, Krylov above), and for the Krylov methods preconditioner (gamg |
+//                 200000, Krylov above), and for the Krylov methods preconditioner (gamg |
 //                 boomeramg | jacobi; default gamg, boomeramg for VCI's non-symmetric
 //                 stiffness), tolerance (on |b - A x| / |b|, default 1e-10),
 //                 max_iterations (default 2000)

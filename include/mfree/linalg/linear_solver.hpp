@@ -19,8 +19,9 @@
 //
 // `auto` picks a direct method up to direct_limit unknowns (CHOLMOD for symmetric systems,
 // UMFPACK otherwise) and a Krylov method above it (CG, GMRES): a factorisation's fill grows
-// faster than the matrix, an AMG cycle does not (verification/benchmarks/README.md measures
-// where they cross on this code's matrices).
+// faster than the matrix, an AMG cycle does not. On the cantilever (2 threads; PETSc runs on
+// one) CHOLMOD is ahead at 10^5 DOFs and CG + GAMG at 5 * 10^5, in time and memory
+// (verification/benchmarks/README.md): the default limit, 2 * 10^5, is where they cross.
 //
 // The life of a solver follows Newton's: analyze() once per sparsity pattern (orderings,
 // symbolic factorisation; for Krylov methods the matrix structure), factorize() whenever
@@ -59,7 +60,7 @@ struct SolverSettings {
   std::optional<Preconditioner> preconditioner;  ///< nullopt: gamg if symmetric, else boomeramg
   double tolerance = 1e-10;               ///< |b - A x| / |b| of the Krylov methods
   int max_iterations = 2000;              ///< per Krylov solve
-  Index direct_limit = 300000;            ///< auto: direct up to this many unknowns
+  Index direct_limit = 200000;            ///< auto: direct up to this many unknowns
 };
 
 /// What a solve knows of its system beyond the matrix.
