@@ -2,6 +2,7 @@
 
 #include <petscksp.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -170,6 +171,11 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
   }
 
   check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
+  // PETSC_OPTIONS reach one kind of system by its name: -stiffness_ksp_monitor,
+  // -consistency_node_pc_gamg_threshold 0.05, ...
+  std::string prefix;
+  for (char c : system_.name) prefix += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  check(KSPSetOptionsPrefix(p.ksp, (prefix + "_").c_str()), "KSPSetOptionsPrefix");
   check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
   if (kind_ == SolverKind::cg) {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
@@ -203,6 +209,11 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
         PetscReal threshold[] = {0.03};
         check(PCGAMGSetThreshold(pc, threshold, 1), "PCGAMGSetThreshold");
       }
+      // A coarsest level of up to 5000 equations, solved directly: the node system of the
+      // consistency correction (a fourth-order operator) keeps its smooth error there. CG
+      // iterations per node-system solve at 10^5 DOFs: 44 with PETSc's default of 50, 30
+      // with 1000, 21 with 5000; the stiffness's stayed at 38.
+      check(PCGAMGSetCoarseEqLim(pc, 5000), "PCGAMGSetCoarseEqLim");
       break;
     case Preconditioner::boomeramg:
       check(PCSetType(pc, PCHYPRE), "PCSetType");
