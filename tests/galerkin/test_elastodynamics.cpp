@@ -222,3 +222,29 @@ TEST_CASE("J2 body in free motion: kinetic + stored + dissipated energy stays co
     CHECK(drift <= 5e-3 * first.kinetic);
   }
 }
+
+TEST_CASE("Newmark with PETSc CG + GAMG for the effective tangent and the mass follows the direct solves",
+          "[galerkin][dynamics][krylov]") {
+  const VibrationCase c(0.05, 1.0 / 8, false, false);
+  const auto run = [&](const SolverSettings& solver) {
+    DynamicsSettings s;
+    s.scheme = TimeScheme::newmark;
+    s.density = c.exact.density;
+    s.end_time = c.exact.period();
+    s.time_step = c.exact.period() / 50;
+    s.newton.tolerance = 1e-12;
+    s.newton.solver = solver;
+    StageTimer timer;
+    return integrate_dynamics(*c.model, c.disc.nodes, Eigen::VectorXd::Zero(c.model->dofs()), c.initial_velocity(), s,
+                              timer);
+  };
+  SolverSettings krylov;
+  krylov.kind = SolverKind::cg;
+  krylov.tolerance = 1e-12;
+  const DynamicsResult direct = run({}), iterative = run(krylov);
+  INFO(iterative.solver);
+  CHECK_THAT(direct.solver, Catch::StartsWith("cholmod"));
+  CHECK_THAT(iterative.solver, Catch::StartsWith("cg + gamg"));
+  CHECK((iterative.d - direct.d).norm() <= 1e-8 * direct.d.norm());
+  CHECK(iterative.newton_iterations == direct.newton_iterations);
+}

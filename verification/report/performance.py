@@ -237,8 +237,8 @@ def solver_scaling(ctx: Context) -> Section:
             + table(["DOFs", "solver", "consistency [s]", "factorisation [s]", "solve [s]", "total [s]",
                      "CG iterations", "node-system iterations (2 solves)", "energy error"], rows)
             + "\n" + ctx.image(figure, "Whole-run time against size, CHOLMOD and CG + GAMG")
-            + "\nAt larger sizes (verification/benchmarks/README.md): 5·10^5 DOFs take 90 s and 10.5 GB with "
-              "CHOLMOD, 76 s and 5.6 GB with CG + GAMG; 10^6 DOFs 168 s and 10.7 GB with CG + GAMG (309 s and "
+            + "\nAt larger sizes (verification/benchmarks/README.md): 5·10^5 DOFs take 83 s and 10.5 GB with "
+              "CHOLMOD, 72 s and 5.4 GB with CG + GAMG; 10^6 DOFs 144 s and 10.7 GB with CG + GAMG (309 s and "
               "19.4 GB with CHOLMOD). `[solver] kind = \"auto\"` turns to the Krylov methods above "
               "`direct_limit` unknowns.\n")
     return Section(title, body, [("CHOLMOD and CG + GAMG give the same energy error", "to 1e-4 relative",
