@@ -61,6 +61,7 @@ struct KrylovSolver::Impl {
   /// Eigen's column-compressed one. Empty for symmetric ones (the two layouts coincide).
   std::vector<std::int64_t> gather;
   std::vector<double> values;
+  std::string overridden;  ///< "KSP + PC" when PETSC_OPTIONS changed the scene's method
 
   ~Impl() {
     KSPDestroy(&ksp);
@@ -89,8 +90,10 @@ KrylovSolver::KrylovSolver(SolverKind kind, const SolverSettings& settings, cons
 KrylovSolver::~KrylovSolver() = default;
 
 std::string KrylovSolver::description() const {
-  return fmt::format("{} + {} (tolerance {:.0e})", to_string(kind_), to_string(preconditioner_),
-                     settings_.tolerance);
+  const std::string method = impl_->overridden.empty()
+                                 ? fmt::format("{} + {}", to_string(kind_), to_string(preconditioner_))
+                                 : impl_->overridden + " (PETSC_OPTIONS)";
+  return fmt::format("{} (tolerance {:.0e})", method, settings_.tolerance);
 }
 
 void KrylovSolver::analyze(const SparseMatrix& m) {
@@ -224,6 +227,16 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
       break;
   }
   check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
+  // What runs, after PETSC_OPTIONS: the description names it when the options changed it.
+  KSPType ksp_type = nullptr;
+  PCType pc_type = nullptr;
+  check(KSPGetType(p.ksp, &ksp_type), "KSPGetType");
+  check(PCGetType(pc, &pc_type), "PCGetType");
+  const std::string chosen = fmt::format("{} + {}", to_string(kind_), to_string(preconditioner_));
+  std::string running = fmt::format("{} + {}", ksp_type, pc_type);
+  if (running == fmt::format("{} + hypre", to_string(kind_)) && preconditioner_ == Preconditioner::boomeramg)
+    running = chosen;
+  p.overridden = running == chosen ? "" : running;
   analyzed_ = true;
   factorized_ = false;
 }
