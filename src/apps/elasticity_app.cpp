@@ -39,7 +39,7 @@ int run_linear_statics(const ElasticityScene& scene) {
       "  integration consistency defect: {:.2e} -> {:.2e} ({}{})\n  solver: {}\n", r.consistency_before,
       r.consistency_after,
       to_string(s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none),
-      r.correction_solver.empty() ? "" : ", node system: " + r.correction_solver, r.solver);
+      r.correction_solver ? ", node system: " + r.correction_solver->text() : "", r.solver.text());
   if (r.errors)
     std::cout << fmt::format(
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
@@ -57,8 +57,8 @@ int run_linear_statics(const ElasticityScene& scene) {
   summary.number("quadrature_points", static_cast<double>(r.quadrature.size()));
   summary.number("consistency_before", r.consistency_before);
   summary.number("consistency_after", r.consistency_after);
-  summary.text("solver", r.solver);
-  if (!r.correction_solver.empty()) summary.text("consistency_solver", r.correction_solver);
+  summary.text("solver", r.solver.text());
+  if (r.correction_solver) summary.text("consistency_solver", r.correction_solver->text());
   {
     // Negative quadrature weights (quadratic RK on irregular quadrature clouds, SPEC 3).
     double negative = 0.0, most_negative = 0.0, largest = 0.0;

@@ -118,7 +118,7 @@ int run_static(const ElasticityScene& scene) {
                              for (const auto& s : sol.steps) n += static_cast<int>(s.history.size()) - 1;
                              return n;
                            }(),
-                           sol.solver);
+                           sol.solver.text());
   const std::filesystem::path csv_path = o.folder / "load_steps.csv";
   write_file_atomically(csv_path, csv);
   std::cout << fmt::format("  wrote {}\n", csv_path.filename().string());
@@ -128,7 +128,7 @@ int run_static(const ElasticityScene& scene) {
   print_stages(timer);
   RunSummary summary("newton", scene.file);
   summary.number("dofs", static_cast<double>(model.dofs()));
-  summary.text("solver", sol.solver);
+  summary.text("solver", sol.solver.text());
   std::vector<RunSummary::Record> steps;
   for (const LoadStepRecord& step : sol.steps)
     steps.push_back({{"load_factor", step.factor},
@@ -344,7 +344,7 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
                            r.time_step,
                            r.stability_limit ? fmt::format(" (stability limit {:.4e} s by power iteration)", *r.stability_limit) : "",
                            s.scheme == TimeScheme::newmark ? fmt::format(", {} Newton iterations, {} factorisations", r.newton_iterations, r.factorisations) : "");
-  if (!r.solver.empty()) std::cout << fmt::format("  solver: {}\n", r.solver);
+  if (r.solver) std::cout << fmt::format("  solver: {}\n", r.solver->text());
   if (!run.errors.empty()) {
     std::cout << fmt::format("  {:>10} {:>12} {:>12} {:>12}   (RMS over the body, independent Gauss cells)\n", "t [s]",
                              "displacement", "velocity", "stress");
@@ -378,7 +378,7 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   summary.number("time_step", r.time_step);
   if (r.stability_limit) summary.number("stability_limit", *r.stability_limit);
   summary.number("energy_drift", energy_drift(r.energy));
-  if (!r.solver.empty()) summary.text("solver", r.solver);
+  if (r.solver) summary.text("solver", r.solver->text());
   std::vector<RunSummary::Record> errors;
   for (const MotionErrors& e : run.errors)
     errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity}, {"stress", e.stress}});

@@ -235,8 +235,7 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
       }
     });
   }
-  report.solver = summary(*solver);
-  report.statistics = solver->statistics();
+  report.solver = mfree::report(*solver);
   return report;
 }
 

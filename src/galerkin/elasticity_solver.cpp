@@ -101,7 +101,6 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
           res.quadrature, res.nodes, conditions.linear_residuals(res.quadrature.grad), s.solver);
       res.correction_residual = c.residual;
       res.correction_solver = c.solver;
-      res.correction_statistics = c.statistics;
       res.consistency_after = conditions.defect(res.quadrature.grad);
     } else if (res.consistency == Consistency::vci) {
       res.test_gradients = conditions.vci_test_gradients();
@@ -135,8 +134,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
     solver->factorize(sys.stiffness);
   });
   res.coefficients = timer.time("solve", [&] { return solver->solve(sys.load); });
-  res.solver = summary(*solver);
-  res.solver_statistics = solver->statistics();
+  res.solver = report(*solver);
 
   if (exact) {
     res.errors = timer.time("errors", [&] {

@@ -233,7 +233,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
                   << std::flush;
     if (checkpoints.every > 0 && checkpoints.save && n < out.steps && n % checkpoints.every == 0) save(n);
   }
-  if (solver) out.solver = summary(*solver);
+  if (solver) out.solver = report(*solver);
   out.d = std::move(d);
   out.v = std::move(v);
   return out;

@@ -192,7 +192,7 @@ StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes,
     }
   }
   out.coefficients = std::move(d);
-  out.solver = summary(*solver);
+  out.solver = report(*solver);
   return out;
 }
 

@@ -48,11 +48,13 @@ std::unique_ptr<LinearSolver> make_linear_solver(const SolverSettings& settings,
   return std::make_unique<KrylovSolver>(k, settings, system);
 }
 
-std::string summary(const LinearSolver& solver) {
-  const SolveStatistics& s = solver.statistics();
-  if (is_direct(solver.kind())) return fmt::format("{}, {} solves", solver.description(), s.solves);
-  return fmt::format("{}, {} solves, {} iterations (at most {} in one), |b - A x| / |b| <= {:.1e}",
-                     solver.description(), s.solves, s.iterations, s.most_iterations, s.worst_residual);
+std::string SolverReport::text() const {
+  const SolveStatistics& s = statistics;
+  if (is_direct(kind)) return fmt::format("{}, {} solves", method, s.solves);
+  return fmt::format("{}, {} solves, {} iterations (at most {} in one), |b - A x| / |b| <= {:.1e}", method, s.solves,
+                     s.iterations, s.most_iterations, s.worst_residual);
 }
+
+SolverReport report(const LinearSolver& solver) { return {solver.kind(), solver.description(), solver.statistics()}; }
 
 }  // namespace mfree

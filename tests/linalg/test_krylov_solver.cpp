@@ -140,5 +140,5 @@ TEST_CASE("The solver factory (PETSc above the limit): auto is direct up to dire
   CHECK(direct->kind() == SolverKind::cholmod);
   const Eigen::VectorXd x = direct->solve(b);
   CHECK((iterative->solve(b) - x).norm() <= 1e-8 * x.norm());
-  CHECK_THAT(summary(*iterative), Catch::Contains("cg + gamg (tolerance 1e-10), 1 solves"));
+  CHECK_THAT(report(*iterative).text(), Catch::Contains("cg + gamg (tolerance 1e-10), 1 solves"));
 }

@@ -58,8 +58,8 @@ void BM_cantilever_stages(benchmark::State& state) {
     for (const auto& [name, seconds] : r.timer.stages()) stages.add(name, seconds);
     dofs = static_cast<double>(r.coefficients.size());
     if (r.errors) error = r.errors->l2_displacement;
-    iterations = r.solver_statistics.iterations;
-    node_iterations = r.correction_statistics.iterations;
+    iterations = r.solver.statistics.iterations;
+    node_iterations = r.correction_solver ? r.correction_solver->statistics.iterations : 0;
   }
   for (auto [name, seconds] : stages.stages()) {
     std::replace(name.begin(), name.end(), ' ', '_');

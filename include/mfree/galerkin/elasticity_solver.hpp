@@ -71,8 +71,7 @@ struct Discretisation {
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
   double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
-  std::string correction_solver;        ///< symmetric correction: its solver and statistics
-  SolveStatistics correction_statistics;
+  std::optional<SolverReport> correction_solver;  ///< symmetric correction: the node system's solver
 
   [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }
   [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
@@ -86,8 +85,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 struct ElasticityResult : Discretisation {
   Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
   StageTimer timer;
-  std::string solver;                   ///< the stiffness's solver and its statistics
-  SolveStatistics solver_statistics;
+  SolverReport solver;                  ///< the stiffness's solver and what it did
   std::optional<ElasticErrors> errors;
 
   /// u^h at arbitrary points.

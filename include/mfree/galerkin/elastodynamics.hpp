@@ -77,7 +77,7 @@ struct DynamicsResult {
   long factorisations = 0;                ///< newmark: tangents factorised (modified Newton)
   std::vector<EnergyRecord> energy;       ///< empty when energy_every = 0
   Eigen::VectorXd d, v;                   ///< at end_time
-  std::string solver;                     ///< newmark: the linear solver and its statistics
+  std::optional<SolverReport> solver;     ///< newmark: the linear solver and what it did
 };
 
 /// The integrator's state after a step: all that the next step starts from, so that a run

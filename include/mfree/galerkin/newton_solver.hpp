@@ -87,7 +87,7 @@ struct LoadStepRecord {
 struct StaticSolution {
   Eigen::VectorXd coefficients;
   std::vector<LoadStepRecord> steps;
-  std::string solver;  ///< the linear solver and its statistics (summary())
+  SolverReport solver;  ///< the linear solver of the iterations and what it did
 };
 
 /// Solves the static problem of `model` (on `nodes`, whose rigid-body modes an AMG
