@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 NORMS = [("l2_displacement", "relative L2 displacement error"),
          ("energy", "relative energy-norm error"),
          ("l2_stress", "relative L2 stress error")]
-STYLE = {"projected": "-", "gauss_cells": "--", "nodal": ":"}
+STYLE = {"projected + symmetric": "-", "projected + vci": (0, (5, 1)), "gauss_cells + vci": "-.", "gauss_cells": "--", "nodal": ":"}
 MARK = {"lattice": "o", "perturbed": "s", "random": "^"}
 COLOR = {"linear": "C0", "quadratic": "C3"}
 
@@ -29,7 +29,8 @@ def main():
     with open(path) as f:
         for r in csv.DictReader(f):
             if r["status"] == "ok":  # a failed run's row has empty cells and its reason
-                series[(r["scheme"], r["order"], r["cloud"])].append(r)
+                method = r["scheme"] if r["consistency"] == "none" else f'{r["scheme"]} + {r["consistency"]}'
+                series[(method, r["order"], r["cloud"])].append(r)
     for x_key, x_label, name, invert in [("spacing", "node spacing h", "error_vs_spacing.png", True),
                                          ("seconds", "wall time of the solve [s]", "error_vs_time.png", False)]:
         fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))
@@ -37,7 +38,7 @@ def main():
             for (scheme, order, cloud), rows in sorted(series.items()):
                 xs = [float(r[x_key]) for r in rows]
                 ys = [float(r[key]) for r in rows]
-                ax.loglog(xs, ys, STYLE.get(scheme, "-"), marker=MARK.get(cloud, "x"),
+                ax.loglog(xs, ys, linestyle=STYLE.get(scheme, "-"), marker=MARK.get(cloud, "x"),
                           color=COLOR.get(order, "k"), label=f"{scheme}, {order}, {cloud}")
             if invert:
                 ax.invert_xaxis()

@@ -38,7 +38,7 @@ int run_linear_statics(const ElasticityScene& scene) {
   std::cout << fmt::format(
       "  integration consistency defect: {:.2e} -> {:.2e} ({}{})\n  solver: {}\n", r.consistency_before,
       r.consistency_after,
-      to_string(s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none),
+      to_string(r.consistency),
       r.correction_solver ? ", node system: " + r.correction_solver->text() : "", r.solver.text());
   if (r.errors)
     std::cout << fmt::format(
@@ -119,7 +119,7 @@ int converge_linear_statics(const ElasticityScene& scene) {
   std::cout << scene.describe_conditions();
 
   std::string csv =
-      "cloud,order,scheme,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_stress,"
+      "cloud,order,scheme,consistency,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_stress,"
       "probe_uy,seconds,consistency_before,consistency_after,status\n";
   std::string table;
   std::size_t done = 0;
@@ -136,6 +136,7 @@ int converge_linear_statics(const ElasticityScene& scene) {
             s.order = order;
             s.scheme = q;
             s.problem.nitsche_beta = beta;
+            const std::string_view fix = to_string(s.consistency.value_or(default_consistency(q)));
             if (order == RKOrder::quadratic) {
               s.support_factor = st.quadratic_factor;
               s.quadrature_order = RKOrder::quadratic;
@@ -148,11 +149,11 @@ int converge_linear_statics(const ElasticityScene& scene) {
             } catch (const NumericalError& e) {
               // A study goes on past a run that fails (a sweep is meant to find where they do).
               const std::string line =
-                  fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} FAILED: {}", to_string(cloud),
-                              to_string(order), to_string(q), beta, h, e.what());
+                  fmt::format("{:<9} {:<9} {:<11} {:<9} {:7.0f} {:8.4f} FAILED: {}", to_string(cloud),
+                              to_string(order), to_string(q), fix, beta, h, e.what());
               table += line + "\n";
-              csv += fmt::format("{},{},{},{},{},,,,,,,,,,,{}\n", to_string(cloud), to_string(order), to_string(q),
-                                 beta, h, csv_status(e.what()));
+              csv += fmt::format("{},{},{},{},{},{},,,,,,,,,,,{}\n", to_string(cloud), to_string(order), to_string(q),
+                                 fix, beta, h, csv_status(e.what()));
               std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
               continue;
             }
@@ -166,14 +167,14 @@ int converge_linear_statics(const ElasticityScene& scene) {
               const Vec2 u = r.displacement({*probe})[0];
               probes.emplace_back(h, u);
               const ProbeLevel level = probe_level(probes);
-              const std::string line = fmt::format("{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:>15.9e} {:>15.9e} {:>10} "
-                                                   "{:>6} {:>16} {:8.3f}",
-                                                   to_string(cloud), to_string(order), to_string(q), beta, h,
+              const std::string line = fmt::format("{:<9} {:<9} {:<11} {:<9} {:7.0f} {:8.4f} {:7d} {:>15.9e} {:>15.9e} "
+                                                   "{:>10} {:>6} {:>16} {:8.3f}",
+                                                   to_string(cloud), to_string(order), to_string(q), fix, beta, h,
                                                    2 * r.nodes.size(), u.x(), u.y(), level.change, level.rate,
                                                    level.extrapolated_y, seconds);
               table += line + "\n";
-              csv += fmt::format("{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e},ok\n", to_string(cloud),
-                                 to_string(order), to_string(q), beta, h, r.nodes.size(), 2 * r.nodes.size(),
+              csv += fmt::format("{},{},{},{},{},{},{},{},{},,,,{:.12e},{:.6e},{:.3e},{:.3e},ok\n", to_string(cloud),
+                                 to_string(order), to_string(q), fix, beta, h, r.nodes.size(), 2 * r.nodes.size(),
                                  r.quadrature.size(), u.y(), seconds, r.consistency_before, r.consistency_after);
               std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
               continue;
@@ -190,12 +191,12 @@ int converge_linear_statics(const ElasticityScene& scene) {
             }
             series.emplace_back(h, e);
             const std::string line = fmt::format(
-                "{:<9} {:<9} {:<11} {:7.0f} {:8.4f} {:7d} {:10.3e} {:10.3e} {:10.3e} {:17} {:11.7f} {:8.3f}",
-                to_string(cloud), to_string(order), to_string(q), beta, h, 2 * r.nodes.size(),
+                "{:<9} {:<9} {:<11} {:<9} {:7.0f} {:8.4f} {:7d} {:10.3e} {:10.3e} {:10.3e} {:17} {:11.7f} {:8.3f}",
+                to_string(cloud), to_string(order), to_string(q), fix, beta, h, 2 * r.nodes.size(),
                 e.l2_displacement, e.energy, e.l2_stress, rates, probe_uy, seconds);
             table += line + "\n";
-            csv += fmt::format("{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{},{:.6e},{:.3e},{:.3e},ok\n",
-                               to_string(cloud), to_string(order), to_string(q), beta, h, r.nodes.size(),
+            csv += fmt::format("{},{},{},{},{},{},{},{},{},{:.9e},{:.9e},{:.9e},{},{:.6e},{:.3e},{:.3e},ok\n",
+                               to_string(cloud), to_string(order), to_string(q), fix, beta, h, r.nodes.size(),
                                2 * r.nodes.size(), r.quadrature.size(), e.l2_displacement, e.energy,
                                e.l2_stress, csv_number(probe_uy, "{:.9e}"), seconds, r.consistency_before,
                                r.consistency_after);
@@ -206,13 +207,13 @@ int converge_linear_statics(const ElasticityScene& scene) {
   write_file_atomically(csv_path, csv);
   if (exact)
     std::cout << fmt::format(
-        "\n{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n", "cloud", "order", "scheme",
-        "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress", "rates (L2 E S)", probe ? "probe u_y" : "-", "time [s]");
+        "\n{:<9} {:<9} {:<11} {:<9} {:>7} {:>8} {:>7} {:>10} {:>10} {:>10} {:>17} {:>11} {:>8}\n", "cloud", "order",
+        "scheme", "correction", "beta", "h", "DOFs", "L2 disp", "energy", "L2 stress", "rates (L2 E S)", probe ? "probe u_y" : "-", "time [s]");
   else
     std::cout << fmt::format("\nno exact solution: u^h at the probe ({:.6g}, {:.6g}), |change| from the level before, "
                              "its observed rate and the Richardson-extrapolated u_y\n"
-                             "{:<9} {:<9} {:<11} {:>7} {:>8} {:>7} {:>15} {:>15} {:>10} {:>6} {:>16} {:>8}\n",
-                             probe->x(), probe->y(), "cloud", "order", "scheme", "beta", "h", "DOFs", "u_x", "u_y",
+                             "{:<9} {:<9} {:<11} {:<9} {:>7} {:>8} {:>7} {:>15} {:>15} {:>10} {:>6} {:>16} {:>8}\n",
+                             probe->x(), probe->y(), "cloud", "order", "scheme", "correction", "beta", "h", "DOFs", "u_x", "u_y",
                              "|change|", "rate", "extrapolated u_y", "time [s]");
   std::cout << table;
   if (st.reference) std::cout << fmt::format("reference probe u_y: {:.7f}\n", *st.reference);

@@ -20,6 +20,15 @@ const NameTable<QuadratureScheme>& scheme_names() {
 
 std::string_view to_string(QuadratureScheme s) { return scheme_names().name(s); }
 
+Consistency default_consistency(QuadratureScheme s) {
+  switch (s) {
+    case QuadratureScheme::projected: return Consistency::symmetric;
+    case QuadratureScheme::gauss_cells: return Consistency::vci;
+    case QuadratureScheme::nodal: return Consistency::none;
+  }
+  throw Error("unknown quadrature scheme");
+}
+
 std::vector<Vec2> Discretisation::displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const {
   const GalerkinQuadrature at = sample_shape_functions(*trial, points, false);
   std::vector<Vec2> u(points.size());
@@ -94,7 +103,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   const ConsistencyConditions conditions(res.quadrature, res.nodes, res.at_boundary, res.boundary, s.order);
   res.consistency_before = conditions.defect(res.quadrature.grad);
 
-  res.consistency = s.scheme == QuadratureScheme::projected ? s.consistency : Consistency::none;
+  res.consistency = s.consistency.value_or(default_consistency(s.scheme));
   timer.time("consistency", [&] {
     if (res.consistency == Consistency::symmetric) {
       const SymmetricCorrection c = make_consistent_symmetric(

@@ -114,14 +114,14 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   }
   {
     const SceneTable t = root.table("quadrature");
-    s.scheme = read_choice(t, "scheme", scheme_names());
+    s.scheme = read_choice_or(t, "scheme", scheme_names(), QuadratureScheme::gauss_cells);
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
     s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
     s.quadrature_order = read_choice_or(t, "order", order_names(), RKOrder::linear);
     s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
-    s.consistency = read_choice_or(t, "consistency", consistency_names(), Consistency::symmetric);
-    s.gauss_points = static_cast<int>(t.integer_or("gauss_points", s.order == RKOrder::linear ? 4 : 6, 1, 12));
+    if (t.has("consistency")) s.consistency = read_choice(t, "consistency", consistency_names());
+    s.gauss_points = static_cast<int>(t.integer_or("gauss_points", 3, 1, 12));
     t.finish();
   }
   {
@@ -259,7 +259,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
                                    to_string(*v.kind)));
     // VCI's test gradients differ from the trial ones: its stiffness is not symmetric.
     if (v.kind && (*v.kind == SolverKind::cholmod || *v.kind == SolverKind::cg) &&
-        s.scheme == QuadratureScheme::projected && s.consistency == Consistency::vci)
+        s.consistency.value_or(default_consistency(s.scheme)) == Consistency::vci)
       t.error("kind", fmt::format("\"{}\" needs a symmetric positive definite system; the stiffness of "
                                   "consistency = \"vci\" is not symmetric (use {} or auto)",
                                   to_string(*v.kind), *v.kind == SolverKind::cg ? "gmres" : "umfpack"));
@@ -384,7 +384,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     }
     if (t.has("reference")) st.reference = t.number("reference", -1e300, 1e300);
     st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
-    st.quadratic_gauss_points = static_cast<int>(t.integer_or("quadratic_gauss_points", 6, 1, 12));
+    st.quadratic_gauss_points = static_cast<int>(t.integer_or("quadratic_gauss_points", s.gauss_points, 1, 12));
     t.finish();
     out.study = st;
   }

@@ -16,6 +16,7 @@ namespace {
 /// across its smaller side.
 Discretisation projected(const Domain& domain, CloudKind kind, RKOrder order, double levels = 8.0) {
   ElasticitySettings s;
+  s.scheme = QuadratureScheme::projected;
   s.nodes.kind = kind;
   s.nodes.spacing = domain.bounding_box().size().minCoeff() / levels;
   s.nodes.perturbation = 0.4;

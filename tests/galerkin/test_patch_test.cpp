@@ -28,9 +28,10 @@ ExactElasticity quadratic_patch() {
 /// Patch test: the exact field prescribed by Nitsche on the boundary part left of x = x_cut,
 /// traction sigma n elsewhere, its body force in the domain. Returns max over nodes
 /// |u^h(x_I) - u(x_I)| / max |u|.
-double patch_error(const Domain& domain, CloudKind kind, Consistency consistency, RKOrder order,
-                   const ExactElasticity& exact, const SolverSettings& solver = {}) {
+double patch_error(const Domain& domain, CloudKind kind, QuadratureScheme scheme, Consistency consistency,
+                   RKOrder order, const ExactElasticity& exact, const SolverSettings& solver = {}) {
   ElasticitySettings s;
+  s.scheme = scheme;
   s.solver = solver;
   s.nodes.kind = kind;
   s.nodes.spacing = domain.bounding_box().size().minCoeff() / 8.0;
@@ -63,17 +64,18 @@ double patch_error(const Domain& domain, CloudKind kind, Consistency consistency
 
 }  // namespace
 
-TEST_CASE("linear patch test to 1e-8 with Nitsche boundaries, consistent projected gradients",
+TEST_CASE("linear patch test to 1e-8 with Nitsche boundaries, projected gradients and Gauss cells, both corrections",
           "[galerkin]") {
   for (const std::string name : {"rectangle.wkt", "l_shape.wkt"})
     for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
-      for (Consistency c : {Consistency::symmetric, Consistency::vci}) {
-        CAPTURE(name, to_string(kind), to_string(c));
-        const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
-        const double e = patch_error(d, kind, c, RKOrder::linear, linear_patch());
-        INFO("patch error " << std::scientific << e);
-        CHECK(e <= 1e-8);
-      }
+      for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells})
+        for (Consistency c : {Consistency::symmetric, Consistency::vci}) {
+          CAPTURE(name, to_string(kind), to_string(q), to_string(c));
+          const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+          const double e = patch_error(d, kind, q, c, RKOrder::linear, linear_patch());
+          INFO("patch error " << std::scientific << e);
+          CHECK(e <= 1e-8);
+        }
 }
 
 TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov methods (CG with GAMG, GMRES with BoomerAMG)",
@@ -86,7 +88,7 @@ TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov m
   for (CloudKind kind : {CloudKind::lattice, CloudKind::random})
     for (Consistency c : {Consistency::symmetric, Consistency::vci}) {
       CAPTURE(to_string(kind), to_string(c));
-      const double e = patch_error(d, kind, c, RKOrder::linear, linear_patch(), krylov);
+      const double e = patch_error(d, kind, QuadratureScheme::projected, c, RKOrder::linear, linear_patch(), krylov);
       INFO("patch error " << std::scientific << e);
       CHECK(e <= 1e-8);
     }
@@ -95,18 +97,23 @@ TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov m
 TEST_CASE("without a consistency correction the patch test fails (the correction matters)",
           "[galerkin]") {
   const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/l_shape.wkt");
-  CHECK(patch_error(d, CloudKind::perturbed, Consistency::none, RKOrder::linear, linear_patch()) > 1e-6);
+  for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells}) {
+    CAPTURE(to_string(q));
+    CHECK(patch_error(d, CloudKind::perturbed, q, Consistency::none, RKOrder::linear, linear_patch()) > 1e-6);
+  }
 }
 
-TEST_CASE("quadratic patch test to 1e-8 with quadratic RK and quadratic VCI", "[galerkin]") {
+TEST_CASE("quadratic patch test to 1e-8 with quadratic RK and quadratic VCI, projected gradients and Gauss cells",
+          "[galerkin]") {
   for (const std::string name : {"rectangle.wkt", "l_shape.wkt"})
-    for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random}) {
-      CAPTURE(name, to_string(kind));
-      const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
-      const double e = patch_error(d, kind, Consistency::vci, RKOrder::quadratic, quadratic_patch());
-      INFO("patch error " << std::scientific << e);
-      CHECK(e <= 1e-8);
-    }
+    for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
+      for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells}) {
+        CAPTURE(name, to_string(kind), to_string(q));
+        const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+        const double e = patch_error(d, kind, q, Consistency::vci, RKOrder::quadratic, quadratic_patch());
+        INFO("patch error " << std::scientific << e);
+        CHECK(e <= 1e-8);
+      }
 }
 
 TEST_CASE("the linear symmetric correction fails the quadratic patch test (the moments matter)",
@@ -114,6 +121,7 @@ TEST_CASE("the linear symmetric correction fails the quadratic patch test (the m
   const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/rectangle.wkt");
   for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
     CAPTURE(to_string(kind));
-    CHECK(patch_error(d, kind, Consistency::symmetric, RKOrder::quadratic, quadratic_patch()) > 1e-6);
+    CHECK(patch_error(d, kind, QuadratureScheme::projected, Consistency::symmetric, RKOrder::quadratic,
+                      quadratic_patch()) > 1e-6);
   }
 }

@@ -36,6 +36,7 @@ void BM_cantilever_stages(benchmark::State& state) {
   const bool krylov = state.range(1) == 1;
   const Domain domain = Domain::rectangle(Vec2(0.0, -0.5 * depth), Vec2(length, 0.5 * depth));
   ElasticitySettings s;
+  s.scheme = QuadratureScheme::projected;
   s.nodes.spacing = depth / n;
   s.problem.material = LinearElastic{3.0e7, 0.3, PlaneModel::stress};
   const ExactElasticity exact = timoshenko_beam(length, depth, load, s.problem.material);

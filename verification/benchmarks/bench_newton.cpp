@@ -37,6 +37,7 @@ void BM_newton_iteration(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const Domain domain = Domain::rectangle(Vec2(0.0, -0.5 * depth), Vec2(length, 0.5 * depth));
   ElasticitySettings s;
+  s.scheme = QuadratureScheme::projected;
   s.nodes.spacing = depth / n;
   StageTimer timer;
   const Discretisation disc = discretise(domain, s, timer);
