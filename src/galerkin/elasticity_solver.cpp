@@ -135,6 +135,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
                                res.at_boundary);
   });
   check_rigid_body_modes(sys.stiffness, res.nodes);
+  res.stiffness_nonzeros = sys.stiffness.nonZeros();
   const std::unique_ptr<LinearSolver> solver =
       make_linear_solver(s.solver, {"stiffness", sys.symmetric, 2, res.nodes},
                          sys.stiffness.rows());

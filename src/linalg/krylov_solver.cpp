@@ -2,10 +2,12 @@
 
 #include <petscksp.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <fmt/format.h>
 #include <stdexcept>
 #include <vector>
@@ -56,11 +58,11 @@ struct KrylovSolver::Impl {
   Mat a = nullptr;
   KSP ksp = nullptr;
   PetscInt size = 0;
-  std::vector<PetscInt> row_start, columns;
-  /// Non-symmetric matrices: value k of the row-compressed copy is value gather[k] of
+  std::size_t nonzeros = 0;
+  /// Non-symmetric matrices: value k of the row-compressed PETSc matrix is value gather[k] of
   /// Eigen's column-compressed one. Empty for symmetric ones (the two layouts coincide).
-  std::vector<std::int64_t> gather;
-  std::vector<double> values;
+  /// The values go straight into PETSc's array: no copy of the matrix is kept here.
+  std::vector<PetscInt> gather;
   std::string overridden;  ///< "KSP + PC" when PETSC_OPTIONS changed the scene's method
 
   ~Impl() {
@@ -68,12 +70,15 @@ struct KrylovSolver::Impl {
     MatDestroy(&a);
   }
 
-  /// The values of `m` in the row-compressed order of the PETSc matrix.
-  void gather_values(const SparseMatrix& m) {
+  /// The values of `m` into the PETSc matrix, in its row-compressed order.
+  void set_values(const SparseMatrix& m) {
+    PetscScalar* a_values = nullptr;
+    check(MatSeqAIJGetArray(a, &a_values), "MatSeqAIJGetArray");
     const double* v = m.valuePtr();
-    if (gather.empty()) values.assign(v, v + m.nonZeros());
+    if (gather.empty()) std::copy(v, v + m.nonZeros(), a_values);
     else
-      for (std::size_t k = 0; k < gather.size(); ++k) values[k] = v[gather[k]];
+      for (std::size_t k = 0; k < gather.size(); ++k) a_values[k] = v[gather[k]];
+    check(MatSeqAIJRestoreArray(a, &a_values), "MatSeqAIJRestoreArray");
   }
 };
 
@@ -109,34 +114,37 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
   p.size = static_cast<PetscInt>(m.rows());
   const PetscInt n = p.size;
 
-  // Row-compressed structure: a symmetric matrix's columns are its rows.
-  p.row_start.assign(n + 1, 0);
-  p.columns.assign(static_cast<std::size_t>(m.nonZeros()), 0);
+  if (m.nonZeros() >= std::numeric_limits<PetscInt>::max())
+    throw Error(fmt::format("{}: the {} matrix has {} nonzeros, more than PETSc's {}-bit indices hold", description(),
+                            system_.name, m.nonZeros(), 8 * sizeof(PetscInt)));
+  p.nonzeros = static_cast<std::size_t>(m.nonZeros());
+
+  // Row-compressed structure (PETSc copies it): a symmetric matrix's columns are its rows.
+  std::vector<PetscInt> row_start(n + 1, 0), columns(p.nonzeros, 0);
   p.gather.clear();
   if (system_.symmetric) {
-    std::copy(m.outerIndexPtr(), m.outerIndexPtr() + n + 1, p.row_start.begin());
-    std::copy(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros(), p.columns.begin());
+    std::copy(m.outerIndexPtr(), m.outerIndexPtr() + n + 1, row_start.begin());
+    std::copy(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros(), columns.begin());
   } else {
-    p.gather.assign(p.columns.size(), 0);
-    for (std::int64_t k = 0; k < m.nonZeros(); ++k) ++p.row_start[m.innerIndexPtr()[k] + 1];
-    for (PetscInt i = 0; i < n; ++i) p.row_start[i + 1] += p.row_start[i];
-    std::vector<PetscInt> next(p.row_start.begin(), p.row_start.end() - 1);
+    p.gather.assign(p.nonzeros, 0);
+    for (std::int64_t k = 0; k < m.nonZeros(); ++k) ++row_start[m.innerIndexPtr()[k] + 1];
+    for (PetscInt i = 0; i < n; ++i) row_start[i + 1] += row_start[i];
+    std::vector<PetscInt> next(row_start.begin(), row_start.end() - 1);
     for (PetscInt j = 0; j < n; ++j)
       for (std::int64_t k = m.outerIndexPtr()[j]; k < m.outerIndexPtr()[j + 1]; ++k) {
         const PetscInt slot = next[m.innerIndexPtr()[k]]++;
-        p.columns[slot] = j;
-        p.gather[slot] = k;
+        columns[slot] = j;
+        p.gather[slot] = static_cast<PetscInt>(k);
       }
   }
-  p.values.resize(p.columns.size());
-  p.gather_values(m);
 
   check(MatCreate(PETSC_COMM_SELF, &p.a), "MatCreate");
   check(MatSetSizes(p.a, n, n, n, n), "MatSetSizes");
   check(MatSetType(p.a, MATSEQAIJ), "MatSetType");
   check(MatSetBlockSize(p.a, bs), "MatSetBlockSize");
-  check(MatSeqAIJSetPreallocationCSR(p.a, p.row_start.data(), p.columns.data(), p.values.data()),
+  check(MatSeqAIJSetPreallocationCSR(p.a, row_start.data(), columns.data(), nullptr),
         "MatSeqAIJSetPreallocationCSR");
+  p.set_values(m);
   if (system_.symmetric) {
     check(MatSetOption(p.a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(p.a, MAT_SPD, PETSC_TRUE), "MatSetOption");
@@ -243,13 +251,9 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
 
 void KrylovSolver::factorize(const SparseMatrix& m) {
   Impl& p = *impl_;
-  if (!analyzed_ || m.rows() != p.size || static_cast<std::size_t>(m.nonZeros()) != p.columns.size())
+  if (!analyzed_ || m.rows() != p.size || static_cast<std::size_t>(m.nonZeros()) != p.nonzeros)
     throw Error(fmt::format("{}: factorize() needs analyze() of a matrix of the same pattern first", description()));
-  p.gather_values(m);
-  PetscScalar* v = nullptr;
-  check(MatSeqAIJGetArray(p.a, &v), "MatSeqAIJGetArray");
-  std::memcpy(v, p.values.data(), sizeof(double) * p.values.size());
-  check(MatSeqAIJRestoreArray(p.a, &v), "MatSeqAIJRestoreArray");
+  p.set_values(m);
   check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
   check(KSPSetUp(p.ksp), "KSPSetUp (the preconditioner's setup)");
   factorized_ = true;

@@ -544,7 +544,7 @@ untouched; a non-symmetric matrix), our projected quadrature (symmetric consiste
 RK on the projected quadrature with quadratic VCI (`projected_vci`), and two baselines without a
 correction: Gauss cells (4 × 4 points per cell for linear RK, 6 × 6 for quadratic) and direct nodal
 integration.
-Errors are relative norms measured with an independent 6 × 6 Gauss rule on cells of h/2. Tip deflection
+Errors are relative norms measured with an independent 4 × 4 Gauss rule on cells of h/2. Tip deflection
 u_y(48, 0) against the exact {reference}.
 
 **Expected** (verification/cantilever/README.md): linear RK, L2 displacement rate 2, energy and stress rate 1

@@ -64,7 +64,9 @@ struct ElasticitySettings {
   SolverSettings solver;                ///< every linear solve ([solver], linear_solver.hpp)
 
   ElasticityProblem problem;
-  int error_gauss_points = 6;           ///< independent error quadrature, per cell of h/2
+  /// Independent error quadrature: n x n Gauss points per cell of h/2 (64 points per node; the
+  /// cantilever's errors agree with 6 x 6 to 6e-4 relative at h = 3 to 0.375, both RK orders).
+  int error_gauss_points = 4;
   std::ostream* progress = nullptr;     ///< where to report each finished stage, if anywhere
 };
 
@@ -96,6 +98,7 @@ struct ElasticityResult : Discretisation {
   Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
   StageTimer timer;
   SolverReport solver;                  ///< the stiffness's solver and what it did
+  Index stiffness_nonzeros = 0;         ///< stored entries of the stiffness (its stencil)
   std::optional<ElasticErrors> errors;
 
   /// u^h at arbitrary points.
