@@ -41,22 +41,33 @@ void SparseSolver::analyze(const SparseMatrix& a) {
 void SparseSolver::factorize(const SparseMatrix& a) {
   if (!analyzed_ || a.rows() != impl_->size)
     throw Error("sparse solver: factorize() needs analyze() of a matrix of the same pattern first");
-  Eigen::ComputationInfo info;
+  const auto failed = [&](std::string_view why) {
+    return NumericalError(fmt::format("sparse solver ({}): the {} x {} matrix could not be factorised: {}",
+                                      to_string(kind_), a.rows(), a.cols(), why));
+  };
   if (kind_ == SolverKind::cholmod) {
     impl_->cholmod.factorize(a);
-    info = impl_->cholmod.info();
+    if (impl_->cholmod.info() != Eigen::Success)
+      throw failed("it is not positive definite (missing boundary conditions, a Nitsche penalty too small, or too "
+                   "few quadrature points)");
   } else {
     impl_->umfpack.factorize(a);
-    info = impl_->umfpack.info();
+    // Eigen counts UMFPACK's warnings as failures; those of the determinant's estimate
+    // (it over- or underflows from about 10^5 unknowns of a stiffness in SI units) are not.
+    switch (const int code = impl_->umfpack.umfpackFactorizeReturncode()) {
+      case UMFPACK_OK:
+      case UMFPACK_WARNING_determinant_underflow:
+      case UMFPACK_WARNING_determinant_overflow:
+        break;
+      case UMFPACK_WARNING_singular_matrix:
+        throw failed("it is singular (missing boundary conditions or too few quadrature points)");
+      case UMFPACK_ERROR_out_of_memory:
+        throw failed("UMFPACK ran out of memory (its LU factors outgrow memory or its 32-bit indices; use a "
+                     "Krylov solver: [solver] kind = \"gmres\" or \"auto\")");
+      default:
+        throw failed(fmt::format("UMFPACK status {}", code));
+    }
   }
-  if (info != Eigen::Success)
-    throw NumericalError(fmt::format(
-        "sparse solver ({}): the {} x {} matrix could not be factorised: {}", to_string(kind_),
-        a.rows(), a.cols(),
-        kind_ == SolverKind::cholmod
-            ? "it is not positive definite (missing boundary conditions, a Nitsche penalty "
-              "too small, or too few quadrature points)"
-            : "it is singular (missing boundary conditions or too few quadrature points)"));
   factorized_ = true;
 }
 
