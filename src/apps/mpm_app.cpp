@@ -188,6 +188,11 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   s.put("particles.alpha", std::move(alpha));
   s.put("particles.dissipation", std::move(dissipation));
   s.put_values("particles.half_size", P.half_size);
+  std::vector<double> corners;  // CPDI2: x, y of the 4 corners per particle (none otherwise)
+  corners.reserve(8 * P.corners.size());
+  for (const DomainCorners& c : P.corners)
+    for (const Vec2& x : c) corners.insert(corners.end(), {x.x(), x.y()});
+  s.put("particles.corners", std::move(corners));
   s.put_ints("particles.body", P.body);
   s.put_ints("particles.material", P.material);
   s.put("time", solver.time());
@@ -222,6 +227,13 @@ void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::
   const std::vector<double>& dissipation = s.get("particles.dissipation", plastic.size());
   for (std::size_t k = 0; k < plastic.size(); ++k) P.state.push_back({plastic[k], plastic_zz[k], alpha[k], dissipation[k]});
   P.half_size = s.values<Vec2>("particles.half_size");
+  if (s.has("particles.corners")) {  // checkpoints from before CPDI2 have none
+    const std::vector<double>& corners = s.get("particles.corners");
+    if (corners.size() % 8 != 0)
+      throw InputError(fmt::format("checkpoint {}: particles.corners is not 8 numbers per particle", s.source.string()));
+    P.corners.resize(corners.size() / 8);
+    for (std::size_t k = 0; k < corners.size(); k += 2) P.corners[k / 8][(k % 8) / 2] = Vec2(corners[k], corners[k + 1]);
+  }
   P.body = s.ints("particles.body");
   P.material = s.ints("particles.material");
   const std::size_t n = P.mass.size();

@@ -75,7 +75,7 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings)
     : MPMSolver(problem, settings,
                 seed_bodies(problem.bodies, problem.materials, problem.box,
                             problem.box.size().x() / std::max(settings.cells, 1), settings.particles_per_side,
-                            settings.method == MPMMethod::ugimp || settings.method == MPMMethod::cpdi)) {}
+                            uses_domains(settings.method))) {}
 
 MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles)
     : problem_(std::move(problem)),
@@ -84,10 +84,15 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
             grid_padding(settings_.method)),
       basis_(settings_.method, grid_),
       particles_(std::move(particles)) {
-  if ((settings_.method == MPMMethod::ugimp || settings_.method == MPMMethod::cpdi) &&
-      particles_.half_size.size() != particles_.mass.size())
+  if (uses_domains(settings_.method) && particles_.half_size.size() != particles_.mass.size())
     throw InputError(fmt::format("MPM: method {} needs the particle domains", to_string(settings_.method)));
   if (particles_.size() == 0) throw InputError("MPM: the problem has no particles");
+  if (settings_.method == MPMMethod::cpdi2 && particles_.corners.empty()) {
+    particles_.corners.resize(particles_.mass.size());
+    for (Index p = 0; p < particles_.size(); ++p)
+      particles_.corners[p] = parallelogram_corners(particles_.position[p], particles_.deformation[p], particles_.half_size[p]);
+  }
+  check_corners(particles_);
   if (particles_.material.size() != particles_.mass.size() || particles_.body.size() != particles_.mass.size())
     throw InputError("MPM: every particle needs a body and a material");
   particles_.state.resize(particles_.mass.size());  // virgin states where none were given
@@ -137,9 +142,20 @@ void MPMSolver::resume(Particles particles, double time, std::vector<double> ext
   if (particles.size() != particles_.size() || external_work.size() != external_work_.size())
     throw InputError(fmt::format("MPM: a saved state of {} particles and {} bodies does not fit this problem's {} and {}",
                                  particles.size(), external_work.size(), particles_.size(), external_work_.size()));
+  check_corners(particles);
   particles_ = std::move(particles);
   time_ = time;
   external_work_ = std::move(external_work);
+}
+
+void MPMSolver::check_corners(const Particles& P) const {
+  const bool wanted = settings_.method == MPMMethod::cpdi2;
+  if (wanted && P.corners.size() != P.mass.size())
+    throw InputError(fmt::format("MPM: cpdi2 needs the domain corners of all {} particles (got {})", P.mass.size(),
+                                 P.corners.size()));
+  if (!wanted && !P.corners.empty())
+    throw InputError(fmt::format("MPM: method {} does not track domain corners (only cpdi2 does)",
+                                 to_string(settings_.method)));
 }
 
 void MPMSolver::step() {
@@ -164,11 +180,9 @@ void MPMSolver::step() {
 void MPMSolver::compute_weights() {
   Particles& P = particles_;
   basis_.resize(weights_, P.size());
-  const bool domains = !P.half_size.empty();
   at_time(time_, [&] {
     parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
-      for (Index p = begin; p < end; ++p)
-        basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), weights_, p);
+      for (Index p = begin; p < end; ++p) basis_.evaluate(P, p, weights_, p);
     });
   });
 }
@@ -214,7 +228,7 @@ void MPMSolver::grid_velocities(const std::vector<Vec2>& momentum) {
   velocity_.resize(momentum.size());
   const double floor = mass_floor();
   for (std::size_t i = 0; i < momentum.size(); ++i) {
-    Vec2 v = mass_[i] > floor ? Vec2(momentum[i] / mass_[i]) : Vec2::Zero();
+    Vec2 v = std::abs(mass_[i]) > floor ? Vec2(momentum[i] / mass_[i]) : Vec2::Zero();
     if (walls_[i] & 1) v.x() = 0.0;
     if (walls_[i] & 2) v.y() = 0.0;
     velocity_[i] = v;
@@ -238,7 +252,7 @@ void MPMSolver::update_stress(double dt) {
       // Column by column, as in exp_series().
       Mat2 L = Mat2::Zero();
       weights_.for_each(p, [&](Index i, double, const Vec2& G) {
-        if (!(mass[i] > floor)) return;
+        if (!(std::abs(mass[i]) > floor)) return;
         const Vec2 dv = velocity[i] - vp;
         L.col(0) += dv * G.x();
         L.col(1) += dv * G.y();
@@ -331,7 +345,7 @@ void MPMSolver::grid_to_particles() {
   const double floor = mass_floor();
   acceleration_.resize(mass_.size());
   for (std::size_t i = 0; i < mass_.size(); ++i)
-    acceleration_[i] = mass_[i] > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
+    acceleration_[i] = std::abs(mass_[i]) > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
   grid_velocities(momentum_);
   // Work of the body forces per thread and body, summed in thread order (reproducible). The
   // threads' rows lie at least a cache line (8 doubles) apart: every particle adds to its row.
@@ -340,6 +354,7 @@ void MPMSolver::grid_to_particles() {
   std::vector<double> work(static_cast<std::size_t>(thread_count()) * row, 0.0);
   const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
   const Vec2* velocity = velocity_.data();
+  const bool corners = settings_.method == MPMMethod::cpdi2;
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
     double* w = work.data() + static_cast<std::size_t>(t) * row;
     for (Index p = begin; p < end; ++p) {
@@ -352,6 +367,10 @@ void MPMSolver::grid_to_particles() {
       const Vec2 dx = dt_ * v;   // eq. (30)
       P.position[p] += dx;
       w[P.body[p]] += P.mass[p] * body_[p].dot(dx);
+      // CPDI2: the corners move with the updated grid velocity at them (Sadeghirad et al.
+      // 2013), x_c += dt sum_i N_i(x_c) v_i; they lay on the grid for this step's weights.
+      if (corners)
+        for (Vec2& c : P.corners[p]) c += dt_ * basis_.hat_interpolate(c, velocity_);
     }
   });
   for (std::size_t t = 0; t < work.size() / row; ++t)
@@ -378,12 +397,11 @@ void MPMSolver::extrapolate_updated_momenta() {
 std::vector<Vec2> MPMSolver::interpolated_grid_velocity() const {
   const Particles& P = particles_;
   std::vector<Vec2> out(P.mass.size());
-  const bool domains = !P.half_size.empty();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     WeightTable w;
     basis_.resize(w, 1);
     for (Index p = begin; p < end; ++p) {
-      basis_.evaluate(P.position[p], P.deformation[p], domains ? P.half_size[p] : Vec2::Zero(), w, 0);
+      basis_.evaluate(P, p, w, 0);
       Vec2 v = Vec2::Zero();
       w.for_each(0, [&](Index i, double S, const Vec2&) { v += S * velocity_[i]; });
       out[p] = v;

@@ -13,8 +13,10 @@ namespace mfree {
 const NameTable<MPMMethodChoice>& mpm_method_names() {
   static const NameTable<MPMMethodChoice> table{
       {"classic", {MPMMethod::classic, 1}},  {"ugimp", {MPMMethod::ugimp, 1}},
-      {"cpdi", {MPMMethod::cpdi, 1}},        {"bspline", {MPMMethod::bspline, 2}},
-      {"bspline_cubic", {MPMMethod::bspline, 3}}, {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
+      {"cpgimp", {MPMMethod::cpgimp, 1}},    {"cpdi", {MPMMethod::cpdi, 1}},
+      {"qcpdi", {MPMMethod::qcpdi, 1}},      {"cpdi2", {MPMMethod::cpdi2, 1}},
+      {"bspline", {MPMMethod::bspline, 2}},  {"bspline_cubic", {MPMMethod::bspline, 3}},
+      {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
   return table;
 }
 
@@ -24,7 +26,21 @@ std::string_view to_string(MPMMethod m) {
   throw std::logic_error("MPM: a method without a name");
 }
 
-int grid_padding(MPMMethod m) { return m == MPMMethod::ugimp || m == MPMMethod::cpdi ? 1 : 0; }
+bool uses_domains(MPMMethod m) {
+  switch (m) {
+    case MPMMethod::ugimp:
+    case MPMMethod::cpgimp:
+    case MPMMethod::cpdi:
+    case MPMMethod::qcpdi:
+    case MPMMethod::cpdi2: return true;
+    case MPMMethod::classic:
+    case MPMMethod::bspline:
+    case MPMMethod::bspline_mls: return false;
+  }
+  throw std::logic_error("MPM: a method without a kind");
+}
+
+int grid_padding(MPMMethod m) { return uses_domains(m) ? 1 : 0; }
 bool is_bspline(MPMMethod m) { return m == MPMMethod::bspline || m == MPMMethod::bspline_mls; }
 
 namespace {
@@ -38,34 +54,33 @@ double hat_integral(double s) {
 }
 double hat(double s) { return std::max(0.0, 1.0 - std::abs(s)); }
 
-/// uGIMP in one direction: averages over [x - l, x + l] of the hats of a degree-1 axis and
-/// the averages of their derivatives, (N_i(x + l) - N_i(x - l)) / (2 l).
+/// The GIMPs in one direction: averages over [x - l, x + l] of the hats of a degree-1 axis and
+/// the averages of their derivatives, (N_i(x + l) - N_i(x - l)) / (2 l), in a slot of n hats.
+template <int n>
 struct GimpAxis {
   int first = 0;
-  std::array<double, 3> value{};
-  std::array<double, 3> derivative{};
+  std::array<double, n> value{};
+  std::array<double, n> derivative{};
 };
-GimpAxis gimp_axis(const BSplineAxis& a, double x, double l) {
+/// False (and g untouched) when the interval touches more than n hats: the hats i with
+/// x_i - h < x + l and x_i + h > x - l, from floor((x - l - lo) / h) to ceil((x + l - lo) / h).
+template <int n>
+bool gimp_axis(const BSplineAxis& a, double x, double l, GimpAxis<n>& g) {
   const double h = a.spacing();
   const int touched = std::max(0, static_cast<int>(std::floor((x - l - a.lo()) / h)));
-  const int last = std::min(a.size() - 1, static_cast<int>(std::floor((x + l - a.lo()) / h)) + 1);
-  if (last - touched >= 3)
-    throw NumericalError(fmt::format("uGIMP: a particle domain of half size {} is wider than a cell of size {}", l, h));
-  GimpAxis g;
-  // A slot of three hats, all on the axis: at its far end the slot starts one hat before the
-  // first the domain touches, and that extra hat keeps zero weight (a padded axis has at least
-  // 4 hats).
-  g.first = std::min(touched, a.size() - 3);
+  const int last = std::min(a.size() - 1, static_cast<int>(std::ceil((x + l - a.lo()) / h)));
+  if (last - touched >= n) return false;
+  // A slot of n hats, all on the axis: at its far end the slot starts before the first hat
+  // the domain touches, and the extra hats keep zero weight (a padded axis has at least 4).
+  g.first = std::min(touched, a.size() - n);
   for (int i = touched; i <= last; ++i) {
     const double node = a.lo() + i * h;  // = a.node(i): a hat's Greville node is its peak, a knot
     const double sa = (x - l - node) / h, sb = (x + l - node) / h;
     g.value[i - g.first] = h / (2.0 * l) * (hat_integral(sb) - hat_integral(sa));
     g.derivative[i - g.first] = (hat(sb) - hat(sa)) / (2.0 * l);
   }
-  return g;
+  return true;
 }
-
-Vec2 perp(const Vec2& d) { return {d.y(), -d.x()}; }
 
 }  // namespace
 
@@ -75,17 +90,26 @@ ParticleBasis::ParticleBasis(MPMMethod method, const Grid& grid) : method_(metho
     throw InputError(fmt::format("MPM: method {} does not use degree-{} functions", to_string(method), p));
   if (grid_padding(method) > 0 && grid.extent().lo.x() >= grid.box().lo.x())
     throw InputError(fmt::format("MPM: method {} needs a grid padded by one cell", to_string(method)));
-  axis_ = method == MPMMethod::ugimp ? 3 : method == MPMMethod::cpdi ? 0 : p + 1;
-  stride_ = method == MPMMethod::cpdi ? 16 : axis_ * axis_;
+  switch (method) {
+    case MPMMethod::ugimp: axis_ = 3; break;
+    case MPMMethod::cpgimp: axis_ = 4; break;
+    case MPMMethod::cpdi:
+    case MPMMethod::cpdi2:
+    case MPMMethod::qcpdi: axis_ = 0; break;
+    default: axis_ = p + 1;
+  }
+  stride_ = method == MPMMethod::qcpdi ? 32 : axis_ == 0 ? 16 : axis_ * axis_;
 }
 
 void ParticleBasis::resize(WeightTable& table, Index points) const { table.resize(points, stride_, axis_, grid_.nx()); }
 
-void ParticleBasis::check_on_grid(const Vec2& x, const char* what) const {
+void ParticleBasis::check_on_grid(const Vec2& y, const char* what, const Vec2& particle) const {
   const Box e = grid_.extent();
-  if (!(e.contains(x)))
-    throw NumericalError(fmt::format("MPM: {} at ({:.6g}, {:.6g}) left the grid [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]",
-                                     what, x.x(), x.y(), e.lo.x(), e.hi.x(), e.lo.y(), e.hi.y()));
+  if (e.contains(y)) return;
+  const std::string of = y == particle ? std::string()
+                                        : fmt::format(" (of the particle at ({:.6g}, {:.6g}))", particle.x(), particle.y());
+  throw NumericalError(fmt::format("MPM: {} at ({:.6g}, {:.6g}){} left the grid [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]",
+                                   what, y.x(), y.y(), of, e.lo.x(), e.hi.x(), e.lo.y(), e.hi.y()));
 }
 
 template <int p>
@@ -95,56 +119,105 @@ void ParticleBasis::point_weights(const Vec2& x, WeightTable& table, Index q) co
   table.set_tensor<p + 1>(q, grid_.index(vx.first, vy.first), vx, vy);  // N_ij = N_i N_j, eqs. (4)-(5)
 }
 
-void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const {
-  check_on_grid(x - half, "a uGIMP particle domain");
-  check_on_grid(x + half, "a uGIMP particle domain");
-  const GimpAxis gx = gimp_axis(grid_.x_axis(), x.x(), half.x());
-  const GimpAxis gy = gimp_axis(grid_.y_axis(), x.y(), half.y());
-  table.set_tensor<3>(q, grid_.index(gx.first, gy.first), gx, gy);  // the averages factor by axis
+template <int n>
+void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, const char* method, WeightTable& table, Index q) const {
+  const char* what = method_ == MPMMethod::ugimp ? "a uGIMP particle domain" : "a cpGIMP particle domain";
+  check_on_grid(x - half, what, x);
+  check_on_grid(x + half, what, x);
+  GimpAxis<n> gx, gy;
+  if (!gimp_axis<n>(grid_.x_axis(), x.x(), half.x(), gx) || !gimp_axis<n>(grid_.y_axis(), x.y(), half.y(), gy))
+    throw NumericalError(fmt::format(
+        "{}: the particle domain at ({:.6g}, {:.6g}) with half sizes ({:.4g}, {:.4g}) touches more than the {} hats per "
+        "axis of its slot (cells of size {:.4g}): it has grown too large; use more particles per cell or another method",
+        method, x.x(), x.y(), half.x(), half.y(), n, grid_.spacing()));
+  table.set_tensor<n>(q, grid_.index(gx.first, gy.first), gx, gy);  // the averages factor by axis
 }
 
-void ParticleBasis::cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const {
+template <int n>
+void ParticleBasis::node_sum(const DomainNodes<n>& nodes, const Vec2& x, const char* what, WeightTable& table,
+                             Index q) const {
   const WeightSlot out = table.slot(q);
-  const Vec2 r1 = F.col(0) * half.x(), r2 = F.col(1) * half.y();
-  const std::array<Vec2, 4> c{x - r1 - r2, x + r1 - r2, x + r1 + r2, x - r1 + r2};  // counter-clockwise
-  const double volume = 4.0 * (r1.x() * r2.y() - r1.y() * r2.x());
-  if (!(volume > 0.0))
-    throw NumericalError(fmt::format("CPDI: the particle domain at ({:.6g}, {:.6g}) has area {:.3e} <= 0 (J <= 0)",
-                                     x.x(), x.y(), volume));
   std::fill(out.node, out.node + stride_, 0);
   std::fill(out.S, out.S + stride_, 0.0);
   std::fill(out.G, out.G + stride_, Vec2::Zero());
+  for (const Vec2& y : nodes.point) check_on_grid(y, what, x);
+  const double inv_volume = 1.0 / nodes.volume;
   int used = 0;
-  for (int k = 0; k < 4; ++k) {
-    check_on_grid(c[k], "a CPDI particle corner");
-    const Vec2 normal = 0.5 * perp(c[(k + 1) % 4] - c[(k + 3) % 4]);
-    const BSplineAxis::Values vx = grid_.x_axis().evaluate(c[k].x());
-    const BSplineAxis::Values vy = grid_.y_axis().evaluate(c[k].y());
+  for (int k = 0; k < n; ++k) {
+    const BSplineAxis::Values vx = grid_.x_axis().evaluate_as<1>(nodes.point[k].x());
+    const BSplineAxis::Values vy = grid_.y_axis().evaluate_as<1>(nodes.point[k].y());
+    const Vec2 g = inv_volume * nodes.gradient[k];
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
         const Index node = grid_.index(vx.first + a, vy.first + b);
         const double N = vx.value[a] * vy.value[b];
         int e = 0;
         while (e < used && out.node[e] != node) ++e;
-        if (e == used) out.node[used++] = node;  // at most 4 corners x 4 hats = stride
-        out.S[e] += 0.25 * N;
-        out.G[e] += N / volume * normal;
+        if (e == used) out.node[used++] = node;  // at most n nodes x 4 hats = stride
+        out.S[e] += nodes.weight[k] * N;         // sum_k w_k N_i(y_k)
+        out.G[e] += N * g;                       // (1 / V) sum_k N_i(y_k) int grad M_k
       }
   }
 }
 
+void ParticleBasis::evaluate_quadrilateral(const DomainCorners& c, const Vec2& x, WeightTable& table, Index q) const {
+  if (method_ == MPMMethod::cpdi2)
+    return node_sum<4>(bilinear_nodes(c, x, "CPDI2"), x, "a CPDI2 particle corner", table, q);
+  if (method_ == MPMMethod::cpdi)
+    return node_sum<4>(bilinear_nodes(c, x, "CPDI"), x, "a CPDI particle corner", table, q);
+  throw std::logic_error("MPM: only CPDI and CPDI2 weigh a quadrilateral's corners");
+}
+
+Vec2 ParticleBasis::stretched_half(const Vec2& x, const Mat2& F, const Vec2& half) const {
+  const Vec2 l = half.cwiseProduct(F.diagonal());
+  if (!(l.x() > 0.0 && l.y() > 0.0))
+    throw NumericalError(fmt::format("cpGIMP: the particle domain at ({:.6g}, {:.6g}) has stretches F_xx = {:.4g}, "
+                                     "F_yy = {:.4g}: a half size is not positive",
+                                     x.x(), x.y(), F(0, 0), F(1, 1)));
+  return l;
+}
+
 void ParticleBasis::evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const {
   switch (method_) {
-    case MPMMethod::ugimp: return gimp_weights(x, half, table, q);
-    case MPMMethod::cpdi: return cpdi_weights(x, F, half, table, q);
+    case MPMMethod::ugimp: return gimp_weights<3>(x, half, "uGIMP", table, q);
+    case MPMMethod::cpgimp: return gimp_weights<4>(x, stretched_half(x, F, half), "cpGIMP", table, q);
+    case MPMMethod::cpdi: return evaluate_quadrilateral(parallelogram_corners(x, F, half), x, table, q);
+    case MPMMethod::qcpdi: return node_sum<8>(serendipity_nodes(x, F, half), x, "a qCPDI particle node", table, q);
+    case MPMMethod::cpdi2: throw std::logic_error("MPM: CPDI2's weights come from its tracked corners");
     default:
-      check_on_grid(x, "a particle");
+      check_on_grid(x, "a particle", x);
       switch (axis_) {  // once per particle, not per axis
         case 2: return point_weights<1>(x, table, q);
         case 3: return point_weights<2>(x, table, q);
         default: return point_weights<3>(x, table, q);
       }
   }
+}
+
+void ParticleBasis::evaluate(const Particles& P, Index p, WeightTable& table, Index q) const {
+  if (method_ == MPMMethod::cpdi2) return evaluate_quadrilateral(P.corners[p], P.position[p], table, q);
+  evaluate(P.position[p], P.deformation[p], uses_domains(method_) ? P.half_size[p] : Vec2::Zero(), table, q);
+}
+
+DomainCorners ParticleBasis::domain_corners(const Particles& P, Index p) const {
+  const Vec2& x = P.position[p];
+  switch (method_) {
+    case MPMMethod::ugimp: return parallelogram_corners(x, Mat2::Identity(), P.half_size[p]);
+    case MPMMethod::cpgimp: return parallelogram_corners(x, Mat2(P.deformation[p].diagonal().asDiagonal()), P.half_size[p]);
+    case MPMMethod::cpdi:
+    case MPMMethod::qcpdi: return parallelogram_corners(x, P.deformation[p], P.half_size[p]);
+    case MPMMethod::cpdi2: return P.corners[p];
+    default: throw std::logic_error("MPM: a method without particle domains");
+  }
+}
+
+Vec2 ParticleBasis::hat_interpolate(const Vec2& x, const std::vector<Vec2>& nodal) const {
+  const BSplineAxis::Values vx = grid_.x_axis().evaluate_as<1>(x.x());
+  const BSplineAxis::Values vy = grid_.y_axis().evaluate_as<1>(x.y());
+  Vec2 v = Vec2::Zero();
+  for (int b = 0; b < 2; ++b)
+    for (int a = 0; a < 2; ++a) v += vx.value[a] * vy.value[b] * nodal[grid_.index(vx.first + a, vy.first + b)];
+  return v;
 }
 
 }  // namespace mfree

@@ -110,7 +110,7 @@ TEST_CASE("MPM scenes: bodies, materials, walls, gravity and damping read as the
 TEST_CASE("MPM scenes: bad input is refused naming the key", "[io]") {
   const std::string good = vibration_text();
   CHECK(scene_error(good).empty());
-  CHECK_THAT(scene_error(replace(good, "method = \"bspline\"", "method = \"qcpdi\"")),
+  CHECK_THAT(scene_error(replace(good, "method = \"bspline\"", "method = \"gimp2\"")),
              Catch::Contains("mpm.method") && Catch::Contains("not one of") && Catch::Contains("mpm.toml:"));
   CHECK_THAT(scene_error(replace(good, "particles_per_cell = 9", "particles_per_cell = 6")),
              Catch::Contains("mpm.particles_per_cell") && Catch::Contains("square number"));

@@ -1,12 +1,16 @@
 // Partition of unity and linear completeness of every MPM basis, and gradients against
-// finite differences, at random particle positions including next to the walls.
+// finite differences, at random particle positions and deformed domains including next to
+// the walls; the GIMPs and qCPDI against exact averages of the hats over their domains.
 
 #include <catch2/catch.hpp>
 #include <Eigen/LU>
+#include <map>
 #include <random>
 
+#include "mfree/core/error.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
 #include "mfree/mpm/particle_basis.hpp"
+#include "random_domains.hpp"
 
 using namespace mfree;
 
@@ -16,7 +20,8 @@ struct Case {
   MPMMethod method;
   int degree;
 };
-const Case cases[] = {{MPMMethod::classic, 1}, {MPMMethod::ugimp, 1}, {MPMMethod::cpdi, 1},
+const Case cases[] = {{MPMMethod::classic, 1}, {MPMMethod::ugimp, 1}, {MPMMethod::cpgimp, 1},
+                      {MPMMethod::cpdi, 1},    {MPMMethod::qcpdi, 1}, {MPMMethod::cpdi2, 1},
                       {MPMMethod::bspline, 2}, {MPMMethod::bspline, 3}};
 
 const Box domain{Vec2(0.0, 0.0), Vec2(1.0, 0.75)};
@@ -26,10 +31,25 @@ struct Weights {
   std::vector<double> S;
   std::vector<Vec2> G;
 };
-Weights weights_at(const ParticleBasis& b, const Vec2& x, const Mat2& F, const Vec2& half) {
+/// A particle: position, F and reference half sizes; CPDI2 reads its corners instead.
+struct Sample {
+  Vec2 x;
+  Mat2 F = Mat2::Identity();
+  Vec2 half = Vec2::Zero();
+  DomainCorners corners{};
+};
+/// The sample's corners for CPDI2: the parallelogram of F.
+Sample sample(const Vec2& x, const Mat2& F, const Vec2& half) { return {x, F, half, parallelogram_corners(x, F, half)}; }
+
+void evaluate(const ParticleBasis& b, const Sample& s, WeightTable& table, Index q) {
+  if (b.method() == MPMMethod::cpdi2) b.evaluate_quadrilateral(s.corners, s.x, table, q);
+  else b.evaluate(s.x, s.F, s.half, table, q);
+}
+
+Weights weights_at(const ParticleBasis& b, const Sample& s) {
   WeightTable table;
   b.resize(table, 1);
-  b.evaluate(x, F, half, table, 0);
+  evaluate(b, s, table, 0);
   Weights w;
   table.for_each(0, [&](Index node, double S, const Vec2& G) {
     w.node.push_back(node);
@@ -119,16 +139,20 @@ TEST_CASE("every MPM basis is a partition of unity and linearly complete, walls 
     const ParticleBasis basis(c.method, grid);
     const double h = grid.spacing();
     const Vec2 half(h / 6.0, h / 6.0);  // 9 particles per cell
+    const bool deformed = c.method == MPMMethod::cpgimp || c.method == MPMMethod::cpdi || c.method == MPMMethod::qcpdi ||
+                          c.method == MPMMethod::cpdi2;
     double worst = 0.0;
     for (int trial = 0; trial < 400; ++trial) {
       // A quarter of the points within a particle half size of a wall.
       Vec2 x(u(rng), 0.75 * u(rng));
       if (trial % 4 == 0) x.x() = half.x() * u(rng);
       if (trial % 4 == 1) x.y() = 0.75 - half.y() * u(rng);
-      Mat2 F = Mat2::Identity();
-      if (c.method == MPMMethod::cpdi) F += 0.4 * (Mat2::Random());
-      if (F.determinant() < 0.3) F = Mat2::Identity();
-      const Weights w = weights_at(basis, x, F, half);
+      Sample s = sample(x, deformed ? testing::random_deformation(rng, 0.4) : Mat2::Identity(), half);
+      if (c.method == MPMMethod::cpdi2) {  // a random convex quadrilateral; x_p is its area centroid
+        s.corners = testing::random_quadrilateral(rng, x, s.F, half);
+        x = testing::polygon_centroid(s.corners);
+      }
+      const Weights w = weights_at(basis, s);
       double one = 0.0;
       Vec2 lin = Vec2::Zero(), d_one = Vec2::Zero();
       Mat2 d_lin = Mat2::Zero();
@@ -142,16 +166,20 @@ TEST_CASE("every MPM basis is a partition of unity and linearly complete, walls 
       worst = std::max({worst, std::abs(one - 1.0), (lin - x).norm(), h * d_one.norm(),
                         (d_lin - Mat2::Identity()).norm()});
     }
-    INFO(to_string(c.method) << " degree " << c.degree);
+    INFO(to_string(c.method) << " degree " << c.degree << ": worst " << worst);
     CHECK(worst <= 1e-12);
   }
 }
 
-TEST_CASE("MPM basis gradients are the derivatives of the weights (classic, uGIMP, B-splines)", "[mpm]") {
+TEST_CASE("MPM basis gradients are the derivatives of the weights (classic, the GIMPs, B-splines)", "[mpm]") {
+  // cpGIMP at a fixed F: its rectangle translates with x_p, so G = d S / d x_p as for uGIMP.
+  // The CPDIs' G is the average of grad N over the domain, not the gradient of S.
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0.02, 0.98);
+  Mat2 F;
+  F << 1.3, 0.2, -0.3, 0.7;
   for (const Case& c : cases) {
-    if (c.method == MPMMethod::cpdi) continue;  // CPDI's G is the average of grad N, not grad S
+    if (c.method == MPMMethod::cpdi || c.method == MPMMethod::qcpdi || c.method == MPMMethod::cpdi2) continue;
     const Grid grid(domain, 8, c.degree, grid_padding(c.method));
     const ParticleBasis basis(c.method, grid);
     const Vec2 half = Vec2::Constant(grid.spacing() / 6.0);
@@ -159,11 +187,11 @@ TEST_CASE("MPM basis gradients are the derivatives of the weights (classic, uGIM
     double worst = 0.0;
     for (int trial = 0; trial < 100; ++trial) {
       const Vec2 x(u(rng), 0.75 * u(rng));
-      const Weights w = weights_at(basis, x, Mat2::Identity(), half);
+      const Weights w = weights_at(basis, sample(x, F, half));
       for (int d = 0; d < 2; ++d) {
         const Vec2 e = eps * Vec2::Unit(d);
-        const Weights wp = weights_at(basis, x + e, Mat2::Identity(), half);
-        const Weights wm = weights_at(basis, x - e, Mat2::Identity(), half);
+        const Weights wp = weights_at(basis, sample(x + e, F, half));
+        const Weights wm = weights_at(basis, sample(x - e, F, half));
         // Same cell on both sides (a kink of the hats between them spoils the difference).
         if (wp.node != w.node || wm.node != w.node) continue;
         for (int k = 0; k < basis.stride(); ++k)
@@ -191,7 +219,7 @@ TEST_CASE("particle to grid conserves mass and momentum to round-off", "[mpm]") 
     Vec2 total_momentum = Vec2::Zero();
     for (Index p = 0; p < n; ++p) {
       const Vec2 x(u(rng), 0.75 * u(rng));
-      basis.evaluate(x, Mat2::Identity(), half, table, p);
+      evaluate(basis, sample(x, Mat2::Identity(), half), table, p);
       mass[p] = 0.5 + u(rng);
       momentum[p] = mass[p] * Vec2(u(rng) - 0.5, u(rng) - 0.5);
       total_mass += mass[p];
@@ -208,4 +236,167 @@ TEST_CASE("particle to grid conserves mass and momentum to round-off", "[mpm]") 
     CHECK(std::abs(sum[0] - total_mass) <= 1e-13 * total_mass);
     CHECK((sum.tail<2>() - total_momentum).norm() <= 1e-13 * total_mass);
   }
+}
+
+namespace {
+
+/// The exact average over [a, b] of the hat of node xi and spacing h, and of its derivative:
+/// the trapezoid rule on the pieces between the hat's kinks, exact for a piecewise linear
+/// function (and the midpoint rule on its piecewise constant derivative).
+std::pair<double, double> hat_average(double xi, double h, double a, double b) {
+  const auto N = [&](double x) { return std::max(0.0, 1.0 - std::abs(x - xi) / h); };
+  const auto dN = [&](double x) { return std::abs(x - xi) >= h ? 0.0 : (x < xi ? 1.0 / h : -1.0 / h); };
+  std::vector<double> cuts{a};
+  for (double k : {xi - h, xi, xi + h})
+    if (k > a && k < b) cuts.push_back(k);
+  cuts.push_back(b);
+  double value = 0.0, slope = 0.0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double l = cuts[k + 1] - cuts[k];
+    value += 0.5 * l * (N(cuts[k]) + N(cuts[k + 1]));
+    slope += l * dN(0.5 * (cuts[k] + cuts[k + 1]));
+  }
+  return {value / (b - a), slope / (b - a)};
+}
+
+std::map<Index, std::pair<double, Vec2>> by_node(const Weights& w) {
+  std::map<Index, std::pair<double, Vec2>> out;
+  for (std::size_t k = 0; k < w.node.size(); ++k) {
+    out.try_emplace(w.node[k], 0.0, Vec2::Zero());  // Eigen's vectors start uninitialised
+    out[w.node[k]].first += w.S[k];
+    out[w.node[k]].second += w.G[k];
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("cpGIMP: the exact averages over the rectangle stretched by F_ii, wider than a cell too", "[mpm]") {
+  const Grid grid(domain, 8, 1, 1);
+  const ParticleBasis basis(MPMMethod::cpgimp, grid);
+  const double h = grid.spacing();
+  const Vec2 half(h / 2, h / 2);  // one particle per cell
+  Mat2 F;
+  F << 1.9, 0.4, -0.3, 0.6;  // the domain spans 1.9 cells in x; the shear is not seen
+  double worst = 0.0;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.1, 0.9);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec2 x(u(rng), 0.75 * u(rng));
+    const Vec2 l = half.cwiseProduct(F.diagonal());
+    const auto exact = by_node(weights_at(basis, sample(x, F, half)));
+    double total = 0.0;
+    for (Index n = 0; n < grid.size(); ++n) {
+      const Vec2 xi = grid.node(n);
+      const auto [sx, dx] = hat_average(xi.x(), h, x.x() - l.x(), x.x() + l.x());
+      const auto [sy, dy] = hat_average(xi.y(), h, x.y() - l.y(), x.y() + l.y());
+      const auto it = exact.find(n);
+      const double S = it == exact.end() ? 0.0 : it->second.first;
+      const Vec2 G = it == exact.end() ? Vec2::Zero() : it->second.second;
+      worst = std::max({worst, std::abs(S - sx * sy), h * (G - Vec2(dx * sy, sx * dy)).norm()});
+      total += sx * sy;
+    }
+    REQUIRE(std::abs(total - 1.0) <= 1e-12);  // every hat the rectangle touches was compared
+  }
+  INFO("worst " << worst);
+  CHECK(worst <= 1e-14);
+}
+
+TEST_CASE("cpGIMP: a domain outgrowing its slot or with F_ii <= 0 is refused, naming the particle", "[mpm]") {
+  const Grid grid(domain, 8, 1, 1);
+  const ParticleBasis basis(MPMMethod::cpgimp, grid);
+  const Vec2 half = Vec2::Constant(grid.spacing() / 2);
+  WeightTable table;
+  basis.resize(table, 1);
+  Mat2 F = Mat2::Identity();
+  F(0, 0) = 2.3;  // 2.3 cells wide: 4 hats at most in a slot, this touches 4 or 5
+  CHECK_THROWS_WITH(basis.evaluate(Vec2(0.5, 0.4), F, half, table, 0),
+                    Catch::Contains("cpGIMP: the particle domain at (0.5, 0.4)") && Catch::Contains("more than the 4 hats"));
+  F(0, 0) = 0.2;
+  F(1, 1) = -0.1;
+  CHECK_THROWS_WITH(basis.evaluate(Vec2(0.5, 0.4), F, half, table, 0),
+                    Catch::Contains("cpGIMP: the particle domain at (0.5, 0.4) has stretches F_xx = 0.2, F_yy = -0.1"));
+  // A uGIMP domain of more than a cell is refused the same way.
+  const ParticleBasis ugimp(MPMMethod::ugimp, grid);
+  ugimp.resize(table, 1);
+  CHECK_THROWS_WITH(ugimp.evaluate(Vec2(0.44, 0.4), Mat2::Identity(), 1.2 * half, table, 0),
+                    Catch::Contains("uGIMP: the particle domain at (0.44, 0.4)") && Catch::Contains("more than the 3 hats"));
+}
+
+TEST_CASE("qCPDI: a parallelogram in one cell gets the exact averages of the hats; lCPDI misses their quadratic part",
+          "[mpm]") {
+  // In one cell a hat is bilinear in (x, y), so quadratic in the parallelogram's (xi, eta):
+  // the serendipity element holds every quadratic, its interpolant is the hat itself, and S and
+  // G are exact. The bilinear element lacks xi^2 and eta^2: with N_i = (a + b dx)(c + d dy)
+  // about the centre, lCPDI's S exceeds the average by b d (r1x r1y + r2x r2y) (1 - 1/3),
+  // the corners' mean of xi^2 being 1 and its average 1/3.
+  const Grid grid(domain, 8, 1, 1);
+  const double h = grid.spacing();
+  const ParticleBasis qcpdi(MPMMethod::qcpdi, grid), lcpdi(MPMMethod::cpdi, grid);
+  const Vec2 x(0.31, 0.32), half(0.02, 0.02);  // the cell [0.25, 0.375]^2
+  const Vec2 r1(0.03, 0.01), r2(-0.012, 0.02);
+  Mat2 F;
+  F << r1 / half.x(), r2 / half.y();
+  for (const Vec2& c : parallelogram_corners(x, F, half)) REQUIRE(((c.array() > 0.25) && (c.array() < 0.375)).all());
+  const auto q = by_node(weights_at(qcpdi, sample(x, F, half)));
+  const auto l = by_node(weights_at(lcpdi, sample(x, F, half)));
+  const double gp = std::sqrt(0.6), p[3] = {-gp, 0.0, gp}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double worst_q = 0.0, worst_l = 0.0, largest_l = 0.0;
+  int nodes = 0;
+  for (Index n = 0; n < grid.size(); ++n) {
+    const Vec2 xi = grid.node(n);
+    if ((xi - x).cwiseAbs().maxCoeff() >= h) continue;  // the cell's 4 nodes
+    ++nodes;
+    double S = 0.0;
+    Vec2 G = Vec2::Zero();
+    for (int i = 0; i < 3; ++i)  // 3 x 3 Gauss points of the affine map: exact for quadratics
+      for (int j = 0; j < 3; ++j) {
+        const Vec2 y = x + r1 * p[i] + r2 * p[j], d = y - xi;
+        const double nx = 1 - std::abs(d.x()) / h, ny = 1 - std::abs(d.y()) / h;
+        const double w = gw[i] * gw[j] / 4;
+        S += w * nx * ny;
+        G += w * Vec2(-(d.x() > 0 ? 1 : -1) / h * ny, -(d.y() > 0 ? 1 : -1) / h * nx);
+      }
+    worst_q = std::max({worst_q, std::abs(q.at(n).first - S), h * (q.at(n).second - G).norm()});
+    const double b = -((x - xi).x() > 0 ? 1 : -1) / h, d = -((x - xi).y() > 0 ? 1 : -1) / h;
+    const double excess = b * d * (r1.x() * r1.y() + r2.x() * r2.y()) * 2.0 / 3.0;
+    worst_l = std::max(worst_l, std::abs(l.at(n).first - S - excess));
+    largest_l = std::max(largest_l, std::abs(l.at(n).first - S));
+  }
+  INFO("qCPDI " << worst_q << ", lCPDI against its predicted excess " << worst_l << ", lCPDI's excess " << largest_l);
+  CHECK(nodes == 4);
+  CHECK(worst_q <= 1e-14);
+  CHECK(worst_l <= 1e-15);
+  CHECK(largest_l >= 1e-3);
+}
+
+TEST_CASE("CPDI2 on a parallelogram's corners is lCPDI", "[mpm]") {
+  const Grid grid(domain, 8, 1, 1);
+  const ParticleBasis cpdi(MPMMethod::cpdi, grid), cpdi2(MPMMethod::cpdi2, grid);
+  Mat2 F;
+  F << 1.4, 0.5, -0.2, 0.9;
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  double worst = 0.0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const Sample s = sample(Vec2(u(rng), 0.75 * u(rng)), F, Vec2::Constant(grid.spacing() / 4));
+    const auto a = by_node(weights_at(cpdi, s)), b = by_node(weights_at(cpdi2, s));
+    REQUIRE(a.size() == b.size());
+    for (const auto& [n, sg] : a)
+      worst = std::max({worst, std::abs(sg.first - b.at(n).first), grid.spacing() * (sg.second - b.at(n).second).norm()});
+  }
+  CHECK(worst <= 1e-15);
+}
+
+TEST_CASE("a CPDI2 corner or qCPDI midside off the grid is refused, naming it and the particle", "[mpm]") {
+  const Grid grid(domain, 8, 1, 1);  // extent [-0.125, 1.125] x [-0.125, 0.875]
+  const ParticleBasis cpdi2(MPMMethod::cpdi2, grid), qcpdi(MPMMethod::qcpdi, grid);
+  WeightTable table;
+  cpdi2.resize(table, 1);
+  const DomainCorners c{Vec2(0.9, 0.5), Vec2(1.2, 0.5), Vec2(1.0, 0.6), Vec2(0.9, 0.6)};
+  CHECK_THROWS_WITH(cpdi2.evaluate_quadrilateral(c, Vec2(0.95, 0.55), table, 0),
+                    Catch::Contains("a CPDI2 particle corner at (1.2, 0.5) (of the particle at (0.95, 0.55)) left the grid"));
+  qcpdi.resize(table, 1);
+  CHECK_THROWS_WITH(qcpdi.evaluate(Vec2(1.05, 0.5), Mat2::Identity(), Vec2(0.1, 0.01), table, 0),
+                    Catch::Contains("a qCPDI particle node at (1.15, 0.49) (of the particle at (1.05, 0.5)) left the grid"));
 }

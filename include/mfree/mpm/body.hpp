@@ -54,7 +54,7 @@ MPMBody rectangle_body(std::string name, const Box& box);
 
 /// The particles of every body (body b's particles carry body index b and its material),
 /// seeded in the cells of size h of `box` as above; default_per_side where a body states
-/// none; with_domains fills half_size = (h / (2n), h / (2n)) (uGIMP, CPDI). Throws InputError
+/// none; with_domains fills half_size = (h / (2n), h / (2n)) (uses_domains() methods). Throws InputError
 /// (naming the body's `where`) for a body outside the box, one without particles, overlapping
 /// bodies, or a per-side count outside [1, 5].
 Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMMaterial>& materials, const Box& box,

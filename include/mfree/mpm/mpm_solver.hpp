@@ -13,7 +13,8 @@
 //   5. grid momentum (mv)_i += dt (f_i - alpha (mv)_i) (eq. 28, with the optional mass-
 //      proportional damping alpha); walls zero the components they hold (grid.hpp)
 //   6. grid to particles: v_p += dt sum S_ip f_i / m_i, x_p += dt sum S_ip (mv)_i / m_i
-//        (eqs. 29-30)
+//        (eqs. 29-30); CPDI2's corners x_c += dt sum_i N_i(x_c) v_i with the hats N_i and
+//        the updated grid velocities v_i (Sadeghirad, Brannon, Guilkey 2013)
 //   7. USL: stress update from the updated grid velocities;
 //      SZS (MUSL), USAVG: the updated particle momenta extrapolated again (eqs. 31-33), then
 //      the stress update from them (USAVG over dt / 2)
@@ -23,6 +24,9 @@
 // gradient dF = sum_{k=0..kmax} (dt L_p)^k / k! (seed 002), F_p <- dF F_p, V_p = J V_p0 and
 // sigma_p from the particle's material (materials/, the laws the Galerkin solver uses). J <= 0
 // stops the run with a NumericalError naming the particle, where it is and the time.
+// V_p = J V_p0 for every method, CPDI2 too: it is the volume of the F the stress comes from
+// (the area of CPDI2's quadrilateral equals it for affine motions and drifts from it by
+// the corners' own time integration otherwise; the area only normalises CPDI2's weights).
 //
 // Bodies (body.hpp) share the grid: one velocity field, so bodies that meet stick (the
 // usual no-slip contact of MPM). Nodes without mass (empty cells) carry no velocity.
@@ -102,7 +106,8 @@ class MPMSolver {
   /// settings, among them a time step over the Courant limit, and bad bodies (body.hpp).
   MPMSolver(MPMProblem problem, MPMSettings settings);
   /// Tests: start from the given particles (their body and material indices into the
-  /// problem's lists; problem.bodies may be empty) instead of seeding the bodies.
+  /// problem's lists; problem.bodies may be empty) instead of seeding the bodies. CPDI2
+  /// seeds corners x_p + F_p (+-l_x, +-l_y) where the particles have none.
   MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles);
   ~MPMSolver();
 
@@ -127,13 +132,15 @@ class MPMSolver {
   /// Work of the body forces per body so far [J per unit thickness] (BodyEnergy::external).
   [[nodiscard]] const std::vector<double>& external_work() const { return external_work_; }
   /// Continues from a saved state of this problem and these settings (a checkpoint): a step
-  /// starts from the particles, the time and the work of the body forces alone; the grid
-  /// and the weights are recomputed in it. InputError when the particles or bodies differ in
-  /// number from this solver's.
+  /// starts from the particles (CPDI2: with their corners), the time and the work of the
+  /// body forces alone; the grid and the weights are recomputed in it. InputError when the
+  /// particles or bodies differ in number from this solver's, or CPDI2's corners are missing.
   void resume(Particles particles, double time, std::vector<double> external_work);
   [[nodiscard]] StageTimer& timer() { return timer_; }
 
  private:
+  /// InputError unless P has corners for every particle with cpdi2 and none otherwise.
+  void check_corners(const Particles& P) const;
   void compute_weights();
   void update_mls_functions();
   void particles_to_grid();
@@ -143,7 +150,10 @@ class MPMSolver {
   void grid_to_particles();
   void extrapolate_updated_momenta();
   void grid_velocities(const std::vector<Vec2>& momentum);
-  /// Nodes with less mass than this have no velocity (1e-12 of a particle's mass).
+  /// Nodes with |m_i| below this have no velocity (1e-12 of a particle's mass). The mass may
+  /// be negative: qCPDI's corner weights are, and a node that only corners of the body reach
+  /// (beyond a body's corner) gets m_i < 0; p_i / m_i is still the particles' velocity there,
+  /// as p_i and m_i carry the same weights.
   [[nodiscard]] double mass_floor() const { return 1e-12 * particles_.mass.front(); }
 
   MPMProblem problem_;

@@ -1,36 +1,58 @@
 #pragma once
 // The functions that carry particle data to the grid and back: for particle p and grid
 // node i, the weight S_ip and the gradient weight G_ip (seed 002, "Theory: Shape
-// Functions"; SPEC section 7):
+// Functions"; SPEC sections 7 and 11). The GIMP methods average the grid's hats N_i over the
+// particle domain Omega_p of area V: S_ip = (1 / V) int N_i, G_ip = (1 / V) int grad N_i.
 //
 //   classic   S_ip = N_i(x_p), G_ip = grad N_i(x_p), hats N_i (degree 1)
-//   ugimp     averages of the hats over the particle's undeformed square domain, which only
-//             translates: S_ip = (1 / V) int_{Omega_p} N_i, G_ip = (1 / V) int grad N_i
-//   cpdi      lCPDI (Sadeghirad et al. 2011): the domain is the parallelogram with half-edge
-//             vectors r1 = F_p (l_x, 0), r2 = F_p (0, l_y) and corners c_k; N_i is replaced
-//             by its bilinear interpolant from the corners, so S_ip = (1/4) sum_k N_i(c_k)
-//             and G_ip = (1 / V) sum_k N_i(c_k) n_k, n_k = perp(c_{k+1} - c_{k-1}) / 2 the
-//             corner's share of the outward edge normals (divergence theorem)
+//   ugimp     the exact averages over the undeformed square domain x_p +- (l_x, l_y), which
+//             only translates
+//   cpgimp    the exact averages over the axis-aligned rectangle x_p +- (l_x F_xx, l_y F_yy).
+//             The stretch is F_ii, the projection of the deformed edge F (l_i e_i) onto its
+//             own axis: for the motions without shear that cpGIMP is made for (F diagonal) the
+//             rectangle is the deformed domain itself and its area J V_0, so in 1D cpGIMP is
+//             finite GIMP (seed 002). The column norm |F e_i| would keep a rotated domain's
+//             size but grow it under shear; with F_ii a rotation shrinks the domain and
+//             F_ii <= 0 is refused (NumericalError).
+//   cpdi      lCPDI (Sadeghirad, Brannon, Burghardt 2011): the parallelogram with corners
+//             x_p + F_p (+-l_x, +-l_y), mapped by the bilinear element
+//   qcpdi     qCPDI (the same paper): that parallelogram mapped by the 8-node serendipity
+//             element (corners and edge midpoints)
+//   cpdi2     CPDI2 (Sadeghirad, Brannon, Guilkey 2013): the quadrilateral of the particle's own
+//             tracked corners (Particles::corners), mapped by the bilinear element
+//             The CPDIs replace N_i by its interpolant on the element's nodes y_k:
+//             S_ip = sum_k w_k N_i(y_k), G_ip = (1 / V) sum_k N_i(y_k) int grad M_k, with the
+//             weights and gradient integrals of domain_nodes.hpp
 //   bspline   S_ip = N_i(x_p), G_ip = grad N_i(x_p), quadratic or cubic B-splines (seed 000
 //             eqs. 4-5); the MLS-reconstructed method uses the same functions at particles
 //
+// Corners are counter-clockwise, c_0 at (-l_x, -l_y) of the reference domain, and
+// perp(d) = (d_y, -d_x) turns a counter-clockwise edge into its outward normal (times length).
+//
 // Every variant is a partition of unity (sum_i S_ip = 1, sum_i G_ip = 0) and linearly
-// complete (sum_i x_i S_ip = x_p, sum_i x_i G_ip^T = I) wherever its functions all exist.
+// complete (sum_i x_i S_ip = x_p, for CPDI2 the area centroid of the quadrilateral, and
+// sum_i x_i G_ip^T = I) wherever its functions all exist.
 //
 // A particle's weights fill a fixed-size slot of a WeightTable (grid_transfer.hpp) of stride()
-// entries: the two axes' functions for the tensor-product bases (all but CPDI), the entries
-// for CPDI. Unused entries have S = 0 and G = 0 (CPDI's at node 0, uGIMP's at hats beside
-// those its domain touches), so loops over a slot need no branch.
+// entries: the two axes' functions for the tensor-product bases (classic, the GIMPs,
+// B-splines), explicit entries for the CPDIs (4 hats at each of 4 or 8 points: 16 or 32, so
+// they always fit). uGIMP's domain is at most a cell wide (3 hats per axis); cpGIMP's slot
+// holds 4 hats per axis, a domain of up to two cells, and one that outgrows it is a
+// NumericalError naming the particle. Unused entries have S = 0 and G = 0 (the CPDIs' at
+// node 0, the GIMPs' at hats beside those the domain touches), so loops need no branch.
 
+#include <array>
 #include <string_view>
 
 #include "mfree/core/name_table.hpp"
 #include "mfree/core/types.hpp"
+#include "mfree/mpm/domain_nodes.hpp"
 #include "mfree/mpm/grid.hpp"
+#include "mfree/mpm/particles.hpp"
 
 namespace mfree {
 
-enum class MPMMethod { classic, ugimp, cpdi, bspline, bspline_mls };
+enum class MPMMethod { classic, ugimp, cpgimp, cpdi, qcpdi, cpdi2, bspline, bspline_mls };
 
 /// One method as a scene names it: the weights and, for B-splines, the degree.
 struct MPMMethodChoice {
@@ -38,11 +60,15 @@ struct MPMMethodChoice {
   int degree = 2;  ///< 1 for the hat-function methods
   bool operator==(const MPMMethodChoice&) const = default;
 };
-/// classic, ugimp, cpdi, bspline (quadratic), bspline_cubic, bspline_mls.
+/// classic, ugimp, cpgimp, cpdi, qcpdi, cpdi2, bspline (quadratic), bspline_cubic,
+/// bspline_mls.
 const NameTable<MPMMethodChoice>& mpm_method_names();
 /// The name of the method's first entry in mpm_method_names() (bspline for every degree).
 std::string_view to_string(MPMMethod m);
-/// Grid padding (cells on every side) and B-spline degree a method needs.
+/// Whether the method's weights need particle domains (Particles::half_size, and for CPDI2
+/// Particles::corners): the GIMPs and the CPDIs.
+bool uses_domains(MPMMethod m);
+/// Grid padding (cells on every side) a method needs: one for the methods with domains.
 int grid_padding(MPMMethod m);
 bool is_bspline(MPMMethod m);
 
@@ -56,23 +82,40 @@ class ParticleBasis {
   [[nodiscard]] int stride() const { return stride_; }
   /// Sizes `table` for `points` points in this basis' layout.
   void resize(WeightTable& table, Index points) const;
+  /// Weights of particle p of P (its position, F, half size and, for CPDI2, corners) into
+  /// point q of `table` (sized by resize()).
+  void evaluate(const Particles& P, Index p, WeightTable& table, Index q) const;
   /// Weights of a particle at x with deformation gradient F and reference domain half sizes
-  /// (l_x, l_y) (F and half are read by ugimp and cpdi only), into point q of `table` (sized
-  /// by resize()). Throws NumericalError naming the position when the particle (or its
-  /// domain) is not on the grid.
+  /// (l_x, l_y) (F is read by cpgimp, cpdi and qcpdi, half by the methods with domains), into
+  /// point q of `table`. Every method but cpdi2 (std::logic_error: its domain is its corners).
+  /// Throws NumericalError naming the position when the particle (or a point of its domain)
+  /// is not on the grid or its domain is degenerate or outgrows the slot.
   void evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const;
+  /// CPDI2's weights for the quadrilateral with counter-clockwise corners c of the particle at
+  /// x (x names it in messages); for cpdi2 (and the parallelogram of cpdi) only.
+  void evaluate_quadrilateral(const DomainCorners& c, const Vec2& x, WeightTable& table, Index q) const;
+  /// The particle domain as the method sees it (ugimp: the reference square; cpgimp: the
+  /// stretched rectangle; cpdi, qcpdi: the parallelogram; cpdi2: the tracked corners),
+  /// counter-clockwise; for the methods with domains only (std::logic_error otherwise).
+  [[nodiscard]] DomainCorners domain_corners(const Particles& P, Index p) const;
+  /// sum_i N_i(x) v_i with the grid's hats N_i (degree 1), x on the grid: the grid velocity
+  /// that moves CPDI2's corners.
+  [[nodiscard]] Vec2 hat_interpolate(const Vec2& x, const std::vector<Vec2>& nodal) const;
 
  private:
   template <int p>
   void point_weights(const Vec2& x, WeightTable& table, Index q) const;
-  void gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const;
-  void cpdi_weights(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const;
-  void check_on_grid(const Vec2& x, const char* what) const;
+  template <int n>
+  void gimp_weights(const Vec2& x, const Vec2& half, const char* method, WeightTable& table, Index q) const;
+  template <int n>
+  void node_sum(const DomainNodes<n>& nodes, const Vec2& x, const char* what, WeightTable& table, Index q) const;
+  [[nodiscard]] Vec2 stretched_half(const Vec2& x, const Mat2& F, const Vec2& half) const;
+  void check_on_grid(const Vec2& y, const char* what, const Vec2& particle) const;
 
   MPMMethod method_;
   const Grid& grid_;
   int stride_;
-  int axis_;  ///< functions per axis of the tensor layout; 0 for CPDI's explicit entries
+  int axis_;  ///< functions per axis of the tensor layout; 0 for the CPDIs' explicit entries
 };
 
 }  // namespace mfree

@@ -6,12 +6,17 @@
 // velocity [m/s], F dimensionless, Cauchy stress [Pa] (tension positive). Each particle
 // belongs to one body and is made of one material (indices into the problem's lists).
 
+#include <array>
 #include <vector>
 
 #include "mfree/core/types.hpp"
 #include "mfree/materials/material_state.hpp"
 
 namespace mfree {
+
+/// The four corners of a particle domain [m], counter-clockwise, c_0 the corner that starts
+/// at (-l_x, -l_y) from the particle.
+using DomainCorners = std::array<Vec2, 4>;
 
 struct Particles {
   std::vector<double> mass;
@@ -26,9 +31,13 @@ struct Particles {
   /// The material's history (plastic laws; materials/material_state.hpp), updated where the
   /// stress is: the solver fills it with virgin states when it is empty.
   std::vector<MaterialState> state;
-  /// Reference half sizes (l_x, l_y) of the particle domain: only for uGIMP and CPDI, whose
-  /// weights need the domain (empty otherwise).
+  /// Reference half sizes (l_x, l_y) of the particle domain: only for the methods whose
+  /// weights need the domain (uses_domains() in particle_basis.hpp; empty otherwise).
   std::vector<Vec2> half_size;
+  /// CPDI2 only (empty otherwise): the domain's corners, particles of their own moved with
+  /// the grid velocity (mpm_solver.hpp); the solver seeds them from half_size and F when
+  /// empty.
+  std::vector<DomainCorners> corners;
   std::vector<int> body;      ///< index of the particle's body
   std::vector<int> material;  ///< index of the particle's material
 
