@@ -33,10 +33,9 @@ std::string_view to_string(SupportShape shape) { return support_names().name(sha
 
 namespace {
 
-/// Window value and gradient (with respect to x) for the offset d = x - x_I.
+/// Window value and gradient (with respect to x) for the offset (dx, dy) = x - x_I.
 struct WindowSample {
-  double w;
-  Vec2 grad;
+  double w, gx, gy;
 };
 
 template <Window W>
@@ -46,19 +45,19 @@ WindowValue window(double r) {
 }
 
 template <Window W, SupportShape S>
-WindowSample sample_window(const Vec2& d, double inv_a) {
+WindowSample sample_window(double dx, double dy, double inv_a) {
   // inv_a: 1 / a_I of the node whose window this is.
   if constexpr (S == SupportShape::circular) {
-    const double dist = d.norm();
+    const double dist = std::sqrt(dx * dx + dy * dy);
     const WindowValue v = window<W>(dist * inv_a);
     // w'(0) = 0 for both windows, so the node's own gradient is zero, not 0/0.
-    const Vec2 g = dist > 0.0 ? Vec2(d * (v.dw * inv_a / dist)) : Vec2::Zero();
-    return {v.w, g};
+    const double g = dist > 0.0 ? v.dw * inv_a / dist : 0.0;
+    return {v.w, g * dx, g * dy};
   } else {
-    const WindowValue vx = window<W>(std::abs(d.x()) * inv_a);
-    const WindowValue vy = window<W>(std::abs(d.y()) * inv_a);
-    const double sx = d.x() < 0.0 ? -1.0 : 1.0, sy = d.y() < 0.0 ? -1.0 : 1.0;
-    return {vx.w * vy.w, Vec2(sx * vx.dw * inv_a * vy.w, sy * vy.dw * inv_a * vx.w)};
+    const WindowValue vx = window<W>(std::abs(dx) * inv_a);
+    const WindowValue vy = window<W>(std::abs(dy) * inv_a);
+    const double sx = dx < 0.0 ? -inv_a : inv_a, sy = dy < 0.0 ? -inv_a : inv_a;
+    return {vx.w * vy.w, sx * vx.dw * vy.w, sy * vy.dw * vx.w};
   }
 }
 
@@ -85,12 +84,16 @@ double norm1(const Matrix& m) {
 
 /// The per-point RK construction for one basis, window and support (SPEC section 1).
 /// `out.nodes` holds the neighbours on entry; phi and grad are filled.
+///
+/// Per-neighbour quantities are scalars and arrays of them (polynomial_basis.hpp), not
+/// small Eigen vectors, and M is summed in its upper triangle: every operand of the three
+/// passes stays in registers.
 template <int Order, Window W, SupportShape S>
 void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, ShapeValues& out,
               bool with_gradient) {
   using Basis = PolynomialBasis<Order>;
   constexpr int nb = Basis::size;
-  using Vector = typename Basis::Vector;
+  using Terms = typename Basis::Terms;
   using Matrix = Eigen::Matrix<double, nb, nb>;
 
   const std::size_t n = out.nodes.size();
@@ -101,18 +104,28 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   const bool per_node = !s.node_radii.empty();
   if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, nb, -1.0);
 
-  // Pass 1: windows and the moment matrix M; phi temporarily holds w_I, grad holds grad w_I.
-  Matrix m = Matrix::Zero();
+  // Pass 1: windows and the upper triangle of M; phi temporarily holds w_I, grad holds
+  // grad w_I.
+  std::array<double, nb*(nb + 1) / 2> upper{};
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2 d = x - nodes[out.nodes[k]];
+    const Vec2& node = nodes[out.nodes[k]];
+    const double dx = x.x() - node.x(), dy = x.y() - node.y();
     const WindowSample ws =
-        sample_window<W, S>(d, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
-    out.z[k] = d * inv_a;
-    const Vector h = Basis::value(out.z[k]);
-    m.noalias() += (ws.w * h) * h.transpose();
+        sample_window<W, S>(dx, dy, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
+    const double z1 = dx * inv_a, z2 = dy * inv_a;
+    out.z[k] = Vec2(z1, z2);
+    const Terms h = Basis::value(z1, z2);
+    int e = 0;
+    for (int i = 0; i < nb; ++i) {
+      const double wh = ws.w * h[i];
+      for (int j = i; j < nb; ++j) upper[e++] += wh * h[j];
+    }
     out.phi[k] = ws.w;
-    if (with_gradient) out.grad[k] = ws.grad;
+    if (with_gradient) out.grad[k] = Vec2(ws.gx, ws.gy);
   }
+  Matrix m;
+  for (int i = 0, e = 0; i < nb; ++i)
+    for (int j = i; j < nb; ++j, ++e) m(i, j) = m(j, i) = upper[e];
 
   // M^-1 explicitly (3x3 or 6x6): it serves b, both d b / d x_j, and the exact reciprocal
   // condition number 1 / (|M|_1 |M^-1|_1) that decides whether the point is well posed.
@@ -130,37 +143,47 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   if (!(rcond >= s.rcond_min)) throw_moment_failure(x, n, s, nb, rcond);
 
   // b = M^-1 H(0), H(0) = e_1 in the shifted basis: phi_I = b . H(z_I) w_I.
-  const Vector b = minv.col(0);
+  Terms b;
+  for (int i = 0; i < nb; ++i) b[i] = minv(i, 0);
   if (!with_gradient) {
-    for (std::size_t k = 0; k < n; ++k) out.phi[k] *= b.dot(Basis::value(out.z[k]));
+    for (std::size_t k = 0; k < n; ++k) out.phi[k] *= dot_terms(b, Basis::value(out.z[k].x(), out.z[k].y()));
     return;
   }
 
-  // Pass 2: (d M / d x_j) b, accumulated as vectors (O(n nb) instead of O(n nb^2)).
-  Vector dmb1 = Vector::Zero(), dmb2 = Vector::Zero();
+  // Pass 2: (d M / d x_j) b, accumulated as vectors (O(n nb) instead of O(n nb^2)):
+  // d M / d x_j = sum_I (d w_I / d x_j) H H^T + w_I (H_,j H^T + H H_,j^T), H_,j = dH/dz_j / a.
+  Terms dmb1{}, dmb2{};
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2& z = out.z[k];
-    const Vector h = Basis::value(z);
-    const Vector h1 = Basis::d1(z) * inv_a, h2 = Basis::d2(z) * inv_a;  // dz/dx = I / a
-    const double hb = h.dot(b);
+    const double z1 = out.z[k].x(), z2 = out.z[k].y();
+    const Terms h = Basis::value(z1, z2), h1 = Basis::d1(z1, z2), h2 = Basis::d2(z1, z2);
+    const double hb = dot_terms(h, b);
     const double w = out.phi[k];
-    const Vec2& gw = out.grad[k];
-    dmb1 += (gw.x() * hb + w * h1.dot(b)) * h + (w * hb) * h1;
-    dmb2 += (gw.y() * hb + w * h2.dot(b)) * h + (w * hb) * h2;
+    const double c1 = out.grad[k].x() * hb + w * inv_a * dot_terms(h1, b);
+    const double c2 = out.grad[k].y() * hb + w * inv_a * dot_terms(h2, b);
+    const double e = w * hb * inv_a;
+    for (int i = 0; i < nb; ++i) {
+      dmb1[i] += c1 * h[i] + e * h1[i];
+      dmb2[i] += c2 * h[i] + e * h2[i];
+    }
   }
   // d b / d x_j = -M^-1 (d M / d x_j) b.
-  const Vector db1 = -(minv * dmb1), db2 = -(minv * dmb2);
+  Terms db1{}, db2{};
+  for (int j = 0; j < nb; ++j)
+    for (int i = 0; i < nb; ++i) {
+      db1[i] -= minv(i, j) * dmb1[j];
+      db2[i] -= minv(i, j) * dmb2[j];
+    }
 
   // Pass 3: phi_I and grad phi_I = (db . H + b . dH) w_I + (b . H) grad w_I.
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec2& z = out.z[k];
-    const Vector h = Basis::value(z);
-    const double hb = h.dot(b);
+    const double z1 = out.z[k].x(), z2 = out.z[k].y();
+    const Terms h = Basis::value(z1, z2);
+    const double hb = dot_terms(h, b);
     const double w = out.phi[k];
-    const Vec2 gw = out.grad[k];
+    const double gx = out.grad[k].x(), gy = out.grad[k].y();
     out.phi[k] = hb * w;
-    out.grad[k] = Vec2((db1.dot(h) + b.dot(Basis::d1(z)) * inv_a) * w + hb * gw.x(),
-                       (db2.dot(h) + b.dot(Basis::d2(z)) * inv_a) * w + hb * gw.y());
+    out.grad[k] = Vec2((dot_terms(db1, h) + dot_terms(b, Basis::d1(z1, z2)) * inv_a) * w + hb * gx,
+                       (dot_terms(db2, h) + dot_terms(b, Basis::d2(z1, z2)) * inv_a) * w + hb * gy);
   }
 }
 

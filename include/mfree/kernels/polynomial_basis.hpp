@@ -4,8 +4,13 @@
 //
 //   Order 1 (linear):    H(z) = [1, z1, z2]                       (3 terms)
 //   Order 2 (quadratic): H(z) = [1, z1, z2, z1^2, z1 z2, z2^2]    (6 terms)
+//
+// The terms are plain arrays of doubles of the two scalars z1, z2: the RK kernel forms them
+// once per neighbour and point, and scalars and arrays of a constant size stay in
+// registers, where small Eigen vectors built element by element went through the stack
+// (each a store-forwarding stall when read back as one packet: half the kernel's time).
 
-#include <Eigen/Core>
+#include <array>
 
 #include "mfree/core/types.hpp"
 
@@ -19,32 +24,28 @@ struct PolynomialBasis;
 template <>
 struct PolynomialBasis<1> {
   static constexpr int size = 3;
-  using Vector = Eigen::Matrix<double, size, 1>;
-  static Vector value(const Vec2& z) { return {1.0, z.x(), z.y()}; }
+  using Terms = std::array<double, size>;
+  static Terms value(double z1, double z2) { return {1.0, z1, z2}; }
   /// dH/dz1 and dH/dz2.
-  static Vector d1(const Vec2&) { return {0.0, 1.0, 0.0}; }
-  static Vector d2(const Vec2&) { return {0.0, 0.0, 1.0}; }
+  static Terms d1(double, double) { return {0.0, 1.0, 0.0}; }
+  static Terms d2(double, double) { return {0.0, 0.0, 1.0}; }
 };
 
 template <>
 struct PolynomialBasis<2> {
   static constexpr int size = 6;
-  using Vector = Eigen::Matrix<double, size, 1>;
-  static Vector value(const Vec2& z) {
-    Vector h;
-    h << 1.0, z.x(), z.y(), z.x() * z.x(), z.x() * z.y(), z.y() * z.y();
-    return h;
-  }
-  static Vector d1(const Vec2& z) {
-    Vector h;
-    h << 0.0, 1.0, 0.0, 2.0 * z.x(), z.y(), 0.0;
-    return h;
-  }
-  static Vector d2(const Vec2& z) {
-    Vector h;
-    h << 0.0, 0.0, 1.0, 0.0, z.x(), 2.0 * z.y();
-    return h;
-  }
+  using Terms = std::array<double, size>;
+  static Terms value(double z1, double z2) { return {1.0, z1, z2, z1 * z1, z1 * z2, z2 * z2}; }
+  static Terms d1(double z1, double z2) { return {0.0, 1.0, 0.0, 2.0 * z1, z2, 0.0}; }
+  static Terms d2(double z1, double z2) { return {0.0, 0.0, 1.0, 0.0, z1, 2.0 * z2}; }
 };
+
+/// a . b of two term arrays.
+template <std::size_t n>
+double dot_terms(const std::array<double, n>& a, const std::array<double, n>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < n; ++i) s += a[i] * b[i];
+  return s;
+}
 
 }  // namespace mfree
