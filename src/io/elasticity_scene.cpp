@@ -72,6 +72,29 @@ void check_static(const SceneTable& t, const std::string& key, const Formula& f,
 
 }  // namespace
 
+namespace {
+
+/// A [quadrature] key that no scheme of the scene (its own, or its study's) reads is an
+/// error, not a setting silently ignored.
+void check_scheme_keys(const SceneTable& t, QuadratureScheme scheme, const std::optional<StudySettings>& study) {
+  std::vector<QuadratureScheme> used{scheme};
+  if (study) used.insert(used.end(), study->schemes.begin(), study->schemes.end());
+  const auto uses = [&](QuadratureScheme q) { return std::find(used.begin(), used.end(), q) != used.end(); };
+  std::string names;
+  for (QuadratureScheme q : used)
+    if (names.find(to_string(q)) == std::string::npos) names += (names.empty() ? "" : ", ") + std::string(to_string(q));
+  const auto refuse = [&](std::string_view key, QuadratureScheme reader) {
+    if (t.has(key) && !uses(reader))
+      t.error(key, fmt::format("is read by the {} scheme only, and this scene solves with {}: remove it or choose "
+                               "that scheme", to_string(reader), names));
+  };
+  for (std::string_view key : {"ratio", "cloud", "order", "factor", "lattice_refinement"})
+    refuse(key, QuadratureScheme::projected);
+  refuse("gauss_points", QuadratureScheme::gauss_cells);
+}
+
+}  // namespace
+
 ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study,
                                       const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
@@ -112,8 +135,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
     t.finish();
   }
+  const SceneTable quadrature = root.optional_table("quadrature");
   {
-    const SceneTable t = root.table("quadrature");
+    const SceneTable& t = quadrature;
     s.scheme = read_choice_or(t, "scheme", scheme_names(), QuadratureScheme::gauss_cells);
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
     s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
@@ -388,6 +412,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.study = st;
   }
+  check_scheme_keys(quadrature, s.scheme, out.study);
   root.finish();
   return out;
 }

@@ -248,6 +248,12 @@ SceneTable SceneTable::table(std::string_view key) const {
   return SceneTable(t, prefix_ + std::string(key) + ".", file_, folder_);
 }
 
+SceneTable SceneTable::optional_table(std::string_view key) const {
+  static const toml::table empty;
+  if (!has(key)) return SceneTable(&empty, prefix_ + std::string(key) + ".", file_, folder_);
+  return table(key);
+}
+
 void SceneTable::finish() const {
   for (const auto& [k, v] : *table_)
     if (!used_->count(std::string(k.str()))) {

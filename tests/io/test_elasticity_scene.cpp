@@ -82,6 +82,25 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
              Catch::Contains("exact.hessian_y") && Catch::Contains("symmetric"));
 }
 
+TEST_CASE("elasticity scenes: [quadrature] is optional, and its keys of other schemes are refused", "[io]") {
+  const std::string good = cantilever_text();
+  // Without [quadrature] the scene reads with the defaults: Gauss cells with VCI.
+  const std::string bare = replace(replace(good, "\\[quadrature\\]\nscheme = \"projected\"\nratio = 4.0\norder = \"linear\"\nlattice_refinement = 2\n", ""),
+                                   "schemes = \\[\"projected\", \"gauss_cells\", \"nodal\"\\]", "schemes = [\"gauss_cells\"]");
+  REQUIRE(bare.find("[quadrature]") == std::string::npos);
+  CHECK(scene_error(bare).empty());
+  // A projected-scheme key in a scene that never runs that scheme is not silently ignored.
+  CHECK_THAT(scene_error(bare + "\n[quadrature]\nratio = 9.0\n"),
+             Catch::Contains("quadrature.ratio") && Catch::Contains("projected scheme only"));
+  CHECK_THAT(scene_error(bare + "\n[quadrature]\nlattice_refinement = 3\n"), Catch::Contains("quadrature.lattice_refinement"));
+  CHECK(scene_error(bare + "\n[quadrature]\ngauss_points = 4\n").empty());
+  // The cantilever's own study runs every scheme: each key has a reader.
+  CHECK(scene_error(replace(good, "lattice_refinement = 2", "lattice_refinement = 2\ngauss_points = 4")).empty());
+  CHECK_THAT(scene_error(replace(replace(good, "schemes = \\[\"projected\", \"gauss_cells\", \"nodal\"\\]", "schemes = [\"projected\"]"),
+                                 "lattice_refinement = 2", "lattice_refinement = 2\ngauss_points = 4")),
+             Catch::Contains("quadrature.gauss_points") && Catch::Contains("gauss_cells scheme only"));
+}
+
 TEST_CASE("elasticity scenes: the quadratic exact field and its body force", "[io]") {
   const std::string text = replace(cantilever_text(), "solution = \"timoshenko_beam\"\nload = 1000.0",
                                    "solution = \"quadratic\"\noffset = [0.1, 0.2]\ngradient = [[0.0, 0.0], [0.0, 0.0]]\n"

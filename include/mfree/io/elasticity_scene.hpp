@@ -5,7 +5,7 @@
 //                 (.geo, .msh, .step, ...; relative to the scene)
 //   [nodes]       cloud (lattice | perturbed | random), spacing, perturbation, seed
 //   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor
-//   [quadrature]  scheme (gauss_cells | projected | nodal; default gauss_cells), ratio, cloud
+//   [quadrature]  (optional) scheme (gauss_cells | projected | nodal; default gauss_cells), ratio, cloud
 //                 (lattice | like_nodes), order, factor, lattice_refinement (the projected
 //                 scheme's), consistency (symmetric | vci | none; vci is of the RK order:
 //                 quadratic RK gets quadratic VCI; default by scheme: vci for gauss_cells,

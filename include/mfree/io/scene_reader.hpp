@@ -70,6 +70,8 @@ class SceneTable {
   [[noreturn]] void error(std::string_view key, const std::string& what) const;
   /// A required sub-table.
   SceneTable table(std::string_view key) const;
+  /// A sub-table whose keys all have defaults: an empty one when the key is absent.
+  SceneTable optional_table(std::string_view key) const;
   /// Throws for any key of this table that was never read.
   void finish() const;
 
