@@ -270,7 +270,7 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
                          scene.fields.von_mises || scene.fields.plastic_strain || scene.fields.body ||
-                         scene.fields.error || scene.fields.grid;
+                         scene.fields.error || scene.fields.grid || scene.fields.domains;
   const CheckpointState* resume = checkpoints ? checkpoints->resume() : nullptr;
   if (verbose && scene.vtk && any_field && scene.frames > 0) {
     frames.emplace(scene.folder, scene.fields, scene.exact ? &*scene.exact : nullptr, scene.problem.materials);

@@ -33,6 +33,7 @@ void append_step(const std::filesystem::path& pvd, std::vector<std::pair<double,
 
 std::string particle_file(int frame) { return fmt::format("particles_{:04d}.vtu", frame); }
 std::string grid_file(int frame) { return fmt::format("grid_{:04d}.vti", frame); }
+std::string domain_file(int frame) { return fmt::format("domains_{:04d}.vtu", frame); }
 
 }  // namespace
 
@@ -53,9 +54,11 @@ void MPMFrames::restore(const CheckpointState& state) {
   const std::vector<double>& grid = state.get("frames.grid", times.size());
   steps_.clear();
   grid_steps_.clear();
+  domain_steps_.clear();
   for (std::size_t k = 0; k < times.size(); ++k) {
     steps_.emplace_back(times[k], particle_file(static_cast<int>(k)));
     if (grid[k] != 0.0) grid_steps_.emplace_back(times[k], grid_file(static_cast<int>(k)));
+    if (fields_.domains) domain_steps_.emplace_back(times[k], domain_file(static_cast<int>(k)));
   }
 }
 
@@ -119,12 +122,37 @@ void MPMFrames::write(const MPMSolver& solver) {
   const int frame = frames();
   const std::string name = particle_file(frame);
   write_point_cloud_vtu(folder_ / name, P.position, fields);
-  // Both data files before either series: a failure in one leaves both series as they were.
+  // Every data file before any series: a failure in one leaves the series as they were.
   const bool grid_frame = fields_.grid && !solver.grid_mass().empty();
-  const std::string grid_name = grid_file(frame);
+  const std::string grid_name = grid_file(frame), domain_name = domain_file(frame);
   if (grid_frame) write_grid(solver, grid_name);
+  if (fields_.domains) write_domains(solver, domain_name);
   append_step(series(), steps_, t, name);
   if (grid_frame) append_step(grid_series(), grid_steps_, t, grid_name);
+  if (fields_.domains) append_step(domain_series(), domain_steps_, t, domain_name);
+}
+
+void MPMFrames::write_domains(const MPMSolver& solver, const std::string& name) const {
+  const Particles& P = solver.particles();
+  const ParticleBasis& basis = solver.basis();
+  if (!uses_domains(basis.method()))
+    throw InputError(fmt::format("MPM output to {}: method {} has no particle domains to write", folder_.string(),
+                                 to_string(basis.method())));
+  const auto n = static_cast<std::size_t>(P.size());
+  std::vector<Vec2> corners;
+  corners.reserve(4 * n);
+  std::vector<std::array<Index, 4>> quads(n);
+  std::vector<double> body;
+  body.reserve(4 * n);
+  for (Index p = 0; p < P.size(); ++p) {
+    const DomainCorners c = basis.domain_corners(P, p);
+    for (int k = 0; k < 4; ++k) {
+      quads[static_cast<std::size_t>(p)][static_cast<std::size_t>(k)] = static_cast<Index>(corners.size());
+      corners.push_back(c[static_cast<std::size_t>(k)]);
+      body.push_back(P.body[p]);
+    }
+  }
+  write_quads_vtu(folder_ / name, corners, quads, {{"body", 1, std::move(body)}});
 }
 
 void MPMFrames::write_grid(const MPMSolver& solver, const std::string& name) {

@@ -225,7 +225,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     out.folder = read_output_folder(t);
     if (t.has("fields") && !t.is_array_empty("fields"))
       for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "body",
-                                                "error", "grid"})) {
+                                                "error", "grid", "domains"})) {
         if (f == "displacement") out.fields.displacement = true;
         if (f == "velocity") out.fields.velocity = true;
         if (f == "stress") out.fields.stress = true;
@@ -234,8 +234,12 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
         if (f == "body") out.fields.body = true;
         if (f == "error") out.fields.error = true;
         if (f == "grid") out.fields.grid = true;
+        if (f == "domains") out.fields.domains = true;
       }
     if (out.fields.error && !out.exact) t.error("fields", "'error' needs an [exact] section");
+    if (out.fields.domains && !uses_domains(s.method))
+      t.error("fields", fmt::format("'domains' needs a method with particle domains (ugimp, cpgimp, cpdi, qcpdi, cpdi2), "
+                                    "not {}", method_name(method_of(s))));
     out.vtk = t.boolean_or("vtk", true);
     out.particles_csv = t.boolean_or("particles_csv", false);
     out.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));

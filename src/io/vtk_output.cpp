@@ -307,25 +307,43 @@ void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<
   write_grid(path, *grid);
 }
 
-void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
-                         const std::vector<std::array<Index, 3>>& triangles,
-                         const std::vector<PointField>& fields) {
+namespace {
+
+/// Writes cells of n points each (indices into `points`) of one VTK type; `kind` names a
+/// cell in messages.
+template <std::size_t n>
+void write_cells_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                     const std::vector<std::array<Index, n>>& cells, unsigned char type,
+                     const char* kind, const std::vector<PointField>& fields) {
   check_points(path, points);
   check_fields(path, points.size(), fields);
-  const auto n = static_cast<std::size_t>(points.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (const Index v : triangles[t]) {
-      if (v < 0 || static_cast<std::size_t>(v) >= n) {
-        throw InputError(fmt::format("{}: triangle {} refers to point {}, but there are {} points",
-                                     path.string(), t, v, n));
+  const auto size = static_cast<std::size_t>(points.size());
+  for (std::size_t t = 0; t < cells.size(); ++t) {
+    for (const Index v : cells[t]) {
+      if (v < 0 || static_cast<std::size_t>(v) >= size) {
+        throw InputError(fmt::format("{}: {} {} refers to point {}, but there are {} points",
+                                     path.string(), kind, t, v, size));
       }
     }
   }
   const auto grid = make_grid(points, fields);
-  set_cells(*grid, triangles.size(), 3, VTK_TRIANGLE, [&](std::size_t c, int k) {
-    return static_cast<vtkIdType>(triangles[c][static_cast<std::size_t>(k)]);
+  set_cells(*grid, cells.size(), static_cast<int>(n), type, [&](std::size_t c, int k) {
+    return static_cast<vtkIdType>(cells[c][static_cast<std::size_t>(k)]);
   });
   write_grid(path, *grid);
+}
+
+}  // namespace
+
+void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                         const std::vector<std::array<Index, 3>>& triangles,
+                         const std::vector<PointField>& fields) {
+  write_cells_vtu<3>(path, points, triangles, VTK_TRIANGLE, "triangle", fields);
+}
+
+void write_quads_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                     const std::vector<std::array<Index, 4>>& quads, const std::vector<PointField>& fields) {
+  write_cells_vtu<4>(path, points, quads, VTK_QUAD, "quadrilateral", fields);
 }
 
 void write_pvd(const std::filesystem::path& path,

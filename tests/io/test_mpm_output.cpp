@@ -241,3 +241,39 @@ TEST_CASE("MPM frames: the grid image spans the padding of hat-function grids", 
   CHECK(m[48] == 0.0);
   CHECK(m[3 + 7 * 3] == Approx(1000.0).epsilon(0.05));
 }
+
+TEST_CASE("MPM frames: the particle domains as quadrilaterals, CPDI2's tracked corners bit for bit", "[io][mpm_output]") {
+  ScratchFolder folder("mpm_frames_domains", false);
+  MPMSolver solver = small_solver(MPMMethod::cpdi2, 1, open_walls);
+  MPMFrameFields fields;
+  fields.domains = true;
+  MPMFrames frames(folder.path, fields, nullptr, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}});
+  frames.write(solver);
+  for (int n = 0; n < 5; ++n) solver.step();
+  frames.write(solver);
+  const std::vector<std::pair<double, std::string>> listed = pvd_steps(frames.domain_series());
+  REQUIRE(listed.size() == 2);
+  CHECK(listed[1] == std::pair<double, std::string>(solver.time(), "domains_0001.vtu"));
+  const VtuContents read = read_vtu(folder.path / "domains_0001.vtu");
+  const Particles& P = solver.particles();
+  CHECK(read.cells == P.size());
+  REQUIRE(read.points.size() == 4 * P.corners.size());
+  std::size_t mismatched = 0;
+  double moved = 0.0;
+  for (std::size_t p = 0; p < P.corners.size(); ++p)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec2& c = P.corners[p][k];
+      const Vec2& r = read.points[4 * p + k];
+      if (!same_bits(r.x(), c.x()) || !same_bits(r.y(), c.y())) ++mismatched;
+      moved = std::max(moved, (c - parallelogram_corners(P.reference[p], Mat2::Identity(), P.half_size[p])[k]).norm());
+    }
+  CHECK(mismatched == 0);
+  CHECK(moved > 1e-6);  // the corners moved with the motion
+  CHECK(read.arrays.at("body") == std::vector<double>(4 * P.corners.size(), 0.0));
+
+  // A method without particle domains has none to write.
+  ScratchFolder other("mpm_frames_no_domains", false);
+  MPMFrames none(other.path, fields, nullptr, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}});
+  CHECK_THROWS_WITH(none.write(small_solver(MPMMethod::bspline, 2, open_walls)),
+                    Catch::Contains("method bspline has no particle domains"));
+}

@@ -15,6 +15,12 @@
 //   displacement_error  (x_p - X_p) - u(X_p, t)    } against the exact motion ("error";
 //   stress_error        sigma_p - sigma(X_p, t)     } needs one)
 //
+// The particle domains ("domains"; methods with domains only, particle_basis.hpp), in
+// domains_NNNN.vtu listed by domains.pvd: one quadrilateral cell per particle, its domain as
+// the method sees it (uGIMP's translated square, cpGIMP's stretched rectangle, the CPDIs'
+// parallelogram F_p r0, CPDI2's tracked corners), corners counter-clockwise and not shared
+// between particles (4 points per particle), with the particle's body index at its corners.
+//
 // On the grid ("grid"), at the (cells + 1)^2 corners of the cells of the grid's extent
 // (padding included), spacing h:
 //   velocity  the grid velocity field v^h(x) = sum_i N_i(x) v_i, not the nodal coefficients
@@ -54,6 +60,7 @@ struct MPMFrameFields {
   bool body = false;   ///< the body index per particle
   bool error = false;  ///< displacement_error and stress_error
   bool grid = false;   ///< grid_NNNN.vti with velocity and mass
+  bool domains = false;  ///< domains_NNNN.vtu with the particle domains
 };
 
 class MPMFrames {
@@ -69,21 +76,24 @@ class MPMFrames {
   void write(const MPMSolver& solver);
 
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
-  /// Checkpoints: the series written so far ("frames.time", "frames.grid"), and continuing
-  /// them (the files themselves come back with the checkpoint's output folder).
+  /// Checkpoints: the series written so far ("frames.time", "frames.grid"; the domain
+  /// series has a file at every frame), and continuing them (the files themselves come back
+  /// with the checkpoint's output folder).
   void save(CheckpointState& state) const;
   void restore(const CheckpointState& state);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
   [[nodiscard]] std::filesystem::path grid_series() const { return folder_ / "grid.pvd"; }
+  [[nodiscard]] std::filesystem::path domain_series() const { return folder_ / "domains.pvd"; }
 
  private:
   void write_grid(const MPMSolver& solver, const std::string& name);
+  void write_domains(const MPMSolver& solver, const std::string& name) const;
 
   std::filesystem::path folder_;
   MPMFrameFields fields_;
   const ExactMotion* exact_;
   std::vector<MPMMaterial> materials_;
-  std::vector<std::pair<double, std::string>> steps_, grid_steps_;
+  std::vector<std::pair<double, std::string>> steps_, grid_steps_, domain_steps_;
 };
 
 }  // namespace mfree

@@ -2,7 +2,8 @@
 // MPM scenes: the scene format of elasticity scenes with an [mpm] section in place of
 // [domain], [nodes], [kernel] and [quadrature] (see verification/mpm-*/*.toml):
 //
-//   [mpm]         method (classic | ugimp | cpdi | bspline | bspline_cubic | bspline_mls),
+//   [mpm]         method (classic | ugimp | cpgimp | cpdi | qcpdi | cpdi2 | bspline |
+//                 bspline_cubic | bspline_mls; mpm/particle_basis.hpp),
 //                 update (usf | usl | szs | usavg),
 //                 box = [[x0, y0], [x1, y1]] (the grid box), cells (across its width; square
 //                 cells, the height a whole number of them),
@@ -38,7 +39,7 @@
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
 //                 frames, error_times (fractions of end_time), energy_every (steps)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain, body, error,
-//                 grid), vtk,
+//                 grid, domains: the particle domains, for the methods with domains), vtk,
 //                 particles_csv (true: particles.csv of the end state, mpm_output.hpp),
 //                 checkpoint_every (steps between checkpoints, io/checkpoint.hpp; 0: none; not in a study),
 //                 probe = [X, Y] (a material point inside a body: u^h there every step,

@@ -53,6 +53,11 @@ void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Ve
                          const std::vector<std::array<Index, 3>>& triangles,
                          const std::vector<PointField>& fields);
 
+/// Writes the quadrilaterals (four indices into `points` each, counter-clockwise) as VTK_QUAD
+/// cells with the fields at the points. Errors as write_triangles_vtu.
+void write_quads_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                     const std::vector<std::array<Index, 4>>& quads, const std::vector<PointField>& fields);
+
 /// Writes a ParaView collection of time steps: (time, file name relative to the folder of
 /// the .pvd), in the given order. Throws NumericalError for a non-finite time, InputError for
 /// an empty file name, Error when the file cannot be written.

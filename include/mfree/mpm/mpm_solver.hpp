@@ -119,6 +119,7 @@ class MPMSolver {
   [[nodiscard]] double courant_limit() const { return h_over_c_; }  ///< h / c
   [[nodiscard]] const Particles& particles() const { return particles_; }
   [[nodiscard]] const Grid& grid() const { return grid_; }
+  [[nodiscard]] const ParticleBasis& basis() const { return basis_; }
   [[nodiscard]] const MPMSettings& settings() const { return settings_; }
   [[nodiscard]] const std::vector<double>& grid_mass() const { return mass_; }
   /// Grid velocities of the last stress update (after the step: the updated ones).
