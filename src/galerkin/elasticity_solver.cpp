@@ -137,7 +137,9 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   check_rigid_body_modes(sys.stiffness, res.nodes);
   res.stiffness_nonzeros = sys.stiffness.nonZeros();
   const std::unique_ptr<LinearSolver> solver =
-      make_linear_solver(s.solver, {"stiffness", sys.symmetric, 2, res.nodes},
+      make_linear_solver(s.solver,
+                         {"stiffness", sys.symmetric, 2, res.nodes,
+                          res.consistency == Consistency::vci && s.order == RKOrder::linear},
                          sys.stiffness.rows());
   timer.time("factorisation", [&] {
     solver->analyze(sys.stiffness);

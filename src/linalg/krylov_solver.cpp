@@ -86,7 +86,8 @@ KrylovSolver::KrylovSolver(SolverKind kind, const SolverSettings& settings, cons
     : kind_(kind),
       settings_(settings),
       system_(system),
-      preconditioner_(settings.preconditioner.value_or(system.symmetric ? Preconditioner::gamg : Preconditioner::boomeramg)),
+      preconditioner_(settings.preconditioner.value_or(system.symmetric || system.nearly_symmetric ? Preconditioner::gamg
+                                                                                                 : Preconditioner::boomeramg)),
       impl_(std::make_unique<Impl>()) {
   if (is_direct(kind)) throw std::logic_error("KrylovSolver: not a Krylov method");
   start_petsc();

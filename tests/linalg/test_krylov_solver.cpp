@@ -141,4 +141,13 @@ TEST_CASE("The solver factory (PETSc above the limit): auto is direct up to dire
   const Eigen::VectorXd x = direct->solve(b);
   CHECK((iterative->solve(b) - x).norm() <= 1e-8 * x.norm());
   CHECK_THAT(report(*iterative).text(), Catch::Contains("cg + gamg (tolerance 1e-10), 1 solves"));
+  // The default preconditioner: GAMG for (nearly) symmetric systems, BoomerAMG for the others;
+  // a scene's choice overrides it.
+  SystemDescription nearly = unsym;
+  nearly.nearly_symmetric = true;
+  s.direct_limit = 0;
+  CHECK_THAT(make_linear_solver(s, unsym, 10)->description(), Catch::StartsWith("gmres + boomeramg"));
+  CHECK_THAT(make_linear_solver(s, nearly, 10)->description(), Catch::StartsWith("gmres + gamg"));
+  s.preconditioner = Preconditioner::boomeramg;
+  CHECK_THAT(make_linear_solver(s, nearly, 10)->description(), Catch::StartsWith("gmres + boomeramg"));
 }
