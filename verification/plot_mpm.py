@@ -24,7 +24,8 @@ FIELDS = (("displacement", "RMS displacement error [m]"),
           ("velocity", "RMS particle velocity error [m/s]"),
           ("grid_velocity", "RMS grid velocity error at particles [m/s]"),
           ("stress", "RMS Cauchy stress error [Pa]"))
-MARKERS = {"classic": "o", "ugimp": "s", "cpdi": "^", "bspline": "D", "bspline_cubic": "v", "bspline_mls": "*"}
+MARKERS = {"classic": "o", "ugimp": "s", "cpgimp": "P", "cpdi": "^", "qcpdi": "X", "cpdi2": "<", "bspline": "D",
+           "bspline_cubic": "v", "bspline_mls": "*"}
 
 
 def label(key):

@@ -86,8 +86,14 @@ BENCHMARK_CAPTURE(BM_mpm_step, classic, MPMMethod::classic, 2, UpdateScheme::usf
     ->Name("mpm/classic/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, ugimp, MPMMethod::ugimp, 2, UpdateScheme::usf, true)
     ->Name("mpm/ugimp/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, cpgimp, MPMMethod::cpgimp, 2, UpdateScheme::usf, true)
+    ->Name("mpm/cpgimp/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, cpdi, MPMMethod::cpdi, 2, UpdateScheme::usf, true)
     ->Name("mpm/cpdi/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, qcpdi, MPMMethod::qcpdi, 2, UpdateScheme::usf, true)
+    ->Name("mpm/qcpdi/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, cpdi2, MPMMethod::cpdi2, 2, UpdateScheme::usf, true)
+    ->Name("mpm/cpdi2/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usf, MPMMethod::bspline, 2, UpdateScheme::usf, true)
     ->Name("mpm/bspline2/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usl, MPMMethod::bspline, 2, UpdateScheme::usl, true)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# MPM vibration studies (SPEC section 6): every method (Classic, uGIMP, lCPDI, quadratic and
-# cubic B-splines, MLS-reconstructed quadratic B-splines) on 8 to 64 cells with 9 and 4
-# particles per cell at A = 0.05 and A = 0.1, errors at T/4, T/2, 3T/4 and T, rates, wall
+# MPM vibration studies (SPEC section 6): every method (Classic, uGIMP, cpGIMP, lCPDI, qCPDI,
+# CPDI2, quadratic and cubic B-splines, MLS-reconstructed quadratic B-splines) on 8 to 64
+# cells with 9 and 4 particles per cell at A = 0.05 and A = 0.1, errors at T/4, T/2, 3T/4 and T, rates, wall
 # times; then the ten-period run at A = 0.1 with energy through time. CSV and PNG plots in
 # results/mpm-vibration/*/. Installs and builds mfree when needed.
 #   bash verification/mpm-vibration/run.sh
