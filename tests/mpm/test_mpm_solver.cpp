@@ -298,3 +298,36 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
       CHECK(worst_state <= 1e-10);
     }
 }
+
+TEST_CASE("CPDI2's corners: seeded from the domains, required on resume, a corner leaving the grid named with the time",
+          "[mpm]") {
+  const double h = 0.125;
+  const Box block{Vec2(0.25, 0.25), Vec2(0.75, 0.75)};
+  const MPMSettings cpdi2 = settings_for({MPMMethod::cpdi2, 1}, UpdateScheme::usf, 8);
+  MPMSolver solver(block_problem(), cpdi2, fill_box(block, h, 2, 1000.0, true));
+  const Particles& P = solver.particles();
+  REQUIRE(P.corners.size() == P.mass.size());
+  CHECK(P.corners[0][0] == Vec2(0.25, 0.25));  // the corner (-l_x, -l_y) of the first particle
+  CHECK(P.corners[0][2] == Vec2(0.3125, 0.3125));
+  // A saved state without corners, and corners for a method that does not track them.
+  Particles without = P;
+  without.corners.clear();
+  CHECK_THROWS_WITH(solver.resume(without, 0.0, {0.0}), Catch::Contains("cpdi2 needs the domain corners of all 64 particles"));
+  Particles with = fill_box(block, h, 2, 1000.0, true);
+  with.corners.assign(with.mass.size(), DomainCorners{});
+  CHECK_THROWS_WITH(MPMSolver(block_problem(), settings_for({MPMMethod::cpdi, 1}, UpdateScheme::usf, 8), with),
+                    Catch::Contains("method cpdi does not track domain corners"));
+  // A block flying right across the open wall: a corner leaves the padded grid first (at
+  // x > 1.125), before any particle position does.
+  Particles flying = fill_box(Box{Vec2(0.75, 0.25), Vec2(1.0, 0.75)}, h, 2, 1000.0, true);
+  flying.velocity.assign(flying.mass.size(), Vec2(100.0, 0.0));
+  MPMSolver away(block_problem(), cpdi2, std::move(flying));
+  std::string what;
+  try {
+    for (int n = 0; n < 1000; ++n) away.step();
+  } catch (const NumericalError& e) {
+    what = e.what();
+  }
+  CHECK_THAT(what, Catch::Contains("MPM: a CPDI2 particle corner at (1.1") && Catch::Contains("(of the particle at (1.") &&
+                       Catch::Contains("left the grid [-0.125, 1.125]") && Catch::Contains("at t = "));
+}
