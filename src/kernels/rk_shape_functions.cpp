@@ -56,7 +56,7 @@ WindowSample sample_window(double dx, double dy, double inv_a) {
   } else {
     const WindowValue vx = window<W>(std::abs(dx) * inv_a);
     const WindowValue vy = window<W>(std::abs(dy) * inv_a);
-    const double sx = dx < 0.0 ? -inv_a : inv_a, sy = dy < 0.0 ? -inv_a : inv_a;
+    const double sx = std::copysign(inv_a, dx), sy = std::copysign(inv_a, dy);
     return {vx.w * vy.w, sx * vx.dw * vy.w, sy * vy.dw * vx.w};
   }
 }
@@ -220,7 +220,9 @@ RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
   } else {
     max_radius_ = settings_.radius;
   }
-  cells_ = CellList(nodes_, max_radius_);
+  // Cells of half the support: a query's box of side 2a then covers about (5 a / 2)^2 of
+  // candidates instead of (3 a)^2, 30 % fewer to test.
+  cells_ = CellList(nodes_, 0.5 * max_radius_);
 }
 
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,

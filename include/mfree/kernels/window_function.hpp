@@ -5,6 +5,7 @@
 // Both are non-negative, C1 at least, and have w'(0) = 0, so the gradient of a circular
 // window is well defined at its own node.
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -25,26 +26,26 @@ struct WindowValue {
 
 /// Cubic B-spline (SPEC section 1):
 ///   2/3 - 4r^2 + 4r^3 (r <= 1/2),  4/3 - 4r + 4r^2 - 4/3 r^3 (1/2 < r <= 1),  0 beyond.
+/// Both pieces are formed and one is selected, without a branch: r is effectively random
+/// from neighbour to neighbour, and the mispredicted branches of the piecewise form were a
+/// large share of a kernel evaluation.
 inline WindowValue cubic_bspline(double r) {
-  if (r <= 0.5) return {2.0 / 3.0 - 4.0 * r * r + 4.0 * r * r * r, -8.0 * r + 12.0 * r * r};
-  if (r < 1.0) {
-    const double s = 1.0 - r;  // 4/3 (1 - r)^3 expands to the SPEC polynomial
-    return {4.0 / 3.0 * s * s * s, -4.0 * s * s};
-  }
-  return {0.0, 0.0};
+  const double inner_w = 2.0 / 3.0 - 4.0 * r * r + 4.0 * r * r * r, inner_dw = -8.0 * r + 12.0 * r * r;
+  const double s = std::max(1.0 - r, 0.0);  // 4/3 (1 - r)^3 expands to the SPEC polynomial
+  const double outer_w = 4.0 / 3.0 * s * s * s, outer_dw = -4.0 * s * s;
+  const bool inner = r <= 0.5;
+  return {inner ? inner_w : outer_w, inner ? inner_dw : outer_dw};
 }
 
 /// Quadratic spline of seed 000 eq. (17), written in rho = 3r/2 so that its support
 /// |rho| < 3/2 becomes r < 1: 3/4 - rho^2 (rho <= 1/2), (3/2 - rho)^2 / 2 (rho <= 3/2).
-/// The seed's kernel with r_x = (x - x_p) / (2 l_x) is this one with a = 3 l_x.
+/// The seed's kernel with r_x = (x - x_p) / (2 l_x) is this one with a = 3 l_x. Branchless,
+/// as cubic_bspline().
 inline WindowValue quadratic_spline(double r) {
   const double rho = 1.5 * r;
-  if (rho <= 0.5) return {0.75 - rho * rho, -2.0 * rho * 1.5};
-  if (rho < 1.5) {
-    const double s = 1.5 - rho;
-    return {0.5 * s * s, -s * 1.5};
-  }
-  return {0.0, 0.0};
+  const double s = std::max(1.5 - rho, 0.0);
+  const bool inner = rho <= 0.5;
+  return {inner ? 0.75 - rho * rho : 0.5 * s * s, inner ? -2.0 * rho * 1.5 : -s * 1.5};
 }
 
 inline WindowValue evaluate_window(Window kind, double r) {
