@@ -52,7 +52,8 @@ def main():
         fig.savefig(tmp, dpi=100)
         os.replace(tmp, out)
         plt.close(fig)
-    print(f"plots: {os.path.join(folder, 'error_vs_spacing.png')}, {os.path.join(folder, 'error_vs_time.png')}")
+    # The folder may be a staging one, renamed when the run succeeds: name the files only.
+    print("plots: error_vs_spacing.png, error_vs_time.png")
 
 
 if __name__ == "__main__":

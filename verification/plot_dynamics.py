@@ -47,7 +47,7 @@ def main():
         fig.suptitle("Axis-aligned vibration, total-Lagrangian meshfree")
         fig.tight_layout()
         fig.savefig(f"{out}/{name}", dpi=120)
-        print(f"wrote {out}/{name}")
+        print(f"wrote {name}")  # in the run folder (a staging one until the run succeeds)
 
 
 if __name__ == "__main__":

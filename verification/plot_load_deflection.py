@@ -33,7 +33,7 @@ def main():
     ax.legend()
     fig.tight_layout()
     fig.savefig(f"{out}/load_deflection.png", dpi=120)
-    print(f"wrote {out}/load_deflection.png")
+    print("wrote load_deflection.png")  # in the run folder (a staging one until the run succeeds)
 
 
 if __name__ == "__main__":

@@ -66,7 +66,7 @@ def error_plots(rows, out):
             fig.tight_layout()
             fig.savefig(os.path.join(out, name), dpi=110)
             plt.close(fig)
-            print(f"wrote {os.path.join(out, name)}")
+            print(f"wrote {name}")  # in the run folder (a staging one until the run succeeds)
 
 
 def energy_plot(path, out):

@@ -33,8 +33,13 @@ const Domain& rectangle() {
   return d;
 }
 
-/// A cell-centred lattice of about n points and its spacing.
-std::pair<std::vector<Vec2>, double> cloud(std::int64_t n) {
+/// A cell-centred lattice of about n points and its spacing h. (A struct, not a pair:
+/// lambdas capture its members, where clang 14 cannot capture structured bindings.)
+struct Cloud {
+  std::vector<Vec2> points;
+  double h;
+};
+Cloud cloud(std::int64_t n) {
   CloudSettings s;
   s.spacing = std::sqrt(2.0 / static_cast<double>(n));
   s.cell_centred = true;
@@ -55,7 +60,9 @@ std::size_t total_neighbours(Index n, Count&& count) {
 }
 
 void BM_search_cell_list(benchmark::State& state) {
-  const auto [points, h] = cloud(state.range(0));
+  const Cloud c = cloud(state.range(0));
+  const std::vector<Vec2>& points = c.points;
+  const double h = c.h;
   for (auto _ : state) {
     const CellList cells(points, 2.0 * h);
     const std::size_t found = total_neighbours(static_cast<Index>(points.size()), [&](Index i) {
@@ -74,7 +81,9 @@ void BM_search_cgal_kdtree(benchmark::State& state) {
   using Traits = CGAL::Search_traits_2<K>;
   using Tree = CGAL::Kd_tree<Traits>;
   using Sphere = CGAL::Fuzzy_sphere<Traits>;
-  const auto [points, h] = cloud(state.range(0));
+  const Cloud c = cloud(state.range(0));
+  const std::vector<Vec2>& points = c.points;
+  const double h = c.h;
   std::vector<K::Point_2> p;
   for (const Vec2& x : points) p.emplace_back(x.x(), x.y());
   for (auto _ : state) {
@@ -95,7 +104,9 @@ void BM_search_cgal_kdtree(benchmark::State& state) {
 
 void BM_rk_value_gradient(benchmark::State& state) {
   const auto order = state.range(1) == 1 ? RKOrder::linear : RKOrder::quadratic;
-  const auto [nodes, h] = cloud(state.range(0));
+  const Cloud c = cloud(state.range(0));
+  const std::vector<Vec2>& nodes = c.points;
+  const double h = c.h;
   RKSettings s;
   s.order = order;
   s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
@@ -122,7 +133,9 @@ void BM_rk_value_gradient(benchmark::State& state) {
 
 void BM_quadrature_weights(benchmark::State& state) {
   const auto order = state.range(1) == 1 ? RKOrder::linear : RKOrder::quadratic;
-  const auto [points, h] = cloud(state.range(0));
+  const Cloud c = cloud(state.range(0));
+  const std::vector<Vec2>& points = c.points;
+  const double h = c.h;
   RKSettings s;
   s.order = order;
   s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
