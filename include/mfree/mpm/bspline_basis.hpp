@@ -5,7 +5,7 @@
 //   xi = { x0 (p + 1 times), x0 + h, ..., x0 + (cells - 1) h, x0 + cells h (p + 1 times) },
 //
 // so n = cells + p functions N_0 .. N_{n-1}. Degree 1 gives the hat functions of Classic MPM
-// (and, on a grid padded by one cell, the hats uGIMP and CPDI average); degrees 2 and 3 the
+// (and, on a grid padded by one cell, the hats the GIMPs and CPDIs average); degrees 2 and 3 the
 // quadratic and cubic B-splines. Only N_0 is non-zero at x0 and only N_{n-1} at the far end,
 // where they equal 1: zeroing those coefficients fixes the field on the wall.
 //

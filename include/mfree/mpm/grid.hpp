@@ -6,7 +6,8 @@
 //
 // The grid box is the rectangle the grid is built for; the bodies lie in it (and may leave
 // cells empty). B-spline grids cover exactly that rectangle (open knots at its edges). Grids
-// for uGIMP and CPDI are padded by one cell on every side: a particle's domain near a wall
+// for the methods with particle domains (the GIMPs and CPDIs, uses_domains() in
+// particle_basis.hpp) are padded by one cell on every side: a particle's domain near a wall
 // may reach past it, and the averaged hats stay a partition of unity and linearly complete
 // only where every hat they touch exists.
 //

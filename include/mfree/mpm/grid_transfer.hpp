@@ -6,11 +6,12 @@
 // f(node, S, G) for every entry of point q:
 //
 //   tensor (axis = n > 0): the point's functions are the n x n products N_{fx+a}(x) N_{fy+b}(y)
-//     of two axes (hats, uGIMP's averaged hats, B-splines). The slot holds node (fx, fy) and
+//     of two axes (hats, the GIMPs' averaged hats, B-splines). The slot holds node (fx, fy) and
 //     each axis' n values and n derivatives; reading forms S = N_a N_b and
 //     G = (N'_a N_b, N_a N'_b) (seed 000 eqs. 4-5), the entries bit for bit, from 4n numbers
 //     instead of 3n^2. Every transfer of a step streams the table, so its size is their cost.
-//   explicit (axis = 0): stride entries (node, S, G) (CPDI, whose corners share nodes).
+//   explicit (axis = 0): stride entries (node, S, G) (the CPDIs, whose element nodes share
+//     grid nodes).
 //
 // Tensor entries come in the order b (y) outer, a (x) inner.
 //

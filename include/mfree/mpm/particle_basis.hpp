@@ -30,8 +30,9 @@
 // perp(d) = (d_y, -d_x) turns a counter-clockwise edge into its outward normal (times length).
 //
 // Every variant is a partition of unity (sum_i S_ip = 1, sum_i G_ip = 0) and linearly
-// complete (sum_i x_i S_ip = x_p, for CPDI2 the area centroid of the quadrilateral, and
-// sum_i x_i G_ip^T = I) wherever its functions all exist.
+// complete (sum_i x_i S_ip = x_p, and sum_i x_i G_ip^T = I) wherever its functions all exist.
+// For CPDI2, sum_i x_i S_ip is the area centroid of the tracked quadrilateral, which x_p
+// (moved with sum_i S_ip v_i like every particle) need not stay exactly.
 //
 // A particle's weights fill a fixed-size slot of a WeightTable (grid_transfer.hpp) of stride()
 // entries: the two axes' functions for the tensor-product bases (classic, the GIMPs,
