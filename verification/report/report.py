@@ -211,7 +211,9 @@ def git_commit() -> str:
     try:
         commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                                 text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT,
+        # The report's own outputs (written before this header) do not make the code dirty.
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", ".",
+                                ":!verification/REPORT.md", ":!verification/report/figures"], cwd=ROOT,
                                capture_output=True, text=True).stdout.strip()
         return commit + (" (with uncommitted changes)" if dirty else "") if commit else "unknown"
     except (OSError, subprocess.CalledProcessError):
