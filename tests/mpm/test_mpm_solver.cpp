@@ -40,6 +40,30 @@ MPMSettings settings_for(const Method& m, UpdateScheme s, int cells) {
   return st;
 }
 
+/// The uniform-strain motion v = v0 + L x on a free block of 60 x 60 cells (h = 1/64), and
+/// which particles see it undisturbed for a step: those far enough from the free edges that
+/// nothing of their disturbance reaches them (free-edge stress -> grid forces -> particle
+/// velocities -> second extrapolation -> velocity gradient, each a node support (2 h) or, for
+/// MLS, a kernel (3 h) further in).
+struct AffineBlock {
+  double h = 1.0 / 64.0;
+  Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
+  double margin = 18.0 * h;
+  Mat2 L = (Mat2() << 0.3, 0.2, -0.1, 0.25).finished();
+  Vec2 v0 = Vec2(0.05, -0.02);
+
+  /// 2 x 2 particles per cell moving with v0 + L x (with their domains if asked).
+  [[nodiscard]] Particles particles(bool domains) const {
+    Particles out = fill_box(block, h, 2, 1000.0, domains);
+    for (Index p = 0; p < out.size(); ++p) out.velocity[p] = v0 + L * out.position[p];
+    return out;
+  }
+  /// Whether a particle that started at X sees the motion undisturbed (2304 of them).
+  [[nodiscard]] bool interior(const Vec2& X) const {
+    return (X - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() <= 30 * h - margin;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell edges included", "[mpm]") {
@@ -81,25 +105,15 @@ TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell
 }
 
 TEST_CASE("USF, USL, SZS and USAVG each reproduce a uniform-strain motion", "[mpm]") {
-  // v = v0 + L x on a free block; particles whose every grid node is surrounded by the
-  // symmetric particle layout must see the velocity gradient L exactly, so
-  // F = dF(dt L) = I + dt L + (dt L)^2 / 2 (USAVG: dF(dt L / 2)^2), their velocities stay and
-  // x moves by dt (v0 + L x).
-  const double h = 1.0 / 64.0;
-  const Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
-  // Far enough from the free edges that nothing of their disturbance reaches the particle in
-  // one step: free-edge stress -> grid forces -> particle velocities -> second extrapolation
-  // -> velocity gradient, each a node support (2 h) or, for MLS, a kernel (3 h) further in.
-  const double margin = 18.0 * h;
-  Mat2 L;
-  L << 0.3, 0.2, -0.1, 0.25;
-  const Vec2 v0(0.05, -0.02);
+  // Particles whose every grid node is surrounded by the symmetric particle layout must see
+  // the velocity gradient L exactly, so F = dF(dt L) = I + dt L + (dt L)^2 / 2 (USAVG:
+  // dF(dt L / 2)^2), their velocities stay and x moves by dt (v0 + L x).
+  const AffineBlock motion;
+  const Mat2& L = motion.L;
   for (const Method& m : methods)
     for (UpdateScheme s : schemes) {
-      Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
-      for (Index p = 0; p < particles.size(); ++p) particles.velocity[p] = v0 + L * particles.position[p];
-      const Particles start = particles;
-      MPMSolver solver(block_problem(), settings_for(m, s, 64), std::move(particles));
+      const Particles start = motion.particles(uses_domains(m.method));
+      MPMSolver solver(block_problem(), settings_for(m, s, 64), start);
       solver.step();
       const double dt = solver.time_step();
       auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
@@ -109,7 +123,7 @@ TEST_CASE("USF, USL, SZS and USAVG each reproduce a uniform-strain motion", "[mp
       int interior = 0;
       for (Index p = 0; p < P.size(); ++p) {
         const Vec2 X = start.position[p];
-        if ((X - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() > 30 * h - margin) continue;
+        if (!motion.interior(X)) continue;
         ++interior;
         worst_F = std::max(worst_F, (P.deformation[p] - F).cwiseAbs().maxCoeff());
         worst_v = std::max(worst_v, (P.velocity[p] - start.velocity[p]).norm());
@@ -127,19 +141,14 @@ TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain ar
   // The uniform-strain motion above with the one-term update dF = I + dt L, which is what
   // moving the corners by dt v(x_c) does to the domain: interior corners land on
   // x_c + dt (v0 + L x_c), and the quadrilateral's area is det(I + dt L) V0 = J V0.
-  const double h = 1.0 / 64.0;
-  const Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
-  const double margin = 18.0 * h;
-  Mat2 L;
-  L << 0.3, 0.2, -0.1, 0.25;
-  const Vec2 v0(0.05, -0.02);
+  const AffineBlock motion;
+  const Mat2& L = motion.L;
+  const Vec2& v0 = motion.v0;
   for (UpdateScheme s : schemes) {
-    Particles particles = fill_box(block, h, 2, 1000.0, true);
-    for (Index p = 0; p < particles.size(); ++p) particles.velocity[p] = v0 + L * particles.position[p];
-    const Particles start = particles;
+    const Particles start = motion.particles(true);
     MPMSettings settings = settings_for({MPMMethod::cpdi2, 1}, s, 64);
     settings.deformation_terms = 1;
-    MPMSolver solver(block_problem(), settings, std::move(particles));
+    MPMSolver solver(block_problem(), settings, start);
     const double dt = solver.time_step();
     // USAVG updates F twice by dt / 2, F = (I + dt L / 2)^2, whose J differs from the corners'
     // det(I + dt L) at O(dt^2): there the area is compared with the affine map's alone.
@@ -148,7 +157,7 @@ TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain ar
     double worst_corner = 0.0, worst_area = 0.0, worst_affine = 0.0;
     int interior = 0;
     for (Index p = 0; p < P.size(); ++p) {
-      if ((start.position[p] - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() > 30 * h - margin) continue;
+      if (!motion.interior(start.position[p])) continue;
       ++interior;
       const DomainCorners c0 = parallelogram_corners(start.position[p], Mat2::Identity(), start.half_size[p]);
       for (int k = 0; k < 4; ++k)
@@ -250,11 +259,9 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
   // to F = I). Interior particles see the velocity gradient L exactly, so their state and stress
   // after one step are those of the material-point update of F = dF(dt L) from that history
   // (USAVG: two updates, at dF(dt L / 2) and at its square).
-  const double h = 1.0 / 64.0;
-  const Box block{Vec2(2 * h, 2 * h), Vec2(62 * h, 62 * h)};
-  const double margin = 18.0 * h;
-  Mat2 L;
-  L << 0.3, 0.2, -0.1, 0.25;
+  AffineBlock motion;
+  motion.v0 = Vec2::Zero();
+  const Mat2& L = motion.L;
   J2Plasticity j2;
   j2.lame = lame_constants(1e7, 0.3);
   j2.yield_stress = 1e4;
@@ -265,13 +272,9 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
   const MPMProblem problem{unit, {{"metal", law, 1000.0}}, {rectangle_body("block", unit)}, {}};
   for (const Method& m : methods)
     for (UpdateScheme s : schemes) {
-      Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
-      for (Index p = 0; p < particles.size(); ++p) {
-        particles.velocity[p] = L * particles.position[p];
-        particles.state[p] = history;
-      }
-      const Particles start = particles;
-      MPMSolver solver(problem, settings_for(m, s, 64), std::move(particles));
+      Particles start = motion.particles(uses_domains(m.method));
+      for (MaterialState& state : start.state) state = history;
+      MPMSolver solver(problem, settings_for(m, s, 64), start);
       solver.step();
       const double dt = solver.time_step();
       auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
@@ -286,7 +289,7 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
       const Particles& P = solver.particles();
       double worst_stress = 0.0, worst_state = 0.0;
       for (Index p = 0; p < P.size(); ++p) {
-        if ((start.position[p] - Vec2(0.5, 0.5)).cwiseAbs().maxCoeff() > 30 * h - margin) continue;
+        if (!motion.interior(start.position[p])) continue;
         worst_stress = std::max(worst_stress, (P.stress[p] - sigma).norm() / sigma.norm());
         worst_state = std::max({worst_state, std::abs(P.state[p].alpha - expected.state.alpha) / expected.state.alpha,
                                 (P.state[p].plastic_strain - expected.state.plastic_strain).norm() /
