@@ -70,10 +70,6 @@ void check_static(const SceneTable& t, const std::string& key, const Formula& f,
                              f.expression()));
 }
 
-}  // namespace
-
-namespace {
-
 /// A [quadrature] key that no scheme of the scene (its own, or its study's) reads is an
 /// error, not a setting silently ignored.
 void check_scheme_keys(const SceneTable& t, QuadratureScheme scheme, const std::optional<StudySettings>& study) {
