@@ -120,8 +120,10 @@ void ParticleBasis::point_weights(const Vec2& x, WeightTable& table, Index q) co
 }
 
 template <int n>
-void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, const char* method, WeightTable& table, Index q) const {
-  const char* what = method_ == MPMMethod::ugimp ? "a uGIMP particle domain" : "a cpGIMP particle domain";
+void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const {
+  const bool stretched = method_ == MPMMethod::cpgimp;
+  const char* method = stretched ? "cpGIMP" : "uGIMP";
+  const char* what = stretched ? "a cpGIMP particle domain" : "a uGIMP particle domain";
   check_on_grid(x - half, what, x);
   check_on_grid(x + half, what, x);
   GimpAxis<n> gx, gy;
@@ -179,8 +181,8 @@ Vec2 ParticleBasis::stretched_half(const Vec2& x, const Mat2& F, const Vec2& hal
 
 void ParticleBasis::evaluate(const Vec2& x, const Mat2& F, const Vec2& half, WeightTable& table, Index q) const {
   switch (method_) {
-    case MPMMethod::ugimp: return gimp_weights<3>(x, half, "uGIMP", table, q);
-    case MPMMethod::cpgimp: return gimp_weights<4>(x, stretched_half(x, F, half), "cpGIMP", table, q);
+    case MPMMethod::ugimp: return gimp_weights<3>(x, half, table, q);
+    case MPMMethod::cpgimp: return gimp_weights<4>(x, stretched_half(x, F, half), table, q);
     case MPMMethod::cpdi: return evaluate_quadrilateral(parallelogram_corners(x, F, half), x, table, q);
     case MPMMethod::qcpdi: return node_sum<8>(serendipity_nodes(x, F, half), x, "a qCPDI particle node", table, q);
     case MPMMethod::cpdi2: throw std::logic_error("MPM: CPDI2's weights come from its tracked corners");

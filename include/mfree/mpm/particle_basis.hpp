@@ -107,7 +107,7 @@ class ParticleBasis {
   template <int p>
   void point_weights(const Vec2& x, WeightTable& table, Index q) const;
   template <int n>
-  void gimp_weights(const Vec2& x, const Vec2& half, const char* method, WeightTable& table, Index q) const;
+  void gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const;
   template <int n>
   void node_sum(const DomainNodes<n>& nodes, const Vec2& x, const char* what, WeightTable& table, Index q) const;
   [[nodiscard]] Vec2 stretched_half(const Vec2& x, const Mat2& F, const Vec2& half) const;
