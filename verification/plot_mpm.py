@@ -29,8 +29,8 @@ MARKERS = {"classic": "o", "ugimp": "s", "cpgimp": "P", "cpdi": "^", "qcpdi": "X
 
 
 def label(key):
-    method, update, ppc = key
-    return f"{method} {update} {ppc} ppc"
+    method, update, mapping, ppc = key
+    return f"{method} {update} {ppc} ppc" + ("" if mapping == "lumped" else f" {mapping}")
 
 
 def error_plots(rows, out):
@@ -38,7 +38,7 @@ def error_plots(rows, out):
     for r in rows:
         if r["status"] != "ok":
             continue
-        by_time[float(r["time_fraction"])][(r["method"], r["update"], r["particles_per_cell"])].append(r)
+        by_time[float(r["time_fraction"])][(r["method"], r["update"], r["mapping"], r["particles_per_cell"])].append(r)
     for frac, series in sorted(by_time.items()):
         tag = f"t{int(round(frac * 100)):03d}"
         for xkey, xlabel, name in (("spacing", "cell size h [m]", f"mpm_error_vs_h_{tag}.png"),
@@ -48,7 +48,7 @@ def error_plots(rows, out):
                 for key, rs in sorted(series.items()):
                     rs = sorted(rs, key=lambda r: -float(r["spacing"]))
                     # 9 particles per cell solid, other counts dashed
-                    style = MARKERS.get(key[0], "o") + ("-" if key[2] == "9" else "--")
+                    style = MARKERS.get(key[0], "o") + ("-" if key[3] == "9" else "--")
                     ax.loglog([float(r[xkey]) for r in rs], [float(r[field]) for r in rs], style,
                               label=label(key), markersize=4)
                 if xkey == "spacing":
@@ -72,7 +72,7 @@ def error_plots(rows, out):
 def energy_plot(path, out):
     runs = defaultdict(list)
     for r in csv.DictReader(open(path)):
-        runs[(r["method"], r["update"], r["particles_per_cell"], r["cells"])].append(r)
+        runs[(r["method"], r["update"], r["mapping"], r["particles_per_cell"], r["cells"])].append(r)
     if not runs:
         return
     fig, ax = plt.subplots(figsize=(9, 5))
@@ -80,7 +80,7 @@ def energy_plot(path, out):
         t = [float(r["time"]) for r in rs]
         total = [float(r["total"]) for r in rs]
         scale = max(float(r["kinetic"]) + float(r["strain"]) for r in rs)
-        ax.plot(t, [(e - total[0]) / scale for e in total], label=f"{label(key[:3])}, {key[3]} cells")
+        ax.plot(t, [(e - total[0]) / scale for e in total], label=f"{label(key[:4])}, {key[4]} cells")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("(E(t) - E(0)) / max(kinetic + strain)")
     ax.set_title("MPM energy balance: kinetic + strain - work of the body forces")

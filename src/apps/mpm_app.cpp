@@ -334,8 +334,8 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
 
 int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   const MPMSettings& s = scene.settings;
-  std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} thread(s))\n", scene.file.string(),
-                           method_name(method_of(s)), to_string(s.update),
+  std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} mapping, {} thread(s))\n", scene.file.string(),
+                           method_name(method_of(s)), to_string(s.update), grid_mapping_names().name(s.mapping),
                            thread_count());
   if (checkpoints) checkpoints->restore_output(scene.folder);
   const MPMRun run = simulate_mpm(scene, s, true, checkpoints);
@@ -382,6 +382,7 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   RunSummary summary("mpm", scene.file);
   summary.text("method", method_name(method_of(s)));
   summary.text("update", std::string(to_string(s.update)));
+  summary.text("mapping", grid_mapping_names().name(s.mapping));
   summary.number("particles", static_cast<double>(run.particles));
   summary.number("steps", run.steps);
   summary.number("time_step", run.time_step);
@@ -420,12 +421,14 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
 
 int converge_mpm(const MPMScene& scene) {
   const MPMStudy& st = *scene.study;
-  const std::size_t runs = st.cells.size() * st.methods.size() * st.updates.size() * st.particles_per_side.size();
+  const std::size_t runs =
+      st.cells.size() * st.methods.size() * st.updates.size() * st.mappings.size() * st.particles_per_side.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
   std::string csv =
-      "method,update,particles_per_cell,cells,spacing,particles,steps,time_step,seconds,time_fraction,time,"
+      "method,update,mapping,particles_per_cell,cells,spacing,particles,steps,time_step,seconds,time_fraction,time,"
       "displacement,velocity,grid_velocity,stress,mass_defect,energy_drift,probe_ux,probe_uy,status\n";
-  std::string energy_csv = "method,update,particles_per_cell,cells,time,kinetic,strain,dissipated,external_work,total\n";
+  std::string energy_csv =
+      "method,update,mapping,particles_per_cell,cells,time,kinetic,strain,dissipated,external_work,total\n";
   // (series, error time index) -> (h, errors) over the grids, for the rate table.
   std::map<std::string, std::vector<std::pair<double, std::vector<ParticleErrors>>>> series;
   // Without [exact]: (series) -> (h, u^h at the probe at end_time) over the grids.
@@ -434,16 +437,19 @@ int converge_mpm(const MPMScene& scene) {
   for (int side : st.particles_per_side)
     for (const MPMMethodChoice& m : st.methods)
       for (UpdateScheme u : st.updates)
+        for (GridMapping mapping : st.mappings)
         for (int cells : st.cells) {
           MPMSettings s = scene.settings;
           s.method = m.method;
           s.degree = m.degree == 1 ? 2 : m.degree;
           s.update = u;
+          s.mapping = mapping;
           s.cells = cells;
           s.particles_per_side = side;
           const MPMRun run = simulate_mpm(scene, s, false);
           const double h = scene.problem.box.size().x() / cells;
-          const std::string name = fmt::format("{},{},{}", method_name(m), to_string(u), side * side);
+          const std::string name =
+              fmt::format("{},{},{},{}", method_name(m), to_string(u), grid_mapping_names().name(mapping), side * side);
           const std::string status = csv_status(run.failure);
           const double drift = energy_drift(run.energy);
           const double nan = std::nan("");
@@ -462,8 +468,8 @@ int converge_mpm(const MPMScene& scene) {
           }
           energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
           if (!run.failure) series[name].emplace_back(h, run.errors);
-          std::string line = fmt::format("{:<14} {:<5} {:>2} ppc {:>4} cells: {:8.2f} s", method_name(m), to_string(u),
-                                         side * side, cells, run.seconds);
+          std::string line = fmt::format("{:<14} {:<6} {:<14} {:>2} ppc {:>4} cells: {:8.2f} s", method_name(m),
+                                         to_string(u), grid_mapping_names().name(mapping), side * side, cells, run.seconds);
           if (!run.errors.empty()) {
             const ParticleErrors& e = run.errors.front();
             line += fmt::format("  at t = {:.4f}: u {:.3e} v_p {:.3e} v_grid {:.3e} stress {:.3e}", e.time,
@@ -482,8 +488,8 @@ int converge_mpm(const MPMScene& scene) {
         }
   // Observed rates log2(e(h) / e(h/2)) between successive grids, at every error time.
   if (scene.exact)
-    std::cout << fmt::format("\n{:<28} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
-                             "method,update,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
+    std::cout << fmt::format("\n{:<40} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",
+                             "method,update,mapping,ppc", "t/T", "h", "u", "rate", "v_p", "rate", "v_grid", "rate", "stress", "rate");
   for (const auto& entry : series) {
     const std::string& name = entry.first;
     const auto& levels = entry.second;  // a plain reference: lambdas below capture it
@@ -496,7 +502,7 @@ int converge_mpm(const MPMScene& scene) {
           const double r = std::log(levels[l - 1].second[k].*f / e.*f) / std::log(levels[l - 1].first / levels[l].first);
           return fmt::format("{:.2f}", r);
         };
-        std::cout << fmt::format("{:<28} {:>6.3f} {:>8.5f}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}\n",
+        std::cout << fmt::format("{:<40} {:>6.3f} {:>8.5f}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}  {:>10.3e} {:>6}\n",
                                  name, scene.error_times[k], levels[l].first, e.displacement,
                                  rate(&ParticleErrors::displacement), e.velocity, rate(&ParticleErrors::velocity),
                                  e.grid_velocity, rate(&ParticleErrors::grid_velocity), e.stress,

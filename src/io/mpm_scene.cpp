@@ -187,6 +187,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.method = m.method;
     s.degree = m.degree == 1 ? 2 : m.degree;
     s.update = read_choice_or(t, "update", update_names(), UpdateScheme::usf);
+    s.mapping = read_choice_or(t, "mapping", grid_mapping_names(), GridMapping::lumped);
     s.cells = static_cast<int>(t.integer("cells", 1, 100000));
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
@@ -264,6 +265,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     if (t.has("methods")) st.methods = read_choices(t, "methods", mpm_method_names());
     st.updates = {s.update};
     if (t.has("updates")) st.updates = read_choices(t, "updates", update_names());
+    st.mappings = {s.mapping};
+    if (t.has("mappings")) st.mappings = read_choices(t, "mappings", grid_mapping_names());
     st.particles_per_side = {s.particles_per_side};
     if (t.has("particles_per_cell")) {
       for (const MPMBody& b : pr.bodies)

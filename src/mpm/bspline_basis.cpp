@@ -18,6 +18,8 @@ BSplineAxis::BSplineAxis(double x0, double h, int cells, int degree)
 
 double BSplineAxis::knot(int j) const { return x0_ + h_ * std::clamp(j - p_, 0, cells_); }
 
+double BSplineAxis::integral(int i) const { return (knot(i + p_ + 1) - knot(i)) / (p_ + 1); }
+
 double BSplineAxis::node(int i) const {
   double s = 0.0;
   for (int k = 1; k <= p_; ++k) s += knot(i + k);

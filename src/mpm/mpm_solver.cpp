@@ -11,7 +11,8 @@ namespace mfree {
 
 const NameTable<UpdateScheme>& update_names() {
   static const NameTable<UpdateScheme> table{
-      {"usf", UpdateScheme::usf}, {"usl", UpdateScheme::usl}, {"szs", UpdateScheme::szs}, {"usavg", UpdateScheme::usavg}};
+      {"usf", UpdateScheme::usf},     {"usl", UpdateScheme::usl},       {"szs", UpdateScheme::szs},
+      {"usavg", UpdateScheme::usavg}, {"verlet", UpdateScheme::verlet}};
   return table;
 }
 
@@ -43,6 +44,13 @@ const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
   if (s.deformation_terms < 1 || s.deformation_terms > 10)
     throw InputError(fmt::format("MPM: deformation_terms (kmax) must lie in [1, 10] (got {})", s.deformation_terms));
   if (!(s.courant > 0.0)) throw InputError(fmt::format("MPM: the Courant factor must be positive (got {})", s.courant));
+  if (s.update == UpdateScheme::verlet && s.method == MPMMethod::bspline_mls)
+    throw InputError("MPM: the verlet update is not built for bspline_mls; use usf, usl, szs or usavg");
+  if (s.update == UpdateScheme::verlet && s.damping > 0.0)
+    throw InputError("MPM: the verlet update takes no damping; use usf, usl, szs or usavg with damping");
+  if (s.method == MPMMethod::bspline_mls && s.mapping != GridMapping::lumped)
+    throw InputError("MPM: bspline_mls maps the reconstructed fields with the lumped mass; the pseudo-inverse mapping is "
+                     "for the other methods");
   if (s.method == MPMMethod::bspline_mls && !(s.mls_support >= 1.0))
     throw InputError(fmt::format("MPM: mls_support must be at least one cell (got {})", s.mls_support));
   return s;
@@ -67,6 +75,38 @@ Mat2 exp_series(const Mat2& L, double dt, int kmax) {
   Mat2 dF;
   dF << s0, s1;
   return dF;
+}
+
+/// The largest node distance (per axis) of two nodes one particle reaches: the degree for the
+/// point-evaluated bases, 3 for the averaged hats of the methods with domains (a domain up
+/// to two cells wide).
+int mass_matrix_radius(MPMMethod m, int degree) {
+  if (uses_domains(m)) return 3;
+  return m == MPMMethod::classic ? 1 : degree;
+}
+
+/// The stable time step with the consistent mass of the pseudo-inverse mapping, as a fraction
+/// of the lumped mass's: sqrt(M(pi)) with M(theta) the 1D mass symbol of the grid functions
+/// under particle quadrature (2 or 3 particles per cell: hats and their averages 0.50-0.54,
+/// quadratic B-splines 0.36-0.38, cubic 0.23), at the highest wave number where the
+/// stiffness symbol peaks; rounded down.
+double consistent_mass_courant(MPMMethod m, int degree) {
+  if (!is_bspline(m)) return 0.5;
+  return degree == 2 ? 0.35 : 0.22;
+}
+
+/// eq. (34): L_p = sum_i (v_i - v_p) G_ip^T, relative to v_p; nodes without mass carry no
+/// velocity and are left out. Column by column, as in exp_series().
+Mat2 velocity_gradient(const WeightTable& weights, Index p, const Vec2& vp, const double* mass, const Vec2* velocity,
+                       double floor) {
+  Mat2 L = Mat2::Zero();
+  weights.for_each(p, [&](Index i, double, const Vec2& G) {
+    if (!(std::abs(mass[i]) > floor)) return;
+    const Vec2 dv = velocity[i] - vp;
+    L.col(0) += dv * G.x();
+    L.col(1) += dv * G.y();
+  });
+  return L;
 }
 
 }  // namespace
@@ -119,6 +159,10 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   double c = 0.0;
   for (const MPMMaterial& m : problem_.materials) c = std::max(c, wave_speed(m.law, m.density));
   h_over_c_ = grid_.spacing() / c;
+  if (settings_.mapping == GridMapping::pseudo_inverse) {
+    h_over_c_ *= consistent_mass_courant(settings_.method, settings_.degree);
+    mass_matrix_ = std::make_unique<GridMassMatrix>(grid_, mass_matrix_radius(settings_.method, settings_.degree));
+  }
   const bool allowed = settings_.allow_unstable_time_step;
   if (settings_.courant > 1.0 && !allowed)
     throw InputError(fmt::format(
@@ -144,6 +188,7 @@ void MPMSolver::resume(Particles particles, double time, std::vector<double> ext
                                  particles.size(), external_work.size(), particles_.size(), external_work_.size()));
   check_corners(particles);
   particles_ = std::move(particles);
+  forces_current_ = false;
   time_ = time;
   external_work_ = std::move(external_work);
 }
@@ -159,6 +204,7 @@ void MPMSolver::check_corners(const Particles& P) const {
 }
 
 void MPMSolver::step() {
+  if (settings_.update == UpdateScheme::verlet) return verlet_step();
   const bool first = settings_.update == UpdateScheme::usf || settings_.update == UpdateScheme::usavg;
   const bool again = settings_.update == UpdateScheme::szs || settings_.update == UpdateScheme::usavg;
   const double stress_dt = settings_.update == UpdateScheme::usavg ? 0.5 * dt_ : dt_;
@@ -175,6 +221,34 @@ void MPMSolver::step() {
     timer_.time("stress update", [&] { update_stress(stress_dt); });
   }
   time_ += dt_;
+}
+
+void MPMSolver::verlet_step() {
+  // Weights, masses, accelerations and grid velocities at t^n: the last step's second kick
+  // computed them.
+  if (!forces_current_) {
+    timer_.time("weights", [&] { compute_weights(); });
+    timer_.time("particles to grid", [&] { scatter_mass(); });
+    timer_.time("grid forces", [&] { compute_grid_forces(); });
+    timer_.time("grid momentum", [&] { grid_accelerations(); });
+    timer_.time("particles to grid", [&] { scatter_momentum(); });
+  }
+  timer_.time("grid to particles", [&] { half_kick_particles(); });
+  timer_.time("weights", [&] { midpoint_weights(); });
+  timer_.time("particles to grid", [&] {
+    scatter_mass();
+    scatter_momentum();
+  });
+  timer_.time("grid to particles", [&] { move_particles(0.0); });
+  timer_.time("stress update", [&] { update_stress(dt_); });
+  time_ += dt_;
+  timer_.time("weights", [&] { compute_weights(); });
+  timer_.time("particles to grid", [&] { scatter_mass(); });
+  timer_.time("grid forces", [&] { compute_grid_forces(); });
+  timer_.time("grid momentum", [&] { grid_accelerations(); });
+  timer_.time("grid to particles", [&] { half_kick_particles(); });
+  timer_.time("particles to grid", [&] { scatter_momentum(); });
+  forces_current_ = true;
 }
 
 void MPMSolver::compute_weights() {
@@ -214,17 +288,44 @@ void MPMSolver::particles_to_grid() {
   }
   mass_.resize(mass_momentum_.size());
   momentum_.resize(mass_momentum_.size());
-  double grid_total = 0.0;
   for (std::size_t i = 0; i < mass_momentum_.size(); ++i) {
     mass_[i] = mass_momentum_[i][0];
     momentum_[i] = mass_momentum_[i].tail<2>();
-    grid_total += mass_[i];
   }
-  mass_defect_ = std::abs(grid_total - particle_mass_) / particle_mass_;
+  grid_mass_ready();
   grid_velocities(momentum_);
 }
 
+void MPMSolver::scatter_mass() {
+  const Particles& P = particles_;
+  scatter<double>(weights_, grid_.size(), mass_, partial1_, [&](Index p) {
+    const double m = P.mass[p];
+    return [m](double S, const Vec2&) { return S * m; };
+  });
+  grid_mass_ready();
+}
+
+void MPMSolver::scatter_momentum() {
+  const Particles& P = particles_;
+  scatter<Vec2>(weights_, grid_.size(), momentum_, partial2_, [&](Index p) {
+    const Vec2 mv = P.mass[p] * P.velocity[p];
+    return [mv](double S, const Vec2&) { return Vec2(S * mv); };
+  });
+  grid_velocities(momentum_);
+}
+
+void MPMSolver::grid_mass_ready() {
+  double grid_total = 0.0;
+  for (const double m : mass_) grid_total += m;
+  mass_defect_ = std::abs(grid_total - particle_mass_) / particle_mass_;
+  if (mass_matrix_) mass_matrix_->assemble(weights_, particles_.mass, particles_.volume);
+}
+
 void MPMSolver::grid_velocities(const std::vector<Vec2>& momentum) {
+  if (mass_matrix_) {
+    at_time(time_, [&] { velocity_ = mass_matrix_->solve(momentum, mass_, walls_, mass_floor()); });
+    return;
+  }
   velocity_.resize(momentum.size());
   const double floor = mass_floor();
   for (std::size_t i = 0; i < momentum.size(); ++i) {
@@ -247,16 +348,7 @@ void MPMSolver::update_stress(double dt) {
   const int* material = P.material.data();
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p) {
-      const Vec2 vp = P.velocity[p];
-      // eq. (34), relative to v_p; nodes without mass carry no velocity and are left out.
-      // Column by column, as in exp_series().
-      Mat2 L = Mat2::Zero();
-      weights_.for_each(p, [&](Index i, double, const Vec2& G) {
-        if (!(std::abs(mass[i]) > floor)) return;
-        const Vec2 dv = velocity[i] - vp;
-        L.col(0) += dv * G.x();
-        L.col(1) += dv * G.y();
-      });
+      const Mat2 L = velocity_gradient(weights_, p, P.velocity[p], mass, velocity, floor);
       // eq. (35), by columns as well.
       const Mat2 dF = exp_series(L, dt, kmax);
       const Vec2 f0 = dF * P.deformation[p].col(0), f1 = dF * P.deformation[p].col(1);
@@ -296,7 +388,8 @@ void MPMSolver::update_stress(double dt) {
 void MPMSolver::compute_grid_forces() {
   const Particles& P = particles_;
   // The body force at the instant of the stress it acts with: t + dt after USF's update,
-  // t + dt / 2 after USAVG's half update, t for USL and SZS (the stress of the last step's end).
+  // t + dt / 2 after USAVG's half update, t for USL and SZS (the stress of the last step's end)
+  // and for Verlet (the stress of t^n).
   const double tb = time_ + (settings_.update == UpdateScheme::usf     ? dt_
                              : settings_.update == UpdateScheme::usavg ? 0.5 * dt_
                                                                        : 0.0);
@@ -340,13 +433,82 @@ void MPMSolver::update_grid_momentum() {
   }
 }
 
-void MPMSolver::grid_to_particles() {
-  Particles& P = particles_;
+void MPMSolver::grid_accelerations() {
+  for (std::size_t i = 0; i < force_.size(); ++i) {
+    if (walls_[i] & 1) force_[i].x() = 0.0;
+    if (walls_[i] & 2) force_[i].y() = 0.0;
+  }
+  if (mass_matrix_) {
+    at_time(time_, [&] { acceleration_ = mass_matrix_->solve(force_, mass_, walls_, mass_floor()); });
+    return;
+  }
   const double floor = mass_floor();
   acceleration_.resize(mass_.size());
   for (std::size_t i = 0; i < mass_.size(); ++i)
     acceleration_[i] = std::abs(mass_[i]) > floor ? Vec2(force_[i] / mass_[i]) : Vec2::Zero();
-  grid_velocities(momentum_);
+}
+
+void MPMSolver::grid_to_particles() {
+  grid_accelerations();
+  if (mass_matrix_)  // M^-1 ((mv)_i + dt f_i), without solving again
+    for (std::size_t i = 0; i < velocity_.size(); ++i) velocity_[i] += dt_ * acceleration_[i];
+  else
+    grid_velocities(momentum_);
+  move_particles(dt_);
+}
+
+void MPMSolver::midpoint_weights() {
+  const Particles& P = particles_;
+  const int kmax = settings_.deformation_terms;
+  const double floor = mass_floor();
+  const double* mass = mass_.data();  // raw pointers, as in update_stress()
+  const Vec2* velocity = velocity_.data();
+  // The domain follows F for these (CPDI2's follows its corners; the others have none that moves).
+  const bool deforms = settings_.method == MPMMethod::cpgimp || settings_.method == MPMMethod::cpdi ||
+                       settings_.method == MPMMethod::qcpdi;
+  const bool corners = settings_.method == MPMMethod::cpdi2;
+  if (corners) midpoint_corners_.resize(P.corners.size());
+  basis_.resize(midpoint_weights_, P.size());
+  at_time(time_, [&] {
+    parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
+      for (Index p = begin; p < end; ++p) {
+        Vec2 v = Vec2::Zero();
+        weights_.for_each(p, [&](Index i, double S, const Vec2&) { v += S * velocity[i]; });
+        const Vec2 x = P.position[p] + 0.5 * dt_ * v;
+        if (corners) {
+          for (int k = 0; k < 4; ++k)
+            midpoint_corners_[p][k] = P.corners[p][k] + 0.5 * dt_ * basis_.hat_interpolate(P.corners[p][k], velocity_);
+          basis_.evaluate_quadrilateral(midpoint_corners_[p], x, midpoint_weights_, p);
+          continue;
+        }
+        const Vec2 half = P.half_size.empty() ? Vec2::Zero() : P.half_size[p];
+        if (!deforms) {
+          basis_.evaluate(x, P.deformation[p], half, midpoint_weights_, p);
+          continue;
+        }
+        const Mat2 L = velocity_gradient(weights_, p, P.velocity[p], mass, velocity, floor);
+        basis_.evaluate(x, Mat2(exp_series(L, 0.5 * dt_, kmax) * P.deformation[p]), half, midpoint_weights_, p);
+      }
+    });
+  });
+  std::swap(weights_, midpoint_weights_);
+}
+
+void MPMSolver::half_kick_particles() {
+  Particles& P = particles_;
+  const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
+  const double kick = 0.5 * dt_;
+  parallel_blocks(P.size(), 1024, [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p) {
+      Vec2 a = Vec2::Zero();
+      weights_.for_each(p, [&](Index i, double S, const Vec2&) { a += S * acceleration[i]; });
+      P.velocity[p] += kick * a;
+    }
+  });
+}
+
+void MPMSolver::move_particles(double kick) {
+  Particles& P = particles_;
   // Work of the body forces per thread and body, summed in thread order (reproducible). The
   // threads' rows lie at least a cache line (8 doubles) apart: every particle adds to its row.
   const auto bodies = static_cast<std::size_t>(bodies_);
@@ -355,6 +517,7 @@ void MPMSolver::grid_to_particles() {
   const Vec2* acceleration = acceleration_.data();  // raw pointers, as in update_stress()
   const Vec2* velocity = velocity_.data();
   const bool corners = settings_.method == MPMMethod::cpdi2;
+  const bool midpoint = settings_.update == UpdateScheme::verlet;
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
     double* w = work.data() + static_cast<std::size_t>(t) * row;
     for (Index p = begin; p < end; ++p) {
@@ -363,14 +526,16 @@ void MPMSolver::grid_to_particles() {
         a += S * acceleration[i];
         v += S * velocity[i];
       });
-      P.velocity[p] += dt_ * a;  // eq. (29)
+      P.velocity[p] += kick * a;  // eq. (29)
       const Vec2 dx = dt_ * v;   // eq. (30)
       P.position[p] += dx;
       w[P.body[p]] += P.mass[p] * body_[p].dot(dx);
       // CPDI2: the corners move with the updated grid velocity at them (Sadeghirad et al.
       // 2013), x_c += dt sum_i N_i(x_c) v_i; they lay on the grid for this step's weights.
+      // Verlet reads the velocity at the midpoint corners.
       if (corners)
-        for (Vec2& c : P.corners[p]) c += dt_ * basis_.hat_interpolate(c, velocity_);
+        for (int k = 0; k < 4; ++k)
+          P.corners[p][k] += dt_ * basis_.hat_interpolate(midpoint ? midpoint_corners_[p][k] : P.corners[p][k], velocity_);
     }
   });
   for (std::size_t t = 0; t < work.size() / row; ++t)

@@ -22,7 +22,15 @@ struct Method {
 const Method methods[] = {{MPMMethod::classic, 1}, {MPMMethod::ugimp, 1},   {MPMMethod::cpgimp, 1},
                           {MPMMethod::cpdi, 1},    {MPMMethod::qcpdi, 1},   {MPMMethod::cpdi2, 1},
                           {MPMMethod::bspline, 2}, {MPMMethod::bspline, 3}, {MPMMethod::bspline_mls, 2}};
-const UpdateScheme schemes[] = {UpdateScheme::usf, UpdateScheme::usl, UpdateScheme::szs, UpdateScheme::usavg};
+const UpdateScheme schemes[] = {UpdateScheme::usf, UpdateScheme::usl, UpdateScheme::szs, UpdateScheme::usavg,
+                                 UpdateScheme::verlet};
+const GridMapping mappings[] = {GridMapping::lumped, GridMapping::pseudo_inverse};
+
+/// Whether the solver takes the combination (bspline_mls: lumped mass and the symplectic
+/// Euler schemes only).
+bool built(const Method& m, UpdateScheme s, GridMapping g) {
+  return m.method != MPMMethod::bspline_mls || (s != UpdateScheme::verlet && g == GridMapping::lumped);
+}
 
 const Box unit{Vec2(0.0, 0.0), Vec2(1.0, 1.0)};
 
@@ -30,11 +38,12 @@ MPMProblem block_problem() {
   return {unit, {{"rubber", make_material("neo_hookean", 1e7, 0.3), 1000.0}}, {rectangle_body("block", unit)}, {}};
 }
 
-MPMSettings settings_for(const Method& m, UpdateScheme s, int cells) {
+MPMSettings settings_for(const Method& m, UpdateScheme s, int cells, GridMapping g = GridMapping::lumped) {
   MPMSettings st;
   st.method = m.method;
   st.degree = m.degree == 1 ? 2 : m.degree;
   st.update = s;
+  st.mapping = g;
   st.cells = cells;
   st.end_time = 1.0;
   return st;
@@ -74,11 +83,13 @@ TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell
   const Box block{Vec2(7.0 / 32.0, 7.0 / 32.0), Vec2(7.0 / 32.0 + 0.5, 7.0 / 32.0 + 0.5)};
   const Vec2 v(8.0, -4.0);
   for (const Method& m : methods)
-    for (UpdateScheme s : schemes) {
+    for (UpdateScheme s : schemes)
+      for (GridMapping g : mappings) {
+      if (!built(m, s, g)) continue;
       Particles particles = fill_box(block, h, 2, 1000.0, uses_domains(m.method));
       CHECK(particles.position[0].x() == 0.25);  // on an edge
       particles.velocity.assign(particles.mass.size(), v);
-      MPMSolver solver(block_problem(), settings_for(m, s, 8), std::move(particles));
+      MPMSolver solver(block_problem(), settings_for(m, s, 8, g), std::move(particles));
       const int steps = 40;  // about 0.17 m: across a cell edge
       for (int n = 0; n < steps; ++n) solver.step();
       const Particles& P = solver.particles();
@@ -95,7 +106,7 @@ TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell
         }
       }
       CHECK(P.corners.size() == (m.method == MPMMethod::cpdi2 ? P.mass.size() : 0));
-      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s));
+      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s) << " " << grid_mapping_names().name(g));
       CHECK(stress == 0.0);
       CHECK(strain == 0.0);
       CHECK(velocity == 0.0);
@@ -104,20 +115,35 @@ TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell
     }
 }
 
-TEST_CASE("USF, USL, SZS and USAVG each reproduce a uniform-strain motion", "[mpm]") {
+TEST_CASE("USF, USL, SZS, USAVG and Verlet each reproduce a uniform-strain motion, with either mapping", "[mpm]") {
   // Particles whose every grid node is surrounded by the symmetric particle layout must see
   // the velocity gradient L exactly, so F = dF(dt L) = I + dt L + (dt L)^2 / 2 (USAVG:
-  // dF(dt L / 2)^2), their velocities stay and x moves by dt (v0 + L x).
+  // dF(dt L / 2)^2), their velocities stay and x moves by dt (v0 + L x). Verlet reads the
+  // gradient at the midpoint x + dt/2 (v0 + L x), where the particles' unchanged velocities
+  // have the gradient L (I + dt L / 2)^-1, and moves them by exactly dt (v0 + L x). The
+  // pseudo-inverse mapping fits the linear field exactly at every node, but spreads the
+  // block's edge forces over all of it (M^-1 is not compactly supported), and Verlet's second
+  // kick reads the forces of the new stress on the moved particle lattice, whose quadrature
+  // of int grad N_i is not exact: both change the interior velocities by up to ~1e-7. The
+  // block's edge nodes, half covered, keep their lumped values (mass_matrix.hpp), which the
+  // pseudo-inverse's interior values feel at 1e-13 to 1e-11. Verlet's domains at the
+  // midpoint come from F advanced by dF(dt/2 L) (CPDI2: the corners by dt/2 v), O(dt^2) from
+  // the motion's own: F and x within ~1e-10 and 1e-11.
   const AffineBlock motion;
   const Mat2& L = motion.L;
   for (const Method& m : methods)
-    for (UpdateScheme s : schemes) {
+    for (UpdateScheme s : schemes)
+      for (GridMapping g : mappings) {
+      if (!built(m, s, g)) continue;
       const Particles start = motion.particles(uses_domains(m.method));
-      MPMSolver solver(block_problem(), settings_for(m, s, 64), start);
+      MPMSolver solver(block_problem(), settings_for(m, s, 64, g), start);
       solver.step();
       const double dt = solver.time_step();
       auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
-      const Mat2 F = s == UpdateScheme::usavg ? Mat2(series(0.5 * dt * L) * series(0.5 * dt * L)) : series(dt * L);
+      const Mat2 midpoint = L * Mat2(Mat2::Identity() + 0.5 * dt * L).inverse();
+      const Mat2 F = s == UpdateScheme::usavg    ? Mat2(series(0.5 * dt * L) * series(0.5 * dt * L))
+                     : s == UpdateScheme::verlet ? series(dt * midpoint)
+                                                 : series(dt * L);
       const Particles& P = solver.particles();
       double worst_F = 0.0, worst_v = 0.0, worst_x = 0.0;
       int interior = 0;
@@ -129,18 +155,21 @@ TEST_CASE("USF, USL, SZS and USAVG each reproduce a uniform-strain motion", "[mp
         worst_v = std::max(worst_v, (P.velocity[p] - start.velocity[p]).norm());
         worst_x = std::max(worst_x, (P.position[p] - X - dt * start.velocity[p]).norm());
       }
-      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s));
+      INFO(to_string(m.method) << " degree " << m.degree << " " << to_string(s) << " " << grid_mapping_names().name(g)
+                               << ": F " << worst_F << ", v " << worst_v << ", x " << worst_x);
       CHECK(interior == 2304);
-      CHECK(worst_F <= 1e-13);
-      CHECK(worst_v <= 1e-12);
-      CHECK(worst_x <= 1e-14);
+      const bool exact = g == GridMapping::lumped && s != UpdateScheme::verlet;
+      CHECK(worst_F <= (exact ? 1e-13 : 1e-10));
+      CHECK(worst_v <= (exact ? 1e-12 : 2e-7));
+      CHECK(worst_x <= (exact ? 1e-14 : 1e-11));
     }
 }
 
 TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain area stays J V0", "[mpm]") {
   // The uniform-strain motion above with the one-term update dF = I + dt L, which is what
   // moving the corners by dt v(x_c) does to the domain: interior corners land on
-  // x_c + dt (v0 + L x_c), and the quadrilateral's area is det(I + dt L) V0 = J V0.
+  // x_c + dt (v0 + L x_c), and the quadrilateral's area is det(I + dt L) V0 = J V0 (Verlet
+  // too: the velocity at the midpoint corner is the corner's own, v0 + L x_c).
   const AffineBlock motion;
   const Mat2& L = motion.L;
   const Vec2& v0 = motion.v0;
@@ -150,8 +179,10 @@ TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain ar
     settings.deformation_terms = 1;
     MPMSolver solver(block_problem(), settings, start);
     const double dt = solver.time_step();
-    // USAVG updates F twice by dt / 2, F = (I + dt L / 2)^2, whose J differs from the corners'
-    // det(I + dt L) at O(dt^2): there the area is compared with the affine map's alone.
+    // USAVG updates F twice by dt / 2, F = (I + dt L / 2)^2, and Verlet once by the midpoint's
+    // gradient, F = I + dt L (I + dt L / 2)^-1: J differs from the corners' det(I + dt L) at
+    // O(dt^2), and the area is compared with the affine map's alone.
+    const bool verlet = s == UpdateScheme::verlet;
     solver.step();
     const Particles& P = solver.particles();
     double worst_corner = 0.0, worst_area = 0.0, worst_affine = 0.0;
@@ -164,15 +195,15 @@ TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain ar
         worst_corner = std::max(worst_corner, (P.corners[p][k] - c0[k] - dt * (v0 + L * c0[k])).norm());
       const double area = bilinear_nodes(P.corners[p], P.position[p], "test").volume;
       worst_affine = std::max(worst_affine, std::abs(area - (Mat2::Identity() + dt * L).determinant() * P.volume0[p]) / P.volume0[p]);
-      if (s != UpdateScheme::usavg)
+      if (s != UpdateScheme::usavg && !verlet)
         worst_area = std::max(worst_area, std::abs(area - P.deformation[p].determinant() * P.volume0[p]) / P.volume0[p]);
     }
     INFO(to_string(s) << ": corners " << worst_corner << ", area against J V0 " << worst_area << ", against det(I + dt L) V0 "
                       << worst_affine);
     CHECK(interior == 2304);
-    CHECK(worst_corner <= 1e-14);
+    CHECK(worst_corner <= (verlet ? 1e-11 : 1e-14));
     CHECK(worst_area <= 1e-12);
-    CHECK(worst_affine <= 1e-12);
+    CHECK(worst_affine <= (verlet ? 1e-10 : 1e-12));
   }
 }
 
@@ -207,6 +238,48 @@ TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration
     INFO(to_string(m.method));
     CHECK(rate >= 1.5);
   }
+}
+
+TEST_CASE("velocity Verlet is second order in time, the symplectic Euler schemes first", "[mpm]") {
+  // The vibration problem on 16 cells (quadratic B-splines, lCPDI) to t = T/4 at time steps
+  // 4e-5, 2e-5 and 1e-5 s, each against the same grid at 1.25e-6 s: the RMS difference of
+  // the particle positions. Verlet's drift reads the grid at the midpoint positions, without
+  // which the particles crossing the grid leave a first-order term.
+  const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
+  MPMProblem problem{unit, {{"rubber", v.material(), v.density}}, {rectangle_body("block", unit)},
+                     [v](const Vec2& X, double t) { return v.body_force(X, t); }};
+  problem.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
+  for (const Method& m : {Method{MPMMethod::bspline, 2}, Method{MPMMethod::cpdi, 1}})
+    for (UpdateScheme s : {UpdateScheme::usf, UpdateScheme::verlet}) {
+      const auto positions = [&](double dt) {
+        MPMSettings st = settings_for(m, s, 16);
+        st.particles_per_side = 3;
+        st.end_time = 0.25 * v.period();
+        st.time_step = dt;
+        st.walls = {Wall::slip, Wall::slip, Wall::slip, Wall::slip};
+        MPMSolver solver(problem, st);
+        for (int n = 0; n < solver.steps(); ++n) solver.step();
+        return solver.particles().position;
+      };
+      const std::vector<Vec2> reference = positions(1.25e-6);
+      std::vector<double> difference;
+      for (const double dt : {4e-5, 2e-5, 1e-5}) {
+        const std::vector<Vec2> x = positions(dt);
+        double sum = 0.0;
+        for (std::size_t p = 0; p < x.size(); ++p) sum += (x[p] - reference[p]).squaredNorm();
+        difference.push_back(std::sqrt(sum / x.size()));
+      }
+      const double rate = std::log2(difference[1] / difference[2]);
+      std::cout << fmt::format("{} {}: position differences {:.3e} {:.3e} {:.3e}, rate {:.2f}\n", to_string(m.method),
+                               to_string(s), difference[0], difference[1], difference[2], rate);
+      INFO(to_string(m.method) << " " << to_string(s));
+      if (s == UpdateScheme::verlet) {
+        CHECK(rate >= 1.8);
+        CHECK(std::log2(difference[0] / difference[1]) >= 1.8);
+      } else {
+        CHECK(rate <= 1.3);
+      }
+    }
 }
 
 TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]") {
@@ -258,7 +331,8 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
   // history (every particle the state of F = diag(1.01, 0.99) from the virgin one, then unloaded
   // to F = I). Interior particles see the velocity gradient L exactly, so their state and stress
   // after one step are those of the material-point update of F = dF(dt L) from that history
-  // (USAVG: two updates, at dF(dt L / 2) and at its square).
+  // (USAVG: two updates, at dF(dt L / 2) and at its square; Verlet: of the midpoint gradient
+  // L (I + dt L / 2)^-1, as in the uniform-strain test).
   AffineBlock motion;
   motion.v0 = Vec2::Zero();
   const Mat2& L = motion.L;
@@ -272,6 +346,7 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
   const MPMProblem problem{unit, {{"metal", law, 1000.0}}, {rectangle_body("block", unit)}, {}};
   for (const Method& m : methods)
     for (UpdateScheme s : schemes) {
+      if (!built(m, s, GridMapping::lumped)) continue;
       Particles start = motion.particles(uses_domains(m.method));
       for (MaterialState& state : start.state) state = history;
       MPMSolver solver(problem, settings_for(m, s, 64), start);
@@ -279,7 +354,7 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
       const double dt = solver.time_step();
       auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
       MaterialState state = history;
-      Mat2 f = series(dt * L);
+      Mat2 f = s == UpdateScheme::verlet ? series(dt * L * Mat2(Mat2::Identity() + 0.5 * dt * L).inverse()) : series(dt * L);
       if (s == UpdateScheme::usavg) {
         state = update(law, series(0.5 * dt * L), state, false).state;
         f = series(0.5 * dt * L) * series(0.5 * dt * L);

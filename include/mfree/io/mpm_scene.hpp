@@ -4,7 +4,8 @@
 //
 //   [mpm]         method (classic | ugimp | cpgimp | cpdi | qcpdi | cpdi2 | bspline |
 //                 bspline_cubic | bspline_mls; mpm/particle_basis.hpp),
-//                 update (usf | usl | szs | usavg),
+//                 update (usf | usl | szs | usavg | verlet), mapping (lumped |
+//                 pseudo_inverse: particle data to nodal values, mpm/mass_matrix.hpp),
 //                 box = [[x0, y0], [x1, y1]] (the grid box), cells (across its width; square
 //                 cells, the height a whole number of them),
 //                 particles_per_cell (1, 4, 9, 16, 25; default 4, for bodies stating none),
@@ -44,7 +45,7 @@
 //                 checkpoint_every (steps between checkpoints, io/checkpoint.hpp; 0: none; not in a study),
 //                 probe = [X, Y] (a material point inside a body: u^h there every step,
 //                 mpm/particle_probe.hpp; a study without [exact] compares it between grids)
-//   [study]       for `mfree converge`: cells, methods, updates, particles_per_cell; without
+//   [study]       for `mfree converge`: cells, methods, updates, mappings, particles_per_cell; without
 //                 [exact], the probe's displacement at end_time per grid, its change, observed
 //                 rate and extrapolated value
 //
@@ -71,6 +72,7 @@ struct MPMStudy {
   std::vector<int> cells;
   std::vector<MPMMethodChoice> methods;
   std::vector<UpdateScheme> updates;
+  std::vector<GridMapping> mappings;
   std::vector<int> particles_per_side;
 };
 

@@ -38,6 +38,8 @@ class BSplineAxis {
   [[nodiscard]] int size() const { return cells_ + p_; }  ///< number of functions n
   /// Greville abscissa of N_i.
   [[nodiscard]] double node(int i) const;
+  /// int N_i dx = (xi_{i+p+1} - xi_i) / (p + 1).
+  [[nodiscard]] double integral(int i) const;
 
   /// The p + 1 functions non-zero on the cell holding x: N_{first + k}(x) = value[k] and
   /// their derivatives. x must lie in [lo(), hi()] (the far end belongs to the last cell);

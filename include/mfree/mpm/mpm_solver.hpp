@@ -19,6 +19,22 @@
 //      SZS (MUSL), USAVG: the updated particle momenta extrapolated again (eqs. 31-33), then
 //      the stress update from them (USAVG over dt / 2)
 //
+// These four are symplectic Euler in time: the particle velocity that starts a step acts as
+// the velocity of its middle, so the motion runs dt / 2 ahead of the initial condition and
+// the errors are first order in dt. The velocity Verlet scheme (verlet, kick-drift-kick) is
+// second order: with the forces f_i^n of the stress and body force at t^n,
+//   kick     v_i^{n+1/2} = v_i^n + dt/2 a_i^n,   v_p^{n+1/2} = v_p^n + dt/2 sum_i S_ip a_i^n
+//   drift    x_p^{n+1} = x_p^n + dt sum_i S_ip v_i^{n+1/2}; stress update with v_i^{n+1/2}
+//   kick     v_p^{n+1} = v_p^{n+1/2} + dt/2 sum_i S_ip(x^{n+1}) a_i^{n+1}
+// with a_i = f_i / m_i (or M^-1 f, below). The second kick's weights, masses and forces are
+// those that start the next step, computed once. (Not with bspline_mls or damping.)
+//
+// Nodal values from particle data (mapping, mass_matrix.hpp): lumped, v_i = (mv)_i / m_i and
+// a_i = f_i / m_i, or pseudo_inverse, v = M^-1 (mv) and a = M^-1 f with the consistent mass
+// matrix M, whose walls hold the same components at zero. Its highest frequency is higher,
+// so the Courant limit below is h / c times 0.5 (hats and their averages), 0.35 (quadratic
+// B-splines) or 0.22 (cubic).
+//
 // The stress update (eqs. 34-37): L_p = sum_i (v_i - v_p) G_ip^T (the same as sum v_i G_ip^T,
 // since sum_i G_ip = 0, but exactly zero for a uniform velocity), the incremental deformation
 // gradient dF = sum_{k=0..kmax} (dt L_p)^k / k! (seed 002), F_p <- dF F_p, V_p = J V_p0 and
@@ -47,14 +63,15 @@
 #include "mfree/materials/material.hpp"
 #include "mfree/mpm/body.hpp"
 #include "mfree/mpm/grid_transfer.hpp"
+#include "mfree/mpm/mass_matrix.hpp"
 #include "mfree/mpm/mls_reconstruction.hpp"
 #include "mfree/mpm/particle_basis.hpp"
 #include "mfree/mpm/particles.hpp"
 
 namespace mfree {
 
-enum class UpdateScheme { usf, usl, szs, usavg };
-/// The schemes by name: usf, usl, szs, usavg.
+enum class UpdateScheme { usf, usl, szs, usavg, verlet };
+/// The schemes by name: usf, usl, szs, usavg, verlet.
 const NameTable<UpdateScheme>& update_names();
 std::string_view to_string(UpdateScheme s);
 
@@ -62,6 +79,7 @@ struct MPMSettings {
   MPMMethod method = MPMMethod::bspline;
   int degree = 2;  ///< B-spline degree (2 or 3); the other methods use hats
   UpdateScheme update = UpdateScheme::usf;
+  GridMapping mapping = GridMapping::lumped;  ///< particle data to nodal values (mass_matrix.hpp)
   int cells = 16;                      ///< cells across the grid box's width
   int particles_per_side = 3;          ///< per cell side (9 per cell), for bodies stating none
   double mls_support = 3.0;            ///< bspline_mls: kernel half width in cells
@@ -116,7 +134,8 @@ class MPMSolver {
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] double time_step() const { return dt_; }
   [[nodiscard]] int steps() const { return steps_; }  ///< steps to end_time
-  [[nodiscard]] double courant_limit() const { return h_over_c_; }  ///< h / c
+  /// h / c (times the consistent mass's factor with the pseudo-inverse mapping)
+  [[nodiscard]] double courant_limit() const { return h_over_c_; }
   [[nodiscard]] const Particles& particles() const { return particles_; }
   [[nodiscard]] const Grid& grid() const { return grid_; }
   [[nodiscard]] const ParticleBasis& basis() const { return basis_; }
@@ -150,7 +169,22 @@ class MPMSolver {
   void update_grid_momentum();
   void grid_to_particles();
   void extrapolate_updated_momenta();
+  /// The velocity Verlet step (update = verlet) and its stages.
+  void verlet_step();
+  void scatter_mass();
+  void scatter_momentum();
+  void half_kick_particles();
+  /// The weights at the midpoint x_p + dt/2 sum_i S_ip v_i (domains: F and CPDI2's corners
+  /// advanced alike) in place of those at x_p.
+  void midpoint_weights();
+  /// After the masses are scattered: the mass defect and, for the pseudo-inverse, M.
+  void grid_mass_ready();
+  /// v_i from the grid momenta (either mapping).
   void grid_velocities(const std::vector<Vec2>& momentum);
+  /// a_i from the grid forces (either mapping), walls holding their components.
+  void grid_accelerations();
+  /// v_p += kick sum_i S_ip a_i, x_p += dt sum_i S_ip v_i (eqs. 29-30), CPDI2's corners.
+  void move_particles(double kick);
   /// Nodes with |m_i| below this have no velocity (1e-12 of a particle's mass). The mass may
   /// be negative: qCPDI's corner weights are, and a node that only corners of the body reach
   /// (beyond a body's corner) gets m_i < 0; p_i / m_i is still the particles' velocity there,
@@ -163,8 +197,11 @@ class MPMSolver {
   ParticleBasis basis_;
   Particles particles_;
   std::unique_ptr<MLSReconstruction> mls_;
+  std::unique_ptr<GridMassMatrix> mass_matrix_;  ///< pseudo-inverse mapping only
   std::vector<unsigned char> walls_;
   WeightTable weights_;  ///< at the particles
+  WeightTable midpoint_weights_;                  ///< verlet: the other table of the swap
+  std::vector<DomainCorners> midpoint_corners_;  ///< verlet, cpdi2: the corners at the midpoint
   std::vector<double> mass_;
   std::vector<Vec2> momentum_, force_, velocity_;
   std::vector<Eigen::Vector3d> mass_momentum_;  ///< (m_i, (mv)_i) as scattered
@@ -172,6 +209,7 @@ class MPMSolver {
   std::vector<Vec2> updated_momentum_;          ///< the second extrapolation's (mv)_i
   ScatterBuffers<Eigen::Vector3d> partial3_;
   ScatterBuffers<Vec2> partial2_;
+  ScatterBuffers<double> partial1_;
   std::vector<Vec2> body_;       ///< b_p of the step (zero without a body force)
   std::vector<double> density_;  ///< MLS: rho_p omega_g at the start of the step
   // MLS: the fields the grid integrals need, reconstructed at the Gauss points.
@@ -182,6 +220,7 @@ class MPMSolver {
   std::vector<double> external_work_;  ///< per body
   double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0;
   int steps_ = 0, bodies_ = 0;
+  bool forces_current_ = false;  ///< verlet: weights, masses and forces are those of the particles' state
   StageTimer timer_;
 };
 

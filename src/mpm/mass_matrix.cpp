@@ -1,0 +1,205 @@
+#include "mfree/mpm/mass_matrix.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+
+namespace mfree {
+
+const NameTable<GridMapping>& grid_mapping_names() {
+  static const NameTable<GridMapping> table{{"lumped", GridMapping::lumped}, {"pseudo_inverse", GridMapping::pseudo_inverse}};
+  return table;
+}
+
+GridMassMatrix::GridMassMatrix(const Grid& grid, int radius)
+    : grid_(grid), nodes_(grid.size()), nx_(grid.nx()), radius_(radius), width_(2 * radius + 1) {}
+
+int GridMassMatrix::offset(Index i, Index j) const {
+  const Index dx = j % nx_ - i % nx_, dy = j / nx_ - i / nx_;
+  if (std::abs(dx) > radius_ || std::abs(dy) > radius_) return -1;
+  return static_cast<int>((dx + radius_) + width_ * (dy + radius_));
+}
+
+void GridMassMatrix::assemble(const WeightTable& weights, const std::vector<double>& mass,
+                              const std::vector<double>& volume) {
+  scatter<double>(weights, nodes_, cover_, partial_cover_, [&](Index q) {
+    const double V = volume[q];
+    return [V](double S, const Vec2&) { return S * V; };
+  });
+  for (Index i = 0; i < nodes_; ++i)
+    cover_[i] /= grid_.x_axis().integral(static_cast<int>(i % nx_)) * grid_.y_axis().integral(static_cast<int>(i / nx_));
+  const auto row = static_cast<std::size_t>(width_) * width_;
+  partial_.resize(static_cast<std::size_t>(thread_count()));
+  parallel_ranges(weights.points(), [&](int t, Index begin, Index end) {
+    partial_[t].assign(static_cast<std::size_t>(nodes_) * row, 0.0);
+    double* m = partial_[t].data();
+    // A point's distinct nodes and their weights (the CPDIs list a node once per element
+    // node that reaches it).
+    std::array<Index, 32> node{};
+    std::array<double, 32> S{};
+    for (Index q = begin; q < end; ++q) {
+      int n = 0;
+      weights.for_each(q, [&](Index i, double s, const Vec2&) {
+        if (s == 0.0) return;
+        int k = 0;
+        while (k < n && node[k] != i) ++k;
+        if (k == n) {
+          node[n] = i;
+          S[n++] = 0.0;
+        }
+        S[k] += s;
+      });
+      for (int a = 0; a < n; ++a) {
+        const double ms = mass[q] * S[a];
+        double* r = m + static_cast<std::size_t>(node[a]) * row;
+        for (int b = 0; b < n; ++b) {
+          const int o = offset(node[a], node[b]);
+          if (o < 0)
+            throw NumericalError(fmt::format(
+                "MPM mass matrix: point {} reaches nodes {} and {}, more than {} nodes apart along an axis (its domain "
+                "outgrew the mass matrix's stencil)",
+                q, node[a], node[b], radius_));
+          r[o] += ms * S[b];
+        }
+      }
+    }
+  });
+  values_.resize(static_cast<std::size_t>(nodes_) * row);
+  parallel_ranges(static_cast<Index>(values_.size()), [&](int, Index begin, Index end) {
+    for (Index k = begin; k < end; ++k) {
+      double sum = 0.0;
+      for (const std::vector<double>& p : partial_) sum += p[k];
+      values_[k] = sum;
+    }
+  });
+}
+
+double GridMassMatrix::entry(Index i, Index j) const {
+  const int o = offset(i, j);
+  return o < 0 ? 0.0 : values_[static_cast<std::size_t>(i) * width_ * width_ + o];
+}
+
+double GridMassMatrix::row_sum(Index i) const {
+  const auto row = static_cast<std::size_t>(width_) * width_;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < row; ++k) sum += values_[i * row + k];
+  return sum;
+}
+
+void GridMassMatrix::multiply(const std::vector<Vec2>& x, std::vector<Vec2>& y) const {
+  const Index ny = nodes_ / nx_;
+  const auto row = static_cast<std::size_t>(width_) * width_;
+  y.resize(x.size());
+  parallel_blocks(nodes_, 1024, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) {
+      const Index ix = i % nx_, iy = i / nx_;
+      const Index dx0 = std::max<Index>(-radius_, -ix), dx1 = std::min<Index>(radius_, nx_ - 1 - ix);
+      const Index dy0 = std::max<Index>(-radius_, -iy), dy1 = std::min<Index>(radius_, ny - 1 - iy);
+      const double* r = values_.data() + i * row;
+      Vec2 sum = Vec2::Zero();
+      for (Index dy = dy0; dy <= dy1; ++dy)
+        for (Index dx = dx0; dx <= dx1; ++dx)
+          sum += r[(dx + radius_) + width_ * (dy + radius_)] * x[i + dx + nx_ * dy];
+      y[i] = sum;
+    }
+  });
+}
+
+std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::vector<double>& lumped,
+                                        const std::vector<unsigned char>& held, double floor) const {
+  const auto n = static_cast<std::size_t>(nodes_);
+  const auto row = static_cast<std::size_t>(width_) * width_;
+  const std::size_t centre = static_cast<std::size_t>(radius_) * (width_ + 1);
+  // known[i]: the components of node i with a value (bit 0: x, bit 1: y); free[i]: those
+  // of them the system determines, the others keep their lumped value.
+  std::vector<unsigned char> known(n), free(n);
+  std::vector<double> diagonal(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    known[i] = std::abs(lumped[i]) > floor ? static_cast<unsigned char>(~held[i] & 3) : 0;
+    free[i] = cover_[i] >= 0.2 ? known[i] : 0;
+    diagonal[i] = values_[i * row + centre];
+  }
+  const auto masked = [&](std::size_t i, const Vec2& v) {
+    return Vec2((free[i] & 1) ? v.x() : 0.0, (free[i] & 2) ? v.y() : 0.0);
+  };
+  // Start from the lumped values: exact where the particles move rigidly.
+  std::vector<Vec2> u(n), r(n), z(n), p(n), Mp(n);
+  double qq = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 v = q[i] / lumped[i];
+    u[i] = Vec2((known[i] & 1) ? v.x() : 0.0, (known[i] & 2) ? v.y() : 0.0);
+    qq += masked(i, q[i]).squaredNorm();
+  }
+  iterations_ = 0;
+  if (qq == 0.0) return u;  // nothing to solve for: the lumped values (zero where q is)
+  const double tolerance = 1e-26 * qq;  // |r|^2
+  multiply(u, Mp);
+  double rz = 0.0, rr = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    r[i] = masked(i, q[i] - Mp[i]);
+    z[i] = r[i] / diagonal[i];
+    z[i] = masked(i, z[i]);
+    p[i] = z[i];
+    rz += r[i].dot(z[i]);
+    rr += r[i].squaredNorm();
+  }
+  const int limit = 2000;
+  while (rr > tolerance) {
+    if (iterations_ == limit)
+      throw NumericalError(fmt::format(
+          "MPM pseudo-inverse mapping: conjugate gradients on the mass matrix did not converge in {} iterations "
+          "(residual {:.3g} of the right-hand side): too few particles determine some nodes (the pseudo-inverse needs "
+          "at least two particles per cell and direction); use mapping = \"lumped\"",
+          limit, std::sqrt(rr / qq)));
+    ++iterations_;
+    multiply(p, Mp);
+    double pMp = 0.0;
+    for (std::size_t i = 0; i < n; ++i) pMp += p[i].dot(masked(i, Mp[i]));
+    if (!(pMp > 0.0))
+      throw NumericalError(
+          "MPM pseudo-inverse mapping: the mass matrix is singular on the nodes the particles reach (too few particles "
+          "to determine them: the pseudo-inverse needs at least two particles per cell and direction); use mapping = "
+          "\"lumped\"");
+    const double alpha = rz / pMp;
+    double rz_next = 0.0;
+    rr = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] += alpha * p[i];
+      r[i] -= alpha * masked(i, Mp[i]);
+      z[i] = masked(i, r[i] / diagonal[i]);
+      rz_next += r[i].dot(z[i]);
+      rr += r[i].squaredNorm();
+    }
+    const double beta = rz_next / rz;
+    rz = rz_next;
+    for (std::size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+  }
+  // Ill-determined rows show as values far outside the data's: the iteration fitted
+  // round-off (or a near-null space) instead of particle data.
+  double largest = 0.0, data = 0.0;
+  std::size_t worst = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!known[i]) continue;
+    data = std::max(data, (q[i] / lumped[i]).cwiseAbs().maxCoeff());
+    if (u[i].cwiseAbs().maxCoeff() > largest) {
+      largest = u[i].cwiseAbs().maxCoeff();
+      worst = i;
+    }
+  }
+  if (largest > 100.0 * data) {
+    const Vec2 x = grid_.node(static_cast<Index>(worst));
+    throw NumericalError(fmt::format(
+        "MPM pseudo-inverse mapping: the particles do not determine the nodal values near ({:.6g}, {:.6g}) (a nodal "
+        "value {:.3g} times the largest of the particle data's lumped values): the mass matrix is (nearly) singular "
+        "there, as where a body's edge leaves fewer than two particles per cell and direction; use mapping = "
+        "\"lumped\"",
+        x.x(), x.y(), largest / data));
+  }
+  return u;
+}
+
+}  // namespace mfree

@@ -1,0 +1,150 @@
+// The two particle-to-grid mappings of seed 004 (mpm/mass_matrix.hpp), on a strip one cell
+// tall with fields of x alone and CPDI weights (the seed's figures): option 1 (lumped) and
+// option 2 (the pseudo-inverse of the particle-by-node matrix) for constant and linear fields
+// at 1, 2 and 4 particles per cell along x, and the sign and support of their particle basis
+// functions. The library's mass-matrix solve is checked against the Moore-Penrose
+// pseudo-inverse formed densely here.
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "mfree/mpm/mass_matrix.hpp"
+#include "mfree/mpm/particle_basis.hpp"
+
+using namespace mfree;
+
+namespace {
+
+/// 8 cells of h = 1/8 along x, one cell tall; per_cell particles per cell along x, 2 along y
+/// (so that y is determined and the fields depend on x alone), equal masses.
+struct Strip {
+  explicit Strip(int per_cell)
+      : grid(Box{Vec2(0.0, 0.0), Vec2(1.0, 0.125)}, 8, 1, grid_padding(MPMMethod::cpdi)),
+        basis(MPMMethod::cpdi, grid),
+        mass_matrix(grid, 3) {
+    const double h = 0.125;
+    for (int c = 0; c < 8; ++c)
+      for (int a = 0; a < per_cell; ++a)
+        for (int b = 0; b < 2; ++b) {
+          P.position.emplace_back(h * (c + (a + 0.5) / per_cell), h * (b + 0.5) / 2);
+          P.deformation.push_back(Mat2::Identity());
+          P.half_size.emplace_back(h / (2 * per_cell), h / 4);
+          P.mass.push_back(1.0);
+          P.volume.push_back(h * h / (2 * per_cell));
+        }
+    basis.resize(weights, P.size());
+    for (Index p = 0; p < P.size(); ++p) basis.evaluate(P, p, weights, p);
+    S = Eigen::MatrixXd::Zero(P.size(), grid.size());
+    for (Index p = 0; p < P.size(); ++p) weights.for_each(p, [&](Index i, double s, const Vec2&) { S(p, i) += s; });
+    const Eigen::VectorXd column_sums = S.colwise().sum().transpose();  // the lumped masses (m_p = 1)
+    lumped.assign(column_sums.data(), column_sums.data() + column_sums.size());
+    mass_matrix.assemble(weights, P.mass, P.volume);
+  }
+
+  /// Option 1: u_i = sum_p S_ip u_p / sum_p S_ip (zero on nodes no particle reaches).
+  [[nodiscard]] Eigen::VectorXd option1(const Eigen::VectorXd& u) const {
+    Eigen::VectorXd out = S.transpose() * u;
+    for (Index i = 0; i < out.size(); ++i) out[i] = lumped[i] > 0.0 ? out[i] / lumped[i] : 0.0;
+    return out;
+  }
+  /// Option 2 by definition: the Moore-Penrose pseudo-inverse of S applied to u.
+  [[nodiscard]] Eigen::VectorXd option2(const Eigen::VectorXd& u) const {
+    return S.completeOrthogonalDecomposition().pseudoInverse() * u;
+  }
+  /// Option 2 as the solver maps: M u = S^T u by the library's solve.
+  [[nodiscard]] Eigen::VectorXd option2_solved(const Eigen::VectorXd& u) const {
+    const Eigen::VectorXd q = S.transpose() * u;
+    std::vector<Vec2> qv(static_cast<std::size_t>(grid.size()));
+    for (Index i = 0; i < grid.size(); ++i) qv[i] = Vec2(q[i], 0.0);
+    const std::vector<Vec2> v = mass_matrix.solve(qv, lumped, std::vector<unsigned char>(qv.size(), 0), 1e-12);
+    Eigen::VectorXd out(grid.size());
+    for (Index i = 0; i < grid.size(); ++i) out[i] = v[i].x();
+    return out;
+  }
+  /// f at the particles.
+  template <class F>
+  [[nodiscard]] Eigen::VectorXd at_particles(F&& f) const {
+    Eigen::VectorXd u(P.size());
+    for (Index p = 0; p < P.size(); ++p) u[p] = f(P.position[p].x());
+    return u;
+  }
+  /// Largest |u_i - f(x_i)| over the nodes the particles reach (interior: only those with
+  /// 0 < x_i < 1).
+  template <class F>
+  [[nodiscard]] double nodal_error(const Eigen::VectorXd& u, F&& f, bool interior) const {
+    double worst = 0.0;
+    for (Index i = 0; i < grid.size(); ++i) {
+      const double x = grid.node(i).x();
+      if (lumped[i] <= 0.0 || (interior && (x < 1e-9 || x > 1.0 - 1e-9))) continue;
+      worst = std::max(worst, std::abs(u[i] - f(x)));
+    }
+    return worst;
+  }
+
+  Grid grid;
+  ParticleBasis basis;
+  Particles P;
+  WeightTable weights;
+  Eigen::MatrixXd S;  ///< particles x nodes
+  std::vector<double> lumped;
+  GridMassMatrix mass_matrix;
+};
+
+const auto one = [](double) { return 1.0; };
+const auto line = [](double x) { return x; };
+
+}  // namespace
+
+TEST_CASE("seed 004's mappings: constant and linear fields at 1, 2 and 4 particles per cell", "[mpm][mapping]") {
+  for (int per_cell : {1, 2, 4}) {
+    const Strip s(per_cell);
+    INFO(per_cell << " particles per cell along x");
+    // Option 1 carries a constant exactly at any density, and a linear field at every node
+    // the particles surround symmetrically, but not at the ends (the nodal value there is the
+    // mean over the particles on one side).
+    CHECK(s.nodal_error(s.option1(s.at_particles(one)), one, false) <= 1e-14);
+    CHECK(s.nodal_error(s.option1(s.at_particles(line)), line, true) <= 1e-14);
+    CHECK(s.nodal_error(s.option1(s.at_particles(line)), line, false) >= 0.01);
+    const Eigen::VectorXd constant = s.option2(s.at_particles(one)), linear = s.option2(s.at_particles(line));
+    if (per_cell == 1) {
+      // One particle per cell: fewer particles than nodes, the fit interpolates the particle
+      // values but the nodes wiggle about both fields (the null space of S).
+      CHECK((s.S * linear - s.at_particles(line)).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK(s.nodal_error(constant, one, false) >= 0.01);
+      CHECK(s.nodal_error(linear, line, false) >= 0.01);
+    } else {
+      // Two or more: both fields exactly, the ends included.
+      CHECK(s.nodal_error(constant, one, false) <= 1e-12);
+      CHECK(s.nodal_error(linear, line, false) <= 1e-12);
+      // The solver's mass-matrix solve is that pseudo-inverse.
+      CHECK((s.option2_solved(s.at_particles(line)) - linear).cwiseAbs().maxCoeff() <= 1e-11);
+      const Eigen::VectorXd wave = s.at_particles([](double x) { return std::sin(5.0 * x) + x * x; });
+      CHECK((s.option2_solved(wave) - s.option2(wave)).cwiseAbs().maxCoeff() <= 1e-11);
+    }
+  }
+}
+
+TEST_CASE("seed 004's particle basis: option 1 non-negative and compact, option 2 neither", "[mpm][mapping]") {
+  // The particle basis function of particle p: the nodal values of the field that is 1 at p
+  // and 0 at every other particle. Particle p sits in the middle cell.
+  for (int per_cell : {2, 4}) {
+    const Strip s(per_cell);
+    const Index p = 2 * per_cell * 4;  // the first particle of cell 4
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(s.P.size());
+    u[p] = 1.0;
+    const Eigen::VectorXd psi1 = s.option1(u), psi2 = s.option2(u);
+    double far1 = 0.0, far2 = 0.0;  // largest |psi| at nodes two cells or more from p's domain
+    for (Index i = 0; i < s.grid.size(); ++i) {
+      if (std::abs(s.grid.node(i).x() - s.P.position[p].x()) < 2.0 * 0.125) continue;
+      far1 = std::max(far1, std::abs(psi1[i]));
+      far2 = std::max(far2, std::abs(psi2[i]));
+    }
+    INFO(per_cell << " particles per cell along x: option 2's largest far value " << far2 << ", smallest "
+                  << psi2.minCoeff());
+    CHECK(psi1.minCoeff() >= 0.0);
+    CHECK(far1 == 0.0);
+    CHECK(psi2.minCoeff() < -0.01 * psi2.maxCoeff());
+    CHECK(far2 > 1e-4 * psi2.maxCoeff());
+  }
+}
