@@ -159,21 +159,25 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   double c = 0.0;
   for (const MPMMaterial& m : problem_.materials) c = std::max(c, wave_speed(m.law, m.density));
   h_over_c_ = grid_.spacing() / c;
+  const double wave = c;
+  std::string limit = "h / c";
   if (settings_.mapping == GridMapping::pseudo_inverse) {
-    h_over_c_ *= consistent_mass_courant(settings_.method, settings_.degree);
+    const double factor = consistent_mass_courant(settings_.method, settings_.degree);
+    h_over_c_ *= factor;
+    limit = fmt::format("{} h / c (the pseudo-inverse mapping's consistent mass)", factor);
     mass_matrix_ = std::make_unique<GridMassMatrix>(grid_, mass_matrix_radius(settings_.method, settings_.degree));
   }
   const bool allowed = settings_.allow_unstable_time_step;
   if (settings_.courant > 1.0 && !allowed)
     throw InputError(fmt::format(
-        "MPM: Courant factor {} is above 1: the explicit step would exceed h / c = {:.4g} s (h = {:.4g}, c = {:.4g} m/s); "
+        "MPM: Courant factor {} is above 1: the explicit step would exceed {} = {:.4g} s (h = {:.4g}, c = {:.4g} m/s); "
         "use courant <= 1 or set allow_unstable_time_step = true",
-        settings_.courant, h_over_c_, grid_.spacing(), grid_.spacing() / h_over_c_));
+        settings_.courant, limit, h_over_c_, grid_.spacing(), wave));
   if (settings_.time_step && *settings_.time_step > h_over_c_ && !allowed)
     throw InputError(fmt::format(
-        "MPM: time_step {:.4g} s is above the Courant limit h / c = {:.4g} s (h = {:.4g}, c = {:.4g} m/s, Courant number "
+        "MPM: time_step {:.4g} s is above the Courant limit {} = {:.4g} s (h = {:.4g}, c = {:.4g} m/s, Courant number "
         "{:.3g}); use a smaller time_step or set allow_unstable_time_step = true",
-        *settings_.time_step, h_over_c_, grid_.spacing(), grid_.spacing() / h_over_c_, *settings_.time_step / h_over_c_));
+        *settings_.time_step, limit, h_over_c_, grid_.spacing(), wave, *settings_.time_step / h_over_c_));
   double dt = settings_.courant * h_over_c_;
   if (settings_.time_step) dt = std::min(dt, *settings_.time_step);
   steps_ = step_count(settings_.end_time, dt, "MPM");

@@ -282,6 +282,26 @@ TEST_CASE("velocity Verlet is second order in time, the symplectic Euler schemes
     }
 }
 
+TEST_CASE("the pseudo-inverse mapping stops a run whose particles do not determine the nodes", "[mpm]") {
+  // One particle per cell (seed 004: the pseudo-inverse needs two per cell and direction):
+  // with hats, the particle-by-node matrix has more columns than rows, and the nodal values
+  // are not determined. The lumped mapping runs the same particles.
+  const Box block{Vec2(0.25, 0.25), Vec2(0.75, 0.75)};
+  for (GridMapping g : mappings) {
+    Particles particles = fill_box(block, 0.125, 1, 1000.0, false);
+    for (Index p = 0; p < particles.size(); ++p)
+      particles.velocity[p] = Vec2(std::sin(7.0 * particles.position[p].y()), std::cos(5.0 * particles.position[p].x()));
+    MPMSolver solver(block_problem(), settings_for({MPMMethod::classic, 1}, UpdateScheme::usf, 8, g), std::move(particles));
+    if (g == GridMapping::lumped) {
+      for (int n = 0; n < 10; ++n) solver.step();
+      CHECK(solver.time() > 0.0);
+    } else {
+      CHECK_THROWS_WITH(solver.step(), Catch::Contains("pseudo-inverse mapping") && Catch::Contains("use mapping = \"lumped\"") &&
+                                           Catch::Contains("at t = "));
+    }
+  }
+}
+
 TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]") {
   MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 16);
   const double limit = (1.0 / 16.0) / wave_speed(block_problem().materials.front().law, 1000.0);
@@ -298,6 +318,15 @@ TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]
   s.courant = 0.5;
   s.time_step = 1e-5;
   CHECK(MPMSolver(block_problem(), s).time_step() <= 1e-5);
+  // The consistent mass of the pseudo-inverse mapping lowers the limit (quadratic B-splines:
+  // 0.35 h / c), and the message says so.
+  s.allow_unstable_time_step = false;
+  s.mapping = GridMapping::pseudo_inverse;
+  s.time_step = 0.5 * limit;
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(block_problem(), s); }),
+             Catch::Contains("above the Courant limit") && Catch::Contains("pseudo-inverse"));
+  s.time_step.reset();
+  CHECK(MPMSolver(block_problem(), s).courant_limit() == Approx(0.35 * limit).epsilon(1e-12));
 }
 
 TEST_CASE("a blown-up motion and an inverted particle stop the run with what happened, never a NaN position", "[mpm]") {
