@@ -44,13 +44,8 @@ const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
   if (s.deformation_terms < 1 || s.deformation_terms > 10)
     throw InputError(fmt::format("MPM: deformation_terms (kmax) must lie in [1, 10] (got {})", s.deformation_terms));
   if (!(s.courant > 0.0)) throw InputError(fmt::format("MPM: the Courant factor must be positive (got {})", s.courant));
-  if (s.update == UpdateScheme::verlet && s.method == MPMMethod::bspline_mls)
-    throw InputError("MPM: the verlet update is not built for bspline_mls; use usf, usl, szs or usavg");
   if (s.update == UpdateScheme::verlet && s.damping > 0.0)
     throw InputError("MPM: the verlet update takes no damping; use usf, usl, szs or usavg with damping");
-  if (s.method == MPMMethod::bspline_mls && s.mapping != GridMapping::lumped)
-    throw InputError("MPM: bspline_mls maps the reconstructed fields with the lumped mass; the pseudo-inverse mapping is "
-                     "for the other methods");
   if (s.method == MPMMethod::bspline_mls && !(s.mls_support >= 1.0))
     throw InputError(fmt::format("MPM: mls_support must be at least one cell (got {})", s.mls_support));
   return s;
@@ -232,6 +227,7 @@ void MPMSolver::verlet_step() {
   // computed them.
   if (!forces_current_) {
     timer_.time("weights", [&] { compute_weights(); });
+    if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
     timer_.time("particles to grid", [&] { scatter_mass(); });
     timer_.time("grid forces", [&] { compute_grid_forces(); });
     timer_.time("grid momentum", [&] { grid_accelerations(); });
@@ -247,6 +243,7 @@ void MPMSolver::verlet_step() {
   timer_.time("stress update", [&] { update_stress(dt_); });
   time_ += dt_;
   timer_.time("weights", [&] { compute_weights(); });
+  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
   timer_.time("particles to grid", [&] { scatter_mass(); });
   timer_.time("grid forces", [&] { compute_grid_forces(); });
   timer_.time("grid momentum", [&] { grid_accelerations(); });
@@ -272,13 +269,7 @@ void MPMSolver::update_mls_functions() {
 void MPMSolver::particles_to_grid() {
   const Particles& P = particles_;
   if (mls_) {  // eqs. (18), (19), (22), (23)
-    // rho_p^t: the densities of the step's start serve every reconstruction of the step.
-    const double w = mls_->gauss_weight();
-    density_.resize(P.mass.size());
-    for (Index p = 0; p < P.size(); ++p) density_[p] = w * P.mass[p] / P.volume[p];
-    mls_->reconstruct<Eigen::Vector3d>(gauss_mass_momentum_, [&](Index p) {
-      return Eigen::Vector3d(density_[p], density_[p] * P.velocity[p].x(), density_[p] * P.velocity[p].y());
-    });
+    reconstruct_density();
     scatter<Eigen::Vector3d>(mls_->grid_weights(), grid_.size(), mass_momentum_, partial3_, [&](Index g) {
       const Eigen::Vector3d& at = gauss_mass_momentum_[g];
       return [&at](double S, const Vec2&) { return Eigen::Vector3d(S * at); };
@@ -300,29 +291,78 @@ void MPMSolver::particles_to_grid() {
   grid_velocities(momentum_);
 }
 
+void MPMSolver::reconstruct_density() {
+  const Particles& P = particles_;
+  // rho_p^t: the densities of the step's start serve every reconstruction of the step.
+  const double w = mls_->gauss_weight();
+  density_.resize(P.mass.size());
+  for (Index p = 0; p < P.size(); ++p) density_[p] = w * P.mass[p] / P.volume[p];
+  mls_->reconstruct<Eigen::Vector3d>(gauss_mass_momentum_, [&](Index p) {
+    return Eigen::Vector3d(density_[p], density_[p] * P.velocity[p].x(), density_[p] * P.velocity[p].y());
+  });
+  // The reconstruction reproduces 1, x, y but does not conserve mass: the reconstructed
+  // densities are scaled so that the Gauss points carry the particles' mass, sum_g rho_g
+  // omega_g = sum_p m_p, and every field reconstructed with them this step by the same
+  // factor (rho v, rho b), after the reconstruction, so that a uniform velocity stays exact.
+  double reconstructed = 0.0;
+  for (const Eigen::Vector3d& g : gauss_mass_momentum_) reconstructed += g[0];
+  density_scale_ = particle_mass_ / reconstructed;
+  reconstruction_defect_ = std::abs(reconstructed - particle_mass_) / particle_mass_;
+  for (Eigen::Vector3d& g : gauss_mass_momentum_) g *= density_scale_;
+}
+
 void MPMSolver::scatter_mass() {
   const Particles& P = particles_;
-  scatter<double>(weights_, grid_.size(), mass_, partial1_, [&](Index p) {
-    const double m = P.mass[p];
-    return [m](double S, const Vec2&) { return S * m; };
-  });
+  if (mls_) {
+    reconstruct_density();
+    scatter<double>(mls_->grid_weights(), grid_.size(), mass_, partial1_, [&](Index g) {
+      const double m = gauss_mass_momentum_[g][0];
+      return [m](double S, const Vec2&) { return S * m; };
+    });
+  } else {
+    scatter<double>(weights_, grid_.size(), mass_, partial1_, [&](Index p) {
+      const double m = P.mass[p];
+      return [m](double S, const Vec2&) { return S * m; };
+    });
+  }
   grid_mass_ready();
 }
 
 void MPMSolver::scatter_momentum() {
-  const Particles& P = particles_;
-  scatter<Vec2>(weights_, grid_.size(), momentum_, partial2_, [&](Index p) {
-    const Vec2 mv = P.mass[p] * P.velocity[p];
-    return [mv](double S, const Vec2&) { return Vec2(S * mv); };
-  });
+  momenta_to_grid(momentum_);
   grid_velocities(momentum_);
+}
+
+void MPMSolver::momenta_to_grid(std::vector<Vec2>& grid) {
+  const Particles& P = particles_;
+  if (mls_) {  // eqs. (31)-(33)
+    mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
+    for (Vec2& g : gauss_momentum_) g *= density_scale_;
+    scatter<Vec2>(mls_->grid_weights(), grid_.size(), grid, partial2_, [&](Index g) {
+      const Vec2& at = gauss_momentum_[g];
+      return [&at](double S, const Vec2&) { return Vec2(S * at); };
+    });
+  } else {
+    scatter<Vec2>(weights_, grid_.size(), grid, partial2_, [&](Index p) {
+      const Vec2 mv = P.mass[p] * P.velocity[p];
+      return [mv](double S, const Vec2&) { return Vec2(S * mv); };
+    });
+  }
 }
 
 void MPMSolver::grid_mass_ready() {
   double grid_total = 0.0;
   for (const double m : mass_) grid_total += m;
   mass_defect_ = std::abs(grid_total - particle_mass_) / particle_mass_;
-  if (mass_matrix_) mass_matrix_->assemble(weights_, particles_.mass, particles_.volume);
+  if (!mass_matrix_) return;
+  if (mls_) {  // M_ij = sum_g rho_g omega_g N_i(x_g) N_j(x_g)
+    gauss_mass_.resize(gauss_mass_momentum_.size());
+    for (std::size_t g = 0; g < gauss_mass_.size(); ++g) gauss_mass_[g] = gauss_mass_momentum_[g][0];
+    gauss_volume_.assign(gauss_mass_.size(), mls_->gauss_weight());
+    mass_matrix_->assemble(mls_->grid_weights(), gauss_mass_, gauss_volume_);
+  } else {
+    mass_matrix_->assemble(weights_, particles_.mass, particles_.volume);
+  }
 }
 
 void MPMSolver::grid_velocities(const std::vector<Vec2>& momentum) {
@@ -410,6 +450,7 @@ void MPMSolver::compute_grid_forces() {
       at << density_[p] * body_[p], w * P.stress[p];
       return at;
     });
+    for (Eigen::Matrix<double, 2, 3>& g : gauss_forces_) g.col(0) *= density_scale_;
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), force_, partial2_, [&](Index g) {
       const Eigen::Matrix<double, 2, 3>& at = gauss_forces_[g];
       return [&at](double S, const Vec2& G) { return Vec2(S * at.col(0) - at.rightCols<2>() * G); };
@@ -472,6 +513,7 @@ void MPMSolver::midpoint_weights() {
                        settings_.method == MPMMethod::qcpdi;
   const bool corners = settings_.method == MPMMethod::cpdi2;
   if (corners) midpoint_corners_.resize(P.corners.size());
+  midpoint_positions_.resize(P.position.size());
   basis_.resize(midpoint_weights_, P.size());
   at_time(time_, [&] {
     parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
@@ -479,6 +521,7 @@ void MPMSolver::midpoint_weights() {
         Vec2 v = Vec2::Zero();
         weights_.for_each(p, [&](Index i, double S, const Vec2&) { v += S * velocity[i]; });
         const Vec2 x = P.position[p] + 0.5 * dt_ * v;
+        midpoint_positions_[p] = x;
         if (corners) {
           for (int k = 0; k < 4; ++k)
             midpoint_corners_[p][k] = P.corners[p][k] + 0.5 * dt_ * basis_.hat_interpolate(P.corners[p][k], velocity_);
@@ -496,6 +539,7 @@ void MPMSolver::midpoint_weights() {
     });
   });
   std::swap(weights_, midpoint_weights_);
+  if (mls_) at_time(time_, [&] { mls_->update(midpoint_positions_); });
 }
 
 void MPMSolver::half_kick_particles() {
@@ -547,19 +591,7 @@ void MPMSolver::move_particles(double kick) {
 }
 
 void MPMSolver::extrapolate_updated_momenta() {
-  const Particles& P = particles_;
-  if (mls_) {  // eqs. (31)-(33)
-    mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
-    scatter<Vec2>(mls_->grid_weights(), grid_.size(), updated_momentum_, partial2_, [&](Index g) {
-      const Vec2& at = gauss_momentum_[g];
-      return [&at](double S, const Vec2&) { return Vec2(S * at); };
-    });
-  } else {
-    scatter<Vec2>(weights_, grid_.size(), updated_momentum_, partial2_, [&](Index p) {
-      const Vec2 at = P.mass[p] * P.velocity[p];
-      return [at](double S, const Vec2&) { return Vec2(S * at); };
-    });
-  }
+  momenta_to_grid(updated_momentum_);
   grid_velocities(updated_momentum_);
 }
 

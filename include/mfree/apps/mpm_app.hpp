@@ -33,6 +33,7 @@ struct MPMRun {
   std::vector<MPMEnergy> energy;       ///< every energy_every steps (and t = 0)
   std::vector<std::pair<double, Vec2>> probe;  ///< (t, u^h at the scene's probe) every step
   double max_mass_defect = 0.0;
+  double max_reconstruction_defect = 0.0;  ///< bspline_mls, before its correction (MPMSolver)
   std::optional<std::string> failure;  ///< what stopped the run early
   std::string particle_table;          ///< particles.csv of the end state (when the scene asks)
   StageTimer timer;

@@ -11,8 +11,9 @@
 //
 // The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
 // particle (cells the bodies leave empty have none), each with weight h^2 / 4 (omega_g),
-// and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces 1, x and y but does not conserve
-// mass (SPEC section 7); the solver reports the grid mass against the particles'.
+// and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces
+// 1, x and y but does not conserve mass (SPEC section 7): the solver scales the reconstructed
+// densities to the particles' mass each step and reports the defect it removed.
 
 #include <vector>
 

@@ -27,7 +27,8 @@
 //   drift    x_p^{n+1} = x_p^n + dt sum_i S_ip v_i^{n+1/2}; stress update with v_i^{n+1/2}
 //   kick     v_p^{n+1} = v_p^{n+1/2} + dt/2 sum_i S_ip(x^{n+1}) a_i^{n+1}
 // with a_i = f_i / m_i (or M^-1 f, below). The second kick's weights, masses and forces are
-// those that start the next step, computed once. (Not with bspline_mls or damping.)
+// those that start the next step, computed once; bspline_mls reconstructs at the midpoint
+// from the MLS functions of the midpoint positions. (Not with damping.)
 //
 // Nodal values from particle data (mapping, mass_matrix.hpp): lumped, v_i = (mv)_i / m_i and
 // a_i = f_i / m_i, or pseudo_inverse, v = M^-1 (mv) and a = M^-1 f with the consistent mass
@@ -145,8 +146,11 @@ class MPMSolver {
   [[nodiscard]] const std::vector<Vec2>& grid_velocity() const { return velocity_; }
   /// sum_i S_ip(x) v_i at the particles' current positions (the grid velocity seen by them).
   [[nodiscard]] std::vector<Vec2> interpolated_grid_velocity() const;
-  /// |sum_i m_i - sum_p m_p| / sum_p m_p of the last step (0 to round-off unless MLS).
+  /// |sum_i m_i - sum_p m_p| / sum_p m_p of the last step (0 to round-off, MLS too).
   [[nodiscard]] double mass_defect() const { return mass_defect_; }
+  /// bspline_mls: |sum_g rho_g omega_g - sum_p m_p| / sum_p m_p of the reconstruction in the
+  /// last step, before the densities are scaled to remove it (0 for the other methods).
+  [[nodiscard]] double reconstruction_defect() const { return reconstruction_defect_; }
   [[nodiscard]] MPMEnergy energy() const;
   [[nodiscard]] int bodies() const { return bodies_; }  ///< bodies the particles belong to
   /// Work of the body forces per body so far [J per unit thickness] (BodyEnergy::external).
@@ -173,6 +177,10 @@ class MPMSolver {
   void verlet_step();
   void scatter_mass();
   void scatter_momentum();
+  /// bspline_mls: rho omega and rho v omega at the Gauss points, scaled to the particles' mass.
+  void reconstruct_density();
+  /// (mv)_i of the particles' velocities, through the Gauss points for bspline_mls.
+  void momenta_to_grid(std::vector<Vec2>& grid);
   void half_kick_particles();
   /// The weights at the midpoint x_p + dt/2 sum_i S_ip v_i (domains: F and CPDI2's corners
   /// advanced alike) in place of those at x_p.
@@ -202,6 +210,7 @@ class MPMSolver {
   WeightTable weights_;  ///< at the particles
   WeightTable midpoint_weights_;                  ///< verlet: the other table of the swap
   std::vector<DomainCorners> midpoint_corners_;  ///< verlet, cpdi2: the corners at the midpoint
+  std::vector<Vec2> midpoint_positions_;         ///< verlet: x_p + dt/2 sum_i S_ip v_i
   std::vector<double> mass_;
   std::vector<Vec2> momentum_, force_, velocity_;
   std::vector<Eigen::Vector3d> mass_momentum_;  ///< (m_i, (mv)_i) as scattered
@@ -215,10 +224,12 @@ class MPMSolver {
   // MLS: the fields the grid integrals need, reconstructed at the Gauss points.
   std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) omega_g
   std::vector<Vec2> gauss_momentum_;                     ///< rho v omega_g of the updated velocities
+  std::vector<double> gauss_mass_, gauss_volume_;        ///< pseudo-inverse: rho omega_g and omega_g
   std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b omega_g | sigma omega_g]
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   std::vector<double> external_work_;  ///< per body
-  double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0;
+  double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, reconstruction_defect_ = 0.0;
+  double density_scale_ = 1.0;  ///< MLS: sum_p m_p / sum_g rho_g omega_g of the step
   int steps_ = 0, bodies_ = 0;
   bool forces_current_ = false;  ///< verlet: weights, masses and forces are those of the particles' state
   StageTimer timer_;
