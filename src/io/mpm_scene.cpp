@@ -192,6 +192,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
     if (t.has("mls_support") && s.method != MPMMethod::bspline_mls) t.error("mls_support", "only bspline_mls reconstructs");
+    s.mls_basis = read_choice_or(t, "mls_basis", order_names(), s.mls_basis);
+    if (t.has("mls_basis") && s.method != MPMMethod::bspline_mls) t.error("mls_basis", "only bspline_mls reconstructs");
     s.deformation_terms = static_cast<int>(t.integer_or("deformation_terms", 2, 1, 10));
     s.walls = read_walls(t);
     s.damping = t.number_or("damping", 0.0, 0.0, 1e300);

@@ -6,10 +6,10 @@
 
 namespace mfree {
 
-MLSReconstruction::MLSReconstruction(const Grid& grid, const ParticleBasis& basis, double support)
+MLSReconstruction::MLSReconstruction(const Grid& grid, const ParticleBasis& basis, RKOrder order, double support)
     : grid_(grid), basis_(basis) {
   omega_ = 0.25 * grid.spacing() * grid.spacing();
-  settings_.order = RKOrder::linear;
+  settings_.order = order;
   settings_.window = Window::quadratic_spline;
   settings_.support = SupportShape::tensor;
   settings_.radius = support * grid.spacing();

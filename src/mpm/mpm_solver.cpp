@@ -147,7 +147,7 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   for (double m : particles_.mass) particle_mass_ += m;
   body_.assign(particles_.mass.size(), Vec2::Zero());
   if (settings_.method == MPMMethod::bspline_mls)
-    mls_ = std::make_unique<MLSReconstruction>(grid_, basis_, settings_.mls_support);
+    mls_ = std::make_unique<MLSReconstruction>(grid_, basis_, settings_.mls_basis, settings_.mls_support);
 
   // Time step (seed 002, "Theory: MPM Time Step"): dt = C h / c with C < 1, or a fixed step,
   // whichever is smaller; c the fastest of the materials' wave speeds.

@@ -207,12 +207,14 @@ TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain ar
 namespace {
 
 /// RMS displacement error at t = T/4, where u peaks, of the vibration problem (SPEC section 6).
-ParticleErrors quarter_period_errors(const Method& m, int cells) {
+ParticleErrors quarter_period_errors(const Method& m, int cells, UpdateScheme update = UpdateScheme::usf,
+                                     GridMapping mapping = GridMapping::lumped, RKOrder basis = RKOrder::linear) {
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
   MPMProblem problem{unit, {{"rubber", v.material(), v.density}}, {rectangle_body("block", unit)},
                      [v](const Vec2& X, double t) { return v.body_force(X, t); }};
   problem.bodies.front().initial_velocity = [v](const Vec2& X) { return v.velocity(X, 0.0); };
-  MPMSettings s = settings_for(m, UpdateScheme::usf, cells);
+  MPMSettings s = settings_for(m, update, cells, mapping);
+  s.mls_basis = basis;
   s.particles_per_side = 3;
   s.end_time = 0.25 * v.period();
   s.time_step = 1e-5;  // seed 000's step: the time error stays well below the space error
@@ -297,6 +299,23 @@ TEST_CASE("the pseudo-inverse mapping stops a run whose particles do not determi
                                            Catch::Contains("at t = "));
     }
   }
+}
+
+TEST_CASE("MLS with the quadratic basis, the pseudo-inverse mapping and Verlet converges at 3 and beats plain B-splines",
+          "[mpm]") {
+  // u at T/4 on 8 and 16 cells (verification/mpm-vibration/README.md: 3.8e-4 and 4.4e-5,
+  // against plain quadratic B-splines' 3.5e-3 and 1.2e-3).
+  const Method mls{MPMMethod::bspline_mls, 2}, plain{MPMMethod::bspline, 2};
+  const ParticleErrors coarse = quarter_period_errors(mls, 8, UpdateScheme::verlet, GridMapping::pseudo_inverse, RKOrder::quadratic);
+  const ParticleErrors fine = quarter_period_errors(mls, 16, UpdateScheme::verlet, GridMapping::pseudo_inverse, RKOrder::quadratic);
+  const double plain_coarse = quarter_period_errors(plain, 8).displacement, plain_fine = quarter_period_errors(plain, 16).displacement;
+  const double rate = std::log2(coarse.displacement / fine.displacement);
+  std::cout << fmt::format("quadratic MLS, pseudo-inverse, Verlet at T/4: u error {:.3e} -> {:.3e} (rate {:.2f}); plain "
+                           "B-splines {:.3e} -> {:.3e}\n",
+                           coarse.displacement, fine.displacement, rate, plain_coarse, plain_fine);
+  CHECK(rate >= 2.8);
+  CHECK(coarse.displacement < 0.2 * plain_coarse);
+  CHECK(fine.displacement < 0.1 * plain_fine);
 }
 
 TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]") {

@@ -13,8 +13,10 @@
 //                 (open | slip | fixed per side; a side not listed is open),
 //                 gravity = [gx, gy] (body force per unit mass [m/s^2]; numbers or formulas
 //                 in X, Y, t), damping (alpha [1/s] of the mass-proportional grid damping
-//                 -alpha m_i v_i; default 0), mls_support (kernel half width in cells,
-//                 bspline_mls), deformation_terms (kmax of the dF series, default 2)
+//                 -alpha m_i v_i; default 0), mls_basis (linear | quadratic, default
+//                 linear) and mls_support (kernel half width in cells, default 1.5) of
+//                 bspline_mls (seed 000: linear, 3), deformation_terms (kmax of the dF
+//                 series, default 2)
 //   [constants]   names for the formulas (optional)
 //   [[material]]  name, and the keys of an elasticity scene's [material]; density required.
 //                 Every material must be used by a body. Laws with history too (the

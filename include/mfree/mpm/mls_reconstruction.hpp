@@ -4,10 +4,17 @@
 //
 //   f_g = sum_p phi_gp f_p,   phi_gp = phi_p(x_g),
 //
-// phi the linear MLS functions (basis [1, x, y], eq. 15) with the quadratic spline kernel
-// on a square support (eqs. 16-17) of half width a = support x h (seed 000: a = 3 l_x, where
-// its r_x = (x - x_p) / (2 l_x) reaches 3/2). These are the RK functions of kernels/ with the
-// particles as nodes: the same code serves the Galerkin solver.
+// phi the MLS functions of a linear (basis [1, x, y], seed 000 eq. 15) or quadratic basis
+// with the quadratic spline kernel on a square support (eqs. 16-17) of half width a =
+// support x h (seed 000: linear, a = 3 h, where its r_x = (x - x_p) / (2 l_x) reaches 3/2).
+// The mfree default is the linear basis on a = 1.5 h (half the seed's support: more accurate
+// at every grid); the quadratic basis on a = 1.5 h, with the pseudo-inverse mapping and the
+// Verlet update, converges at 3-4 on the vibration problem (verification/mpm-vibration/
+// README.md), but needs 6 particles not on one conic around every Gauss point: a body's edge
+// with 2 particles per cell and direction leaves Gauss points that see two rows (a conic),
+// and the run stops there (NumericalError).
+// These are the RK functions of kernels/ with the particles as nodes: the same code serves
+// the Galerkin solver.
 //
 // The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
 // particle (cells the bodies leave empty have none), each with weight h^2 / 4 (omega_g),
@@ -25,8 +32,8 @@ namespace mfree {
 
 class MLSReconstruction {
  public:
-  /// support: kernel half width in cells (seed 000: 3).
-  MLSReconstruction(const Grid& grid, const ParticleBasis& basis, double support);
+  /// order: of the basis; support: kernel half width in cells (seed 000: linear, 3).
+  MLSReconstruction(const Grid& grid, const ParticleBasis& basis, RKOrder order, double support);
 
   [[nodiscard]] Index points() const { return static_cast<Index>(points_.size()); }
   [[nodiscard]] const std::vector<Vec2>& gauss_points() const { return points_; }

@@ -83,7 +83,8 @@ struct MPMSettings {
   GridMapping mapping = GridMapping::lumped;  ///< particle data to nodal values (mass_matrix.hpp)
   int cells = 16;                      ///< cells across the grid box's width
   int particles_per_side = 3;          ///< per cell side (9 per cell), for bodies stating none
-  double mls_support = 3.0;            ///< bspline_mls: kernel half width in cells
+  RKOrder mls_basis = RKOrder::linear;  ///< bspline_mls: the MLS basis (seed 000's)
+  double mls_support = 1.5;            ///< bspline_mls: kernel half width in cells (seed 000: 3)
   int deformation_terms = 2;           ///< kmax of the dF series
   double end_time = 0.0;
   double courant = 0.5;
