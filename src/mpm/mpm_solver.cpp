@@ -226,11 +226,7 @@ void MPMSolver::verlet_step() {
   // Weights, masses, accelerations and grid velocities at t^n: the last step's second kick
   // computed them.
   if (!forces_current_) {
-    timer_.time("weights", [&] { compute_weights(); });
-    if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
-    timer_.time("particles to grid", [&] { scatter_mass(); });
-    timer_.time("grid forces", [&] { compute_grid_forces(); });
-    timer_.time("grid momentum", [&] { grid_accelerations(); });
+    accelerations_at_positions();
     timer_.time("particles to grid", [&] { scatter_momentum(); });
   }
   timer_.time("grid to particles", [&] { half_kick_particles(); });
@@ -242,14 +238,18 @@ void MPMSolver::verlet_step() {
   timer_.time("grid to particles", [&] { move_particles(0.0); });
   timer_.time("stress update", [&] { update_stress(dt_); });
   time_ += dt_;
+  accelerations_at_positions();
+  timer_.time("grid to particles", [&] { half_kick_particles(); });
+  timer_.time("particles to grid", [&] { scatter_momentum(); });
+  forces_current_ = true;
+}
+
+void MPMSolver::accelerations_at_positions() {
   timer_.time("weights", [&] { compute_weights(); });
   if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
   timer_.time("particles to grid", [&] { scatter_mass(); });
   timer_.time("grid forces", [&] { compute_grid_forces(); });
   timer_.time("grid momentum", [&] { grid_accelerations(); });
-  timer_.time("grid to particles", [&] { half_kick_particles(); });
-  timer_.time("particles to grid", [&] { scatter_momentum(); });
-  forces_current_ = true;
 }
 
 void MPMSolver::compute_weights() {
@@ -268,8 +268,8 @@ void MPMSolver::update_mls_functions() {
 
 void MPMSolver::particles_to_grid() {
   const Particles& P = particles_;
-  if (mls_) {  // eqs. (18), (19), (22), (23)
-    reconstruct_density();
+  if (mls_) reconstruct_density();  // eqs. (18), (19), (22), (23)
+  if (mls_transfers()) {
     scatter<Eigen::Vector3d>(mls_->grid_weights(), grid_.size(), mass_momentum_, partial3_, [&](Index g) {
       const Eigen::Vector3d& at = gauss_mass_momentum_[g];
       return [&at](double S, const Vec2&) { return Eigen::Vector3d(S * at); };
@@ -313,8 +313,8 @@ void MPMSolver::reconstruct_density() {
 
 void MPMSolver::scatter_mass() {
   const Particles& P = particles_;
-  if (mls_) {
-    reconstruct_density();
+  if (mls_) reconstruct_density();
+  if (mls_transfers()) {
     scatter<double>(mls_->grid_weights(), grid_.size(), mass_, partial1_, [&](Index g) {
       const double m = gauss_mass_momentum_[g][0];
       return [m](double S, const Vec2&) { return S * m; };
@@ -335,7 +335,7 @@ void MPMSolver::scatter_momentum() {
 
 void MPMSolver::momenta_to_grid(std::vector<Vec2>& grid) {
   const Particles& P = particles_;
-  if (mls_) {  // eqs. (31)-(33)
+  if (mls_transfers()) {  // eqs. (31)-(33)
     mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
     for (Vec2& g : gauss_momentum_) g *= density_scale_;
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), grid, partial2_, [&](Index g) {
@@ -354,15 +354,7 @@ void MPMSolver::grid_mass_ready() {
   double grid_total = 0.0;
   for (const double m : mass_) grid_total += m;
   mass_defect_ = std::abs(grid_total - particle_mass_) / particle_mass_;
-  if (!mass_matrix_) return;
-  if (mls_) {  // M_ij = sum_g rho_g omega_g N_i(x_g) N_j(x_g)
-    gauss_mass_.resize(gauss_mass_momentum_.size());
-    for (std::size_t g = 0; g < gauss_mass_.size(); ++g) gauss_mass_[g] = gauss_mass_momentum_[g][0];
-    gauss_volume_.assign(gauss_mass_.size(), mls_->gauss_weight());
-    mass_matrix_->assemble(mls_->grid_weights(), gauss_mass_, gauss_volume_);
-  } else {
-    mass_matrix_->assemble(weights_, particles_.mass, particles_.volume);
-  }
+  if (mass_matrix_) mass_matrix_->assemble(weights_, particles_.mass, particles_.volume);
 }
 
 void MPMSolver::grid_velocities(const std::vector<Vec2>& momentum) {

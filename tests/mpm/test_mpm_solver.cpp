@@ -303,7 +303,7 @@ TEST_CASE("the pseudo-inverse mapping stops a run whose particles do not determi
 
 TEST_CASE("MLS with the quadratic basis, the pseudo-inverse mapping and Verlet converges at 3 and beats plain B-splines",
           "[mpm]") {
-  // u at T/4 on 8 and 16 cells (verification/mpm-vibration/README.md: 3.8e-4 and 4.4e-5,
+  // u at T/4 on 8 and 16 cells (verification/mpm-vibration/README.md: 3.8e-4 and 4.3e-5,
   // against plain quadratic B-splines' 3.5e-3 and 1.2e-3).
   const Method mls{MPMMethod::bspline_mls, 2}, plain{MPMMethod::bspline, 2};
   const ParticleErrors coarse = quarter_period_errors(mls, 8, UpdateScheme::verlet, GridMapping::pseudo_inverse, RKOrder::quadratic);

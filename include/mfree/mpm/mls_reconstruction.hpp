@@ -9,8 +9,9 @@
 // support x h (seed 000: linear, a = 3 h, where its r_x = (x - x_p) / (2 l_x) reaches 3/2).
 // The mfree default is the linear basis on a = 1.5 h (half the seed's support: more accurate
 // at every grid); the quadratic basis on a = 1.5 h, with the pseudo-inverse mapping and the
-// Verlet update, converges at 3-4 on the vibration problem (verification/mpm-vibration/
-// README.md), but needs 6 particles not on one conic around every Gauss point: a body's edge
+// Verlet update, converges at 2.3-3.5 on the vibration problem (verification/mpm-vibration/
+// README.md; it does not last ten periods at A = 0.1 on 16 cells: the errors grow to the size
+// of the motion), but needs 6 particles not on one conic around every Gauss point: a body's edge
 // with 2 particles per cell and direction leaves Gauss points that see two rows (a conic),
 // and the run stops there (NumericalError).
 // These are the RK functions of kernels/ with the particles as nodes: the same code serves

@@ -32,7 +32,9 @@
 //
 // Nodal values from particle data (mapping, mass_matrix.hpp): lumped, v_i = (mv)_i / m_i and
 // a_i = f_i / m_i, or pseudo_inverse, v = M^-1 (mv) and a = M^-1 f with the consistent mass
-// matrix M, whose walls hold the same components at zero. Its highest frequency is higher,
+// matrix M, whose walls hold the same components at zero (bspline_mls: M and the momenta
+// from the particles, whose data the pseudo-inverse fits; the MLS reconstruction then
+// carries the forces alone, the stress and rho b at the Gauss points). Its highest frequency is higher,
 // so the Courant limit below is h / c times 0.5 (hats and their averages), 0.35 (quadratic
 // B-splines) or 0.22 (cubic).
 //
@@ -176,10 +178,16 @@ class MPMSolver {
   void extrapolate_updated_momenta();
   /// The velocity Verlet step (update = verlet) and its stages.
   void verlet_step();
+  /// Weights, masses, forces and grid accelerations of the particles where they are.
+  void accelerations_at_positions();
   void scatter_mass();
   void scatter_momentum();
   /// bspline_mls: rho omega and rho v omega at the Gauss points, scaled to the particles' mass.
   void reconstruct_density();
+  /// Whether mass and momenta reach the grid through the MLS reconstruction (bspline_mls with
+  /// the lumped mapping); with the pseudo-inverse they are the particles' own data that it
+  /// fits, and MLS reconstructs the forces' stress and rho b alone.
+  [[nodiscard]] bool mls_transfers() const { return mls_ && settings_.mapping == GridMapping::lumped; }
   /// (mv)_i of the particles' velocities, through the Gauss points for bspline_mls.
   void momenta_to_grid(std::vector<Vec2>& grid);
   void half_kick_particles();
@@ -225,7 +233,6 @@ class MPMSolver {
   // MLS: the fields the grid integrals need, reconstructed at the Gauss points.
   std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) omega_g
   std::vector<Vec2> gauss_momentum_;                     ///< rho v omega_g of the updated velocities
-  std::vector<double> gauss_mass_, gauss_volume_;        ///< pseudo-inverse: rho omega_g and omega_g
   std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b omega_g | sigma omega_g]
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   std::vector<double> external_work_;  ///< per body
