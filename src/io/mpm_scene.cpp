@@ -197,6 +197,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.deformation_terms = static_cast<int>(t.integer_or("deformation_terms", 2, 1, 10));
     s.walls = read_walls(t);
     s.damping = t.number_or("damping", 0.0, 0.0, 1e300);
+    if (s.damping > 0.0 && s.update == UpdateScheme::verlet)
+      t.error("damping", "the verlet update takes no damping; use usf, usl, szs or usavg with damping");
     if (t.has("gravity")) {
       if (out.exact) t.error("gravity", "the [exact] solution sets the body force");
       pr.body_force = vector_field<double>(read_vector_formula(t, "gravity", constants));

@@ -15,6 +15,9 @@
 // stresses reach 1e6 Pa, so most steps of most particles are plastic), for the cost of a law
 // with history against the Neo-Hookean one.
 //
+// The velocity Verlet update, the pseudo-inverse mapping and the quadratic MLS basis (the
+// configuration of verification/mpm-vibration/mls.toml) have runs of their own.
+//
 // Counters: particle_steps_per_second (particles x steps / wall time), and the seconds per
 // step of each stage of the solver's own StageTimer (weights, particles to grid, stress
 // update, grid forces, grid momentum, grid to particles, second extrapolation; a stage the
@@ -39,7 +42,7 @@ const char* const stages[] = {"weights",       "MLS functions",     "particles t
                               "grid momentum", "grid to particles", "second extrapolation"};
 
 void BM_mpm_step(benchmark::State& state, MPMMethod method, int degree, UpdateScheme update, bool body_force,
-                 bool j2 = false) {
+                 bool j2 = false, GridMapping mapping = GridMapping::lumped, RKOrder mls_basis = RKOrder::linear) {
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
   const Box unit{Vec2(0.0, 0.0), Vec2(1.0, 1.0)};
   MaterialParameters plastic;
@@ -55,6 +58,8 @@ void BM_mpm_step(benchmark::State& state, MPMMethod method, int degree, UpdateSc
   s.method = method;
   s.degree = degree;
   s.update = update;
+  s.mapping = mapping;
+  s.mls_basis = mls_basis;
   s.cells = 64;
   s.particles_per_side = 3;
   // A whole period: dt = T / ceil(T / 1e-5) stays at the test's 1e-5 s, and the run never
@@ -110,3 +115,16 @@ BENCHMARK_CAPTURE(BM_mpm_step, bspline3, MPMMethod::bspline, 3, UpdateScheme::us
     ->Name("mpm/bspline3/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline_mls, MPMMethod::bspline_mls, 2, UpdateScheme::usf, true)
     ->Name("mpm/bspline_mls/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline2_verlet, MPMMethod::bspline, 2, UpdateScheme::verlet, true)
+    ->Name("mpm/bspline2/verlet")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet, MPMMethod::cpdi, 2, UpdateScheme::verlet, true)
+    ->Name("mpm/cpdi/verlet")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usf_pinv, MPMMethod::bspline, 2, UpdateScheme::usf, true, false,
+                  GridMapping::pseudo_inverse)
+    ->Name("mpm/bspline2/usf/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet_pinv, MPMMethod::cpdi, 2, UpdateScheme::verlet, true, false,
+                  GridMapping::pseudo_inverse)
+    ->Name("mpm/cpdi/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, mls_quadratic, MPMMethod::bspline_mls, 2, UpdateScheme::verlet, true, false,
+                  GridMapping::pseudo_inverse, RKOrder::quadratic)
+    ->Name("mpm/bspline_mls_quadratic/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
