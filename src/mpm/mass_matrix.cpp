@@ -126,6 +126,10 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   const auto masked = [&](std::size_t i, const Vec2& v) {
     return Vec2((free[i] & 1) ? v.x() : 0.0, (free[i] & 2) ? v.y() : 0.0);
   };
+  // The diagonal preconditioner on the free components (rows without one have no diagonal).
+  const auto precondition = [&](std::size_t i, const Vec2& v) {
+    return free[i] ? masked(i, v / diagonal[i]) : Vec2(Vec2::Zero());
+  };
   // Start from the lumped values: exact where the particles move rigidly.
   std::vector<Vec2> u(n), r(n), z(n), p(n), Mp(n);
   double qq = 0.0;
@@ -141,8 +145,7 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   double rz = 0.0, rr = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     r[i] = masked(i, q[i] - Mp[i]);
-    z[i] = r[i] / diagonal[i];
-    z[i] = masked(i, z[i]);
+    z[i] = precondition(i, r[i]);
     p[i] = z[i];
     rz += r[i].dot(z[i]);
     rr += r[i].squaredNorm();
@@ -170,7 +173,7 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
     for (std::size_t i = 0; i < n; ++i) {
       u[i] += alpha * p[i];
       r[i] -= alpha * masked(i, Mp[i]);
-      z[i] = masked(i, r[i] / diagonal[i]);
+      z[i] = precondition(i, r[i]);
       rz_next += r[i].dot(z[i]);
       rr += r[i].squaredNorm();
     }
