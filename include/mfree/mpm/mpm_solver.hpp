@@ -22,13 +22,17 @@
 // These four are symplectic Euler in time: the particle velocity that starts a step acts as
 // the velocity of its middle, so the motion runs dt / 2 ahead of the initial condition and
 // the errors are first order in dt. The velocity Verlet scheme (verlet, kick-drift-kick) is
-// second order: with the forces f_i^n of the stress and body force at t^n,
-//   kick     v_i^{n+1/2} = v_i^n + dt/2 a_i^n,   v_p^{n+1/2} = v_p^n + dt/2 sum_i S_ip a_i^n
-//   drift    x_p^{n+1} = x_p^n + dt sum_i S_ip v_i^{n+1/2}; stress update with v_i^{n+1/2}
-//   kick     v_p^{n+1} = v_p^{n+1/2} + dt/2 sum_i S_ip(x^{n+1}) a_i^{n+1}
-// with a_i = f_i / m_i (or M^-1 f, below). The second kick's weights, masses and forces are
-// those that start the next step, computed once; bspline_mls reconstructs at the midpoint
-// from the MLS functions of the midpoint positions. (Not with damping.)
+// second order: with the accelerations a_i^n of the stress and body force at t^n (f_i / m_i,
+// or M^-1 f, below) and the grid velocities v_i^n of the particles' velocities,
+//   kick      v_p^{n+1/2} = v_p^n + dt/2 sum_i S_ip a_i^n
+//   midpoint  x_p* = x_p^n + dt/2 sum_i S_ip v_i^n (F by dF(dt/2 L_p), CPDI2's corners by
+//             dt/2 v, bspline_mls's MLS functions there): the weights S*_ip
+//   drift     v_i^{n+1/2} from the v_p^{n+1/2} through S*; x_p^{n+1} = x_p^n + dt sum_i S*_ip
+//             v_i^{n+1/2}; the stress update with L_p from S* and v_i^{n+1/2}
+//   kick      v_p^{n+1} = v_p^{n+1/2} + dt/2 sum_i S_ip(x^{n+1}) a_i^{n+1}
+// Without the midpoint the drift is first order: the map from particle velocities to the
+// grid changes as the particles move. The second kick's weights, masses and accelerations
+// are those that start the next step, computed once. (Not with damping.)
 //
 // Nodal values from particle data (mapping, mass_matrix.hpp): lumped, v_i = (mv)_i / m_i and
 // a_i = f_i / m_i, or pseudo_inverse, v = M^-1 (mv) and a = M^-1 f with the consistent mass
