@@ -265,9 +265,12 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   run.time_step = solver.time_step();
   if (verbose)
     std::cout << fmt::format("  {} particles, grid {} x {} nodes (h = {:.5g}), {} steps of dt = {:.4e} s "
-                             "(Courant number {:.3f})\n",
+                             "({:.3f} of the Courant limit{})\n",
                              run.particles, solver.grid().nx(), solver.grid().ny(), solver.grid().spacing(), run.steps,
-                             run.time_step, run.time_step / solver.courant_limit());
+                             run.time_step, run.time_step / solver.courant_limit(),
+                             settings.mapping == GridMapping::pseudo_inverse
+                                 ? ", which the pseudo-inverse mapping's consistent mass lowers below h / c"
+                                 : " h / c");
   if (verbose) print_bodies(scene.problem, settings, solver.particles());
   std::optional<MPMFrames> frames;
   const bool any_field = scene.fields.displacement || scene.fields.velocity || scene.fields.stress ||
@@ -443,55 +446,55 @@ int converge_mpm(const MPMScene& scene) {
     for (const MPMMethodChoice& m : st.methods)
       for (UpdateScheme u : st.updates)
         for (GridMapping mapping : st.mappings)
-        for (int cells : st.cells) {
-          MPMSettings s = scene.settings;
-          s.method = m.method;
-          s.degree = m.degree == 1 ? 2 : m.degree;
-          s.update = u;
-          s.mapping = mapping;
-          s.cells = cells;
-          s.particles_per_side = side;
-          const MPMRun run = simulate_mpm(scene, s, false);
-          const double h = scene.problem.box.size().x() / cells;
-          const std::string name =
-              fmt::format("{},{},{},{}", method_name(m), to_string(u), grid_mapping_names().name(mapping), side * side);
-          const std::string status = csv_status(run.failure);
-          const double drift = energy_drift(run.energy);
-          const double nan = std::nan("");
-          const Vec2 at_probe = run.failure || run.probe.empty() ? Vec2(nan, nan) : run.probe.back().second;
-          // One row per error time (with [exact]), else one row with the probe.
-          const std::size_t rows = std::max<std::size_t>(run.errors.size(), scene.exact ? 0 : 1);
-          for (std::size_t k = 0; k < rows; ++k) {
-            const ParticleErrors e = k < run.errors.size() ? run.errors[k] : ParticleErrors{run.steps * run.time_step, nan, nan, nan, nan};
-            csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{},{},{},{},{},{},{},{},{},{}\n", name, cells, h,
-                               run.particles, run.steps, run.time_step, run.seconds,
-                               k < run.errors.size() ? scene.error_times[k] : 1.0, e.time,
-                               csv_number(e.displacement, "{:.9e}"), csv_number(e.velocity, "{:.9e}"),
-                               csv_number(e.grid_velocity, "{:.9e}"), csv_number(e.stress, "{:.9e}"),
-                               csv_number(run.max_mass_defect, "{:.6e}"),
-                               csv_number(run.max_reconstruction_defect, "{:.6e}"), csv_number(drift, "{:.6e}"),
-                               csv_number(at_probe.x(), "{:.9e}"), csv_number(at_probe.y(), "{:.9e}"), status);
+          for (int cells : st.cells) {
+            MPMSettings s = scene.settings;
+            s.method = m.method;
+            s.degree = m.degree == 1 ? 2 : m.degree;
+            s.update = u;
+            s.mapping = mapping;
+            s.cells = cells;
+            s.particles_per_side = side;
+            const MPMRun run = simulate_mpm(scene, s, false);
+            const double h = scene.problem.box.size().x() / cells;
+            const std::string name =
+                fmt::format("{},{},{},{}", method_name(m), to_string(u), grid_mapping_names().name(mapping), side * side);
+            const std::string status = csv_status(run.failure);
+            const double drift = energy_drift(run.energy);
+            const double nan = std::nan("");
+            const Vec2 at_probe = run.failure || run.probe.empty() ? Vec2(nan, nan) : run.probe.back().second;
+            // One row per error time (with [exact]), else one row with the probe.
+            const std::size_t rows = std::max<std::size_t>(run.errors.size(), scene.exact ? 0 : 1);
+            for (std::size_t k = 0; k < rows; ++k) {
+              const ParticleErrors e = k < run.errors.size() ? run.errors[k] : ParticleErrors{run.steps * run.time_step, nan, nan, nan, nan};
+              csv += fmt::format("{},{},{:.9e},{},{},{:.9e},{:.6f},{:.6f},{:.9e},{},{},{},{},{},{},{},{},{},{}\n", name, cells, h,
+                                 run.particles, run.steps, run.time_step, run.seconds,
+                                 k < run.errors.size() ? scene.error_times[k] : 1.0, e.time,
+                                 csv_number(e.displacement, "{:.9e}"), csv_number(e.velocity, "{:.9e}"),
+                                 csv_number(e.grid_velocity, "{:.9e}"), csv_number(e.stress, "{:.9e}"),
+                                 csv_number(run.max_mass_defect, "{:.6e}"),
+                                 csv_number(run.max_reconstruction_defect, "{:.6e}"), csv_number(drift, "{:.6e}"),
+                                 csv_number(at_probe.x(), "{:.9e}"), csv_number(at_probe.y(), "{:.9e}"), status);
+            }
+            energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
+            if (!run.failure) series[name].emplace_back(h, run.errors);
+            std::string line = fmt::format("{:<14} {:<6} {:<14} {:>2} ppc {:>4} cells: {:8.2f} s", method_name(m),
+                                           to_string(u), grid_mapping_names().name(mapping), side * side, cells, run.seconds);
+            if (!run.errors.empty()) {
+              const ParticleErrors& e = run.errors.front();
+              line += fmt::format("  at t = {:.4f}: u {:.3e} v_p {:.3e} v_grid {:.3e} stress {:.3e}", e.time,
+                                  e.displacement, e.velocity, e.grid_velocity, e.stress);
+            }
+            if (!scene.exact && !run.failure) {
+              probes[name].emplace_back(h, at_probe);
+              const ProbeLevel level = probe_level(probes[name]);
+              line += fmt::format("  probe u = ({:.9e}, {:.9e}), |change| {}, rate {}, extrapolated u = ({}, {})",
+                                  at_probe.x(), at_probe.y(), level.change, level.rate, level.extrapolated_x,
+                                  level.extrapolated_y);
+            }
+            if (scene.energy_every > 0) line += fmt::format("  energy drift {:.2e}", drift);
+            if (run.failure) line += "  FAILED: " + *run.failure;
+            std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
           }
-          energy_csv += energy_csv_rows(fmt::format("{},{},", name, cells), run.energy);
-          if (!run.failure) series[name].emplace_back(h, run.errors);
-          std::string line = fmt::format("{:<14} {:<6} {:<14} {:>2} ppc {:>4} cells: {:8.2f} s", method_name(m),
-                                         to_string(u), grid_mapping_names().name(mapping), side * side, cells, run.seconds);
-          if (!run.errors.empty()) {
-            const ParticleErrors& e = run.errors.front();
-            line += fmt::format("  at t = {:.4f}: u {:.3e} v_p {:.3e} v_grid {:.3e} stress {:.3e}", e.time,
-                                e.displacement, e.velocity, e.grid_velocity, e.stress);
-          }
-          if (!scene.exact && !run.failure) {
-            probes[name].emplace_back(h, at_probe);
-            const ProbeLevel level = probe_level(probes[name]);
-            line += fmt::format("  probe u = ({:.9e}, {:.9e}), |change| {}, rate {}, extrapolated u = ({}, {})",
-                                at_probe.x(), at_probe.y(), level.change, level.rate, level.extrapolated_x,
-                                level.extrapolated_y);
-          }
-          if (scene.energy_every > 0) line += fmt::format("  energy drift {:.2e}", drift);
-          if (run.failure) line += "  FAILED: " + *run.failure;
-          std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
-        }
   // Observed rates log2(e(h) / e(h/2)) between successive grids, at every error time.
   if (scene.exact)
     std::cout << fmt::format("\n{:<40} {:>6} {:>8}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}  {:>10} {:>6}\n",

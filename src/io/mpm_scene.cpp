@@ -269,6 +269,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     if (t.has("methods")) st.methods = read_choices(t, "methods", mpm_method_names());
     st.updates = {s.update};
     if (t.has("updates")) st.updates = read_choices(t, "updates", update_names());
+    if (s.damping > 0.0 && std::count(st.updates.begin(), st.updates.end(), UpdateScheme::verlet) > 0)
+      t.error("updates", "the verlet update takes no damping, and [mpm] sets damping");
     st.mappings = {s.mapping};
     if (t.has("mappings")) st.mappings = read_choices(t, "mappings", grid_mapping_names());
     st.particles_per_side = {s.particles_per_side};

@@ -134,11 +134,14 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   std::vector<Vec2> u(n), r(n), z(n), p(n), Mp(n);
   double qq = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 v = q[i] / lumped[i];
-    u[i] = Vec2((known[i] & 1) ? v.x() : 0.0, (known[i] & 2) ? v.y() : 0.0);
+    if (known[i]) {
+      const Vec2 v = q[i] / lumped[i];
+      u[i] = Vec2((known[i] & 1) ? v.x() : 0.0, (known[i] & 2) ? v.y() : 0.0);
+    } else {
+      u[i] = Vec2::Zero();
+    }
     qq += masked(i, q[i]).squaredNorm();
   }
-  iterations_ = 0;
   if (qq == 0.0) return u;  // nothing to solve for: the lumped values (zero where q is)
   const double tolerance = 1e-26 * qq;  // |r|^2
   multiply(u, Mp);
@@ -151,14 +154,13 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
     rr += r[i].squaredNorm();
   }
   const int limit = 2000;
-  while (rr > tolerance) {
-    if (iterations_ == limit)
+  for (int iteration = 0; rr > tolerance; ++iteration) {
+    if (iteration == limit)
       throw NumericalError(fmt::format(
           "MPM pseudo-inverse mapping: conjugate gradients on the mass matrix did not converge in {} iterations "
           "(residual {:.3g} of the right-hand side): too few particles determine some nodes (the pseudo-inverse needs "
           "at least two particles per cell and direction); use mapping = \"lumped\"",
           limit, std::sqrt(rr / qq)));
-    ++iterations_;
     multiply(p, Mp);
     double pMp = 0.0;
     for (std::size_t i = 0; i < n; ++i) pMp += p[i].dot(masked(i, Mp[i]));

@@ -235,7 +235,7 @@ void MPMSolver::verlet_step() {
     scatter_mass();
     scatter_momentum();
   });
-  timer_.time("grid to particles", [&] { move_particles(0.0); });
+  timer_.time("grid to particles", [&] { move_particles<false>(); });
   timer_.time("stress update", [&] { update_stress(dt_); });
   time_ += dt_;
   accelerations_at_positions();
@@ -248,6 +248,9 @@ void MPMSolver::accelerations_at_positions() {
   timer_.time("weights", [&] { compute_weights(); });
   if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
   timer_.time("particles to grid", [&] { scatter_mass(); });
+  // MLS with the pseudo-inverse: the particles carried the mass; the forces' rho b needs the
+  // reconstructed densities all the same.
+  if (mls_ && !mls_transfers()) timer_.time("particles to grid", [&] { reconstruct_density(); });
   timer_.time("grid forces", [&] { compute_grid_forces(); });
   timer_.time("grid momentum", [&] { grid_accelerations(); });
 }
@@ -313,8 +316,8 @@ void MPMSolver::reconstruct_density() {
 
 void MPMSolver::scatter_mass() {
   const Particles& P = particles_;
-  if (mls_) reconstruct_density();
   if (mls_transfers()) {
+    reconstruct_density();
     scatter<double>(mls_->grid_weights(), grid_.size(), mass_, partial1_, [&](Index g) {
       const double m = gauss_mass_momentum_[g][0];
       return [m](double S, const Vec2&) { return S * m; };
@@ -491,7 +494,7 @@ void MPMSolver::grid_to_particles() {
     for (std::size_t i = 0; i < velocity_.size(); ++i) velocity_[i] += dt_ * acceleration_[i];
   else
     grid_velocities(momentum_);
-  move_particles(dt_);
+  move_particles<true>();
 }
 
 void MPMSolver::midpoint_weights() {
@@ -531,7 +534,8 @@ void MPMSolver::midpoint_weights() {
     });
   });
   std::swap(weights_, midpoint_weights_);
-  if (mls_) at_time(time_, [&] { mls_->update(midpoint_positions_); });
+  // MLS reconstructs mass and momenta at the midpoint only when it carries them (lumped).
+  if (mls_transfers()) at_time(time_, [&] { mls_->update(midpoint_positions_); });
 }
 
 void MPMSolver::half_kick_particles() {
@@ -547,7 +551,8 @@ void MPMSolver::half_kick_particles() {
   });
 }
 
-void MPMSolver::move_particles(double kick) {
+template <bool kick>
+void MPMSolver::move_particles() {
   Particles& P = particles_;
   // Work of the body forces per thread and body, summed in thread order (reproducible). The
   // threads' rows lie at least a cache line (8 doubles) apart: every particle adds to its row.
@@ -563,10 +568,10 @@ void MPMSolver::move_particles(double kick) {
     for (Index p = begin; p < end; ++p) {
       Vec2 a = Vec2::Zero(), v = Vec2::Zero();
       weights_.for_each(p, [&](Index i, double S, const Vec2&) {
-        a += S * acceleration[i];
+        if constexpr (kick) a += S * acceleration[i];
         v += S * velocity[i];
       });
-      P.velocity[p] += kick * a;  // eq. (29)
+      if constexpr (kick) P.velocity[p] += dt_ * a;  // eq. (29)
       const Vec2 dx = dt_ * v;   // eq. (30)
       P.position[p] += dx;
       w[P.body[p]] += P.mass[p] * body_[p].dot(dx);

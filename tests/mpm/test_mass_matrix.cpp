@@ -96,6 +96,23 @@ const auto line = [](double x) { return x; };
 
 }  // namespace
 
+TEST_CASE("the stencil mass matrix is S^T S of the particle weights, its rows summing to the lumped masses",
+          "[mpm][mapping]") {
+  for (int per_cell : {1, 2, 4}) {
+    const Strip s(per_cell);
+    const Eigen::MatrixXd dense = s.S.transpose() * s.S;  // m_p = 1
+    double entries = 0.0, rows = 0.0;
+    for (Index i = 0; i < s.grid.size(); ++i) {
+      rows = std::max(rows, std::abs(s.mass_matrix.row_sum(i) - s.lumped[i]));
+      for (Index j = 0; j < s.grid.size(); ++j) entries = std::max(entries, std::abs(s.mass_matrix.entry(i, j) - dense(i, j)));
+    }
+    INFO(per_cell << " particles per cell along x");
+    CHECK(dense.maxCoeff() > 0.1);
+    CHECK(entries <= 1e-14);
+    CHECK(rows <= 1e-13);
+  }
+}
+
 TEST_CASE("seed 004's mappings: constant and linear fields at 1, 2 and 4 particles per cell", "[mpm][mapping]") {
   for (int per_cell : {1, 2, 4}) {
     const Strip s(per_cell);

@@ -71,10 +71,6 @@ class GridMassMatrix {
   [[nodiscard]] double entry(Index i, Index j) const;
   /// sum_j M_ij, the lumped mass m_i.
   [[nodiscard]] double row_sum(Index i) const;
-  /// sum_p V_p S_ip / int N_i: 1 where particles fill the support of N_i.
-  [[nodiscard]] double cover(Index i) const { return cover_[static_cast<std::size_t>(i)]; }
-  /// Iterations of the last solve().
-  [[nodiscard]] int iterations() const { return iterations_; }
 
  private:
   /// Stencil position of node j in node i's row, or -1 beyond the radius.
@@ -87,9 +83,8 @@ class GridMassMatrix {
   int radius_, width_;                 ///< width = 2 radius + 1
   std::vector<double> values_;         ///< node i's row: width^2 entries, (dx, dy) at (dx + r) + width (dy + r)
   ScatterBuffers<double> partial_;     ///< per-thread rows of the assembly
-  std::vector<double> cover_;          ///< per node
+  std::vector<double> cover_;          ///< per node: sum_p V_p S_ip / int N_i
   ScatterBuffers<double> partial_cover_;
-  mutable int iterations_ = 0;
 };
 
 }  // namespace mfree

@@ -26,7 +26,8 @@
 // or M^-1 f, below) and the grid velocities v_i^n of the particles' velocities,
 //   kick      v_p^{n+1/2} = v_p^n + dt/2 sum_i S_ip a_i^n
 //   midpoint  x_p* = x_p^n + dt/2 sum_i S_ip v_i^n (F by dF(dt/2 L_p), CPDI2's corners by
-//             dt/2 v, bspline_mls's MLS functions there): the weights S*_ip
+//             dt/2 v; bspline_mls with the lumped mapping, its MLS functions there): the
+//             weights S*_ip
 //   drift     v_i^{n+1/2} from the v_p^{n+1/2} through S*; x_p^{n+1} = x_p^n + dt sum_i S*_ip
 //             v_i^{n+1/2}; the stress update with L_p from S* and v_i^{n+1/2}
 //   kick      v_p^{n+1} = v_p^{n+1/2} + dt/2 sum_i S_ip(x^{n+1}) a_i^{n+1}
@@ -204,8 +205,10 @@ class MPMSolver {
   void grid_velocities(const std::vector<Vec2>& momentum);
   /// a_i from the grid forces (either mapping), walls holding their components.
   void grid_accelerations();
-  /// v_p += kick sum_i S_ip a_i, x_p += dt sum_i S_ip v_i (eqs. 29-30), CPDI2's corners.
-  void move_particles(double kick);
+  /// x_p += dt sum_i S_ip v_i (eq. 30), CPDI2's corners; with kick, first v_p += dt sum_i
+  /// S_ip a_i (eq. 29).
+  template <bool kick>
+  void move_particles();
   /// Nodes with |m_i| below this have no velocity (1e-12 of a particle's mass). The mass may
   /// be negative: qCPDI's corner weights are, and a node that only corners of the body reach
   /// (beyond a body's corner) gets m_i < 0; p_i / m_i is still the particles' velocity there,
