@@ -1,12 +1,11 @@
 #include "mfree/kernels/rk_shape_functions.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/kernels/rk_moment.hpp"
 
 namespace mfree {
 
@@ -61,27 +60,6 @@ WindowSample sample_window(double dx, double dy, double inv_a) {
   }
 }
 
-[[noreturn]] void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, int nb,
-                                       double rcond) {
-  const std::string what = rcond >= 0.0
-                               ? fmt::format("badly conditioned (reciprocal condition {:.2e} < {:.1e})",
-                                             rcond, s.rcond_min)
-                               : std::string("singular");
-  throw NumericalError(fmt::format(
-      "RK moment matrix at point ({:.6g}, {:.6g}) is {}: {} neighbour(s) within the {} support of "
-      "radius {:.4g}; a {} basis needs at least {} neighbours, not all on one {}. Increase the "
-      "support radius (kernel support factor) or make the cloud denser or more regular near "
-      "this point.",
-      x.x(), x.y(), what, n, to_string(s.support), s.radius, to_string(s.order), nb,
-      s.order == RKOrder::linear ? "line" : "conic"));
-}
-
-/// L1 norm (largest column sum) of a small matrix.
-template <class Matrix>
-double norm1(const Matrix& m) {
-  return m.cwiseAbs().colwise().sum().maxCoeff();
-}
-
 /// The per-point RK construction for one basis, window and support (SPEC section 1).
 /// `out.nodes` holds the neighbours on entry; phi and grad are filled.
 ///
@@ -94,7 +72,7 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   using Basis = PolynomialBasis<Order>;
   constexpr int nb = Basis::size;
   using Terms = typename Basis::Terms;
-  using Matrix = Eigen::Matrix<double, nb, nb>;
+  using Matrix = typename RKMoment<Order>::Matrix;
 
   const std::size_t n = out.nodes.size();
   out.phi.resize(n);
@@ -102,11 +80,10 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   out.z.resize(n);
   const double inv_a = 1.0 / s.radius;  // basis scale
   const bool per_node = !s.node_radii.empty();
-  if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, nb, -1.0);
+  if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, -1.0);
 
-  // Pass 1: windows and the upper triangle of M; phi temporarily holds w_I, grad holds
-  // grad w_I.
-  std::array<double, nb*(nb + 1) / 2> upper{};
+  // Pass 1: windows and M; phi temporarily holds w_I, grad holds grad w_I.
+  RKMoment<Order> moment;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& node = nodes[out.nodes[k]];
     const double dx = x.x() - node.x(), dy = x.y() - node.y();
@@ -114,33 +91,14 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
         sample_window<W, S>(dx, dy, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
     const double z1 = dx * inv_a, z2 = dy * inv_a;
     out.z[k] = Vec2(z1, z2);
-    const Terms h = Basis::value(z1, z2);
-    int e = 0;
-    for (int i = 0; i < nb; ++i) {
-      const double wh = ws.w * h[i];
-      for (int j = i; j < nb; ++j) upper[e++] += wh * h[j];
-    }
+    moment.add(ws.w, Basis::value(z1, z2));
     out.phi[k] = ws.w;
     if (with_gradient) out.grad[k] = Vec2(ws.gx, ws.gy);
   }
-  Matrix m;
-  for (int i = 0, e = 0; i < nb; ++i)
-    for (int j = i; j < nb; ++j, ++e) m(i, j) = m(j, i) = upper[e];
-
-  // M^-1 explicitly (3x3 or 6x6): it serves b, both d b / d x_j, and the exact reciprocal
-  // condition number 1 / (|M|_1 |M^-1|_1) that decides whether the point is well posed.
+  // M^-1 explicitly (3x3 or 6x6): it serves b and both d b / d x_j.
   Matrix minv;
-  if constexpr (nb == 3) {
-    const double det = m.determinant();
-    if (!(std::abs(det) > 0.0)) throw_moment_failure(x, n, s, nb, -1.0);
-    minv = m.inverse();
-  } else {
-    const Eigen::LLT<Matrix> llt(m);
-    if (llt.info() != Eigen::Success) throw_moment_failure(x, n, s, nb, -1.0);
-    minv = llt.solve(Matrix::Identity());
-  }
-  const double rcond = 1.0 / (norm1(m) * norm1(minv));
-  if (!(rcond >= s.rcond_min)) throw_moment_failure(x, n, s, nb, rcond);
+  const double rcond = moment.invert(minv);
+  if (!(rcond >= s.rcond_min)) throw_moment_failure(x, n, s, rcond);
 
   // b = M^-1 H(0), H(0) = e_1 in the shifted basis: phi_I = b . H(z_I) w_I.
   Terms b;
@@ -223,6 +181,21 @@ RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
   // Cells of half the support: a query's box of side 2a then covers about (5 a / 2)^2 of
   // candidates instead of (3 a)^2, 30 % fewer to test.
   cells_ = CellList(nodes_, 0.5 * max_radius_);
+}
+
+void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond) {
+  const int nb = s.order == RKOrder::linear ? 3 : 6;
+  const std::string what = rcond >= 0.0
+                               ? fmt::format("badly conditioned (reciprocal condition {:.2e} < {:.1e})",
+                                             rcond, s.rcond_min)
+                               : std::string("singular");
+  throw NumericalError(fmt::format(
+      "RK moment matrix at point ({:.6g}, {:.6g}) is {}: {} neighbour(s) within the {} support of "
+      "radius {:.4g}; a {} basis needs at least {} neighbours, not all on one {}. Increase the "
+      "support radius (kernel support factor) or make the cloud denser or more regular near "
+      "this point.",
+      x.x(), x.y(), what, n, to_string(s.support), s.radius, to_string(s.order), nb,
+      s.order == RKOrder::linear ? "line" : "conic"));
 }
 
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <utility>
 
+#include "mfree/kernels/rk_moment.hpp"
+#include "mfree/kernels/window_function.hpp"
+
 namespace mfree {
 
 MLSReconstruction::MLSReconstruction(const Grid& grid, const ParticleBasis& basis, RKOrder order, double support)
@@ -18,20 +21,37 @@ MLSReconstruction::MLSReconstruction(const Grid& grid, const ParticleBasis& basi
 void MLSReconstruction::update(const std::vector<Vec2>& positions) {
   const double h = grid_.spacing();
   const int nx = grid_.cells_x(), ny = grid_.cells_y();
-  std::vector<unsigned char> active(static_cast<std::size_t>(nx) * ny, 0);
-  for (const Vec2& x : positions) {
-    const Vec2 c = (x - grid_.box().lo) / h;
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+
+  // The particles binned by cell (a counting sort; a particle outside the box in the cell
+  // next to it), which also marks the cells holding particles.
+  bin_cell_.resize(positions.size());
+  bin_start_.assign(cells + 1, 0);
+  for (std::size_t p = 0; p < positions.size(); ++p) {
+    const Vec2 c = (positions[p] - grid_.box().lo) / h;
     const int i = std::clamp(static_cast<int>(std::floor(c.x())), 0, nx - 1);
     const int j = std::clamp(static_cast<int>(std::floor(c.y())), 0, ny - 1);
-    active[i + static_cast<std::size_t>(nx) * j] = 1;
+    bin_cell_[p] = i + nx * j;
+    ++bin_start_[bin_cell_[p] + 1];
   }
+  std::vector<unsigned char> active(cells);
+  for (std::size_t c = 0; c < cells; ++c) active[c] = bin_start_[c + 1] > 0;
+  for (std::size_t c = 0; c < cells; ++c) bin_start_[c + 1] += bin_start_[c];
+  bin_particle_.resize(positions.size());
+  {
+    std::vector<Index> next(bin_start_.begin(), bin_start_.end() - 1);
+    for (std::size_t p = 0; p < positions.size(); ++p) bin_particle_[next[bin_cell_[p]]++] = static_cast<Index>(p);
+  }
+
   if (active != active_) {  // the Gauss points and their grid weights change with the cells
     active_ = std::move(active);
+    active_cells_.clear();
     points_.clear();
     const double offset = 0.5 / std::sqrt(3.0);  // 2-point Gauss-Legendre on [-1/2, 1/2]
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         if (!active_[i + static_cast<std::size_t>(nx) * j]) continue;
+        active_cells_.push_back(i + nx * j);
         const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
         for (const double sy : {-offset, offset})
           for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
@@ -40,12 +60,82 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
     parallel_blocks(points(), 1024, [&](Index begin, Index end) {
       for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
     });
-    rows_.resize(points_.size());
+    rows_.resize(active_cells_.size());
   }
-  const RKShapeFunctions mls(positions, settings_);
-  mls.for_each(points_, false, [&](Index g, const ShapeValues& v) {
-    rows_[g].particle.assign(v.nodes.begin(), v.nodes.end());  // the rows keep their storage from step to step
-    rows_[g].phi.assign(v.phi.begin(), v.phi.end());
+  if (settings_.order == RKOrder::linear) update_rows<1>(positions);
+  else update_rows<2>(positions);
+}
+
+/// The MLS functions of the four Gauss points of every active cell in one pass over the
+/// particles of the cells their supports reach: the tensor window is a product, so the two
+/// x and two y offsets of a particle give its four windows from four 1D evaluations, and
+/// the four moment matrices fill side by side, one per lane of an Eigen::Array4d
+/// (rk_moment.hpp). The same functions as RKShapeFunctions with the particles as nodes
+/// (quadratic spline window, tensor support of half width a), summed in another order.
+template <int Order>
+void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
+  using Basis = PolynomialBasis<Order>;
+  using Lanes = Eigen::Array4d;  // lane q: Gauss point q of the cell
+  using Moment = RKMoment<Order, Lanes>;
+  const double h = grid_.spacing(), a = settings_.radius, inv_a = 1.0 / a;
+  const Vec2 lo = grid_.box().lo;
+  const int nx = grid_.cells_x(), ny = grid_.cells_y();
+  const auto column = [&](double x) { return std::clamp(static_cast<int>(std::floor((x - lo.x()) / h)), 0, nx - 1); };
+  const auto row_of = [&](double y) { return std::clamp(static_cast<int>(std::floor((y - lo.y()) / h)), 0, ny - 1); };
+  // The scaled offsets z = (x_g - x_p) / a of the four points, lane q = (q & 1, q >> 1).
+  const auto offsets = [&](const Vec2& x, const Vec2& g0, const Vec2& g1, Lanes& z1, Lanes& z2) {
+    const double x0 = (g0.x() - x.x()) * inv_a, x1 = (g1.x() - x.x()) * inv_a;
+    const double y0 = (g0.y() - x.y()) * inv_a, y1 = (g1.y() - x.y()) * inv_a;
+    z1 << x0, x1, x0, x1;
+    z2 << y0, y0, y1, y1;
+  };
+
+  parallel_blocks(static_cast<Index>(rows_.size()), 16, [&](Index begin, Index end) {
+    for (Index c = begin; c < end; ++c) {
+      const Vec2 g0 = points_[4 * c], g1 = points_[4 * c + 3];  // the (-,-) and (+,+) points
+      Row& row = rows_[c];
+      row.particle.clear();  // the rows keep their storage from step to step
+      row.phi.clear();
+      Moment moment;
+      Lanes count = Lanes::Zero();
+      // Pass 1: windows (phi holds w until pass 2) and moments, for the particles inside
+      // the union of the four supports.
+      const double xlo = g0.x() - a, xhi = g1.x() + a, ylo = g0.y() - a, yhi = g1.y() + a;
+      const int i0 = column(xlo), i1 = column(xhi);
+      for (int j = row_of(ylo); j <= row_of(yhi); ++j)
+        for (Index k = bin_start_[i0 + nx * j]; k < bin_start_[i1 + nx * j + 1]; ++k) {
+          const Index p = bin_particle_[k];
+          const Vec2& x = positions[p];
+          if (!(x.x() > xlo && x.x() < xhi && x.y() > ylo && x.y() < yhi)) continue;
+          Lanes z1, z2;
+          offsets(x, g0, g1, z1, z2);
+          const double wx0 = quadratic_spline(std::abs(z1[0])).w, wx1 = quadratic_spline(std::abs(z1[1])).w;
+          const double wy0 = quadratic_spline(std::abs(z2[0])).w, wy1 = quadratic_spline(std::abs(z2[2])).w;
+          const Lanes w = Lanes(wx0, wx1, wx0, wx1) * Lanes(wy0, wy0, wy1, wy1);
+          moment.add(w, Basis::lanes(z1, z2));
+          count += (w > 0.0).template cast<double>();
+          row.particle.push_back(p);
+          row.phi.push_back(w);
+        }
+      // b = M^-1 H(0) of each point, lane by lane: b[i][q].
+      std::array<Lanes, Moment::nb> b;
+      for (int q = 0; q < 4; ++q) {
+        typename RKMoment<Order>::Matrix inverse;
+        const auto n = static_cast<std::size_t>(count[q]);
+        const double rcond = n < static_cast<std::size_t>(Moment::nb) ? -1.0 : moment.lane(q).invert(inverse);
+        if (!(rcond >= settings_.rcond_min)) throw_moment_failure(points_[4 * c + q], n, settings_, rcond);
+        for (int i = 0; i < Moment::nb; ++i) b[i][q] = inverse(i, 0);
+      }
+      // Pass 2: phi_gp = b . H(z) w.
+      for (std::size_t k = 0; k < row.particle.size(); ++k) {
+        Lanes z1, z2;
+        offsets(positions[row.particle[k]], g0, g1, z1, z2);
+        const auto terms = Basis::lanes(z1, z2);
+        Lanes bh = b[0] * terms[0];
+        for (int i = 1; i < Moment::nb; ++i) bh += b[i] * terms[i];
+        row.phi[k] *= bh;
+      }
+    }
   });
 }
 

@@ -26,6 +26,11 @@ struct PolynomialBasis<1> {
   static constexpr int size = 3;
   using Terms = std::array<double, size>;
   static Terms value(double z1, double z2) { return {1.0, z1, z2}; }
+  /// The terms of several points at once, one per lane of the Eigen arrays z1, z2.
+  template <class Lanes>
+  static std::array<Lanes, size> lanes(const Lanes& z1, const Lanes& z2) {
+    return {Lanes::Ones(), z1, z2};
+  }
   /// dH/dz1 and dH/dz2.
   static Terms d1(double, double) { return {0.0, 1.0, 0.0}; }
   static Terms d2(double, double) { return {0.0, 0.0, 1.0}; }
@@ -36,6 +41,10 @@ struct PolynomialBasis<2> {
   static constexpr int size = 6;
   using Terms = std::array<double, size>;
   static Terms value(double z1, double z2) { return {1.0, z1, z2, z1 * z1, z1 * z2, z2 * z2}; }
+  template <class Lanes>
+  static std::array<Lanes, size> lanes(const Lanes& z1, const Lanes& z2) {
+    return {Lanes::Ones(), z1, z2, z1 * z1, z1 * z2, z2 * z2};
+  }
   static Terms d1(double z1, double z2) { return {0.0, 1.0, 0.0, 2.0 * z1, z2, 0.0}; }
   static Terms d2(double z1, double z2) { return {0.0, 0.0, 1.0, 0.0, z1, 2.0 * z2}; }
 };

@@ -102,6 +102,11 @@ class RKShapeFunctions {
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,
                                         int k = 4);
 
+/// Throws the NumericalError of a point x whose moment matrix is singular (rcond < 0 or NaN)
+/// or has a reciprocal condition number below s.rcond_min: its n neighbours, the support and
+/// what to change.
+[[noreturn]] void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond);
+
 /// linear, quadratic: the names scenes use.
 const NameTable<RKOrder>& order_names();
 std::string_view to_string(RKOrder order);
