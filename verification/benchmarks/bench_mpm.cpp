@@ -122,6 +122,9 @@ BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet, MPMMethod::cpdi, 2, UpdateScheme::ve
 BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usf_pinv, MPMMethod::bspline, 2, UpdateScheme::usf, true, false,
                   GridMapping::pseudo_inverse)
     ->Name("mpm/bspline2/usf/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline2_verlet_pinv, MPMMethod::bspline, 2, UpdateScheme::verlet, true, false,
+                  GridMapping::pseudo_inverse)
+    ->Name("mpm/bspline2/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet_pinv, MPMMethod::cpdi, 2, UpdateScheme::verlet, true, false,
                   GridMapping::pseudo_inverse)
     ->Name("mpm/cpdi/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -10,10 +10,15 @@ times each stage ran. Two sections read those tables:
     thread scaling              the same runs with OMP_NUM_THREADS = 1 and 2, stage by stage
     direct and Krylov solvers   the cantilever at growing size with CHOLMOD and with CG + GAMG
                                 (stiffness and consistency node system), stage by stage
+    MPM step speed              particle-steps per second of every MPM method, update and
+                                mapping at 64^2 cells and 9 particles per cell, 1 and 2
+                                threads (build/mfree_bench, Google Benchmark)
 """
 from __future__ import annotations
 
+import json
 import os
+import subprocess
 
 from common import (CANTILEVER, LARGE_DEFORMATION, MPM_VIBRATION, QUIET, VIBRATION, Context, RunResult, Section,
                     new_figure, save_figure, table)
@@ -33,6 +38,8 @@ def sections(ctx: Context) -> list[Section]:
         out.append(thread_scaling(ctx))
     with ctx.step("performance: direct and Krylov solvers"):
         out.append(solver_scaling(ctx))
+    with ctx.step("performance: MPM step speed"):
+        out.append(mpm_step_speed(ctx))
     return out
 
 
@@ -243,3 +250,105 @@ def solver_scaling(ctx: Context) -> Section:
               "`direct_limit` unknowns.\n")
     return Section(title, body, [("CHOLMOD and CG + GAMG give the same energy error", "to 1e-4 relative",
                                   "yes" if agree else "no", "match" if agree else "differ")])
+
+
+# ---------------------------------------------------------------------------------------------
+# MPM step speed
+
+# mfree_bench's MPM runs (verification/benchmarks/bench_mpm.cpp) and what they are.
+MPM_BENCHMARKS = {
+    "mpm/classic/usf": "Classic, USF",
+    "mpm/ugimp/usf": "uGIMP, USF",
+    "mpm/cpgimp/usf": "cpGIMP, USF",
+    "mpm/cpdi/usf": "lCPDI, USF",
+    "mpm/qcpdi/usf": "qCPDI, USF",
+    "mpm/cpdi2/usf": "CPDI2, USF",
+    "mpm/bspline2/usf": "quadratic B-spline, USF",
+    "mpm/bspline2/usl": "quadratic B-spline, USL",
+    "mpm/bspline2/szs": "quadratic B-spline, SZS",
+    "mpm/bspline2/usavg": "quadratic B-spline, USAVG",
+    "mpm/bspline2/usf/no_body_force": "quadratic B-spline, USF, no body force",
+    "mpm/bspline2/usf/j2": "quadratic B-spline, USF, J2 plasticity, no body force",
+    "mpm/bspline3/usf": "cubic B-spline, USF",
+    "mpm/bspline_mls/usf": "MLS-reconstructed B-spline (linear basis, 1.5 cells), USF",
+    "mpm/bspline2/verlet": "quadratic B-spline, Verlet",
+    "mpm/cpdi/verlet": "lCPDI, Verlet",
+    "mpm/bspline2/usf/pseudo_inverse": "quadratic B-spline, USF, pseudo-inverse",
+    "mpm/bspline2/verlet/pseudo_inverse": "quadratic B-spline, Verlet, pseudo-inverse",
+    "mpm/cpdi/verlet/pseudo_inverse": "lCPDI, Verlet, pseudo-inverse",
+    "mpm/bspline_mls_quadratic/verlet/pseudo_inverse": "MLS (quadratic basis), Verlet, pseudo-inverse",
+}
+# (MLS run, the plain B-spline run of the same update and mapping) for the cost ratio.
+MLS_PAIRS = [("mpm/bspline_mls/usf", "mpm/bspline2/usf"),
+             ("mpm/bspline_mls_quadratic/verlet/pseudo_inverse", "mpm/bspline2/verlet/pseudo_inverse")]
+
+
+def bench_rates(ctx: Context, threads: int) -> dict[str, float]:
+    """Million particle-steps per second of every MPM benchmark with `threads` threads, the best of
+    the repetitions (empty when mfree_bench is missing or fails; the failure is recorded)."""
+    bench = ctx.mfree.parent / "mfree_bench"
+    if not bench.exists():
+        ctx.failures.append(f"MPM step speed: {bench} is missing (configure with MFREE_BUILD_BENCHMARKS=ON)")
+        return {}
+    command = [str(bench), "--benchmark_filter=^mpm/", "--benchmark_format=json",
+               f"--benchmark_min_time={0.05 if ctx.quick else 0.5}",
+               f"--benchmark_repetitions={1 if ctx.quick else 3}"]
+    done = subprocess.run(command, cwd=ctx.root, env=dict(os.environ, OMP_NUM_THREADS=str(threads)),
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        ctx.failures.append(f"MPM step speed: mfree_bench exited with status {done.returncode}")
+        return {}
+    rates: dict[str, float] = {}
+    for b in json.loads(done.stdout)["benchmarks"]:
+        if b.get("run_type") == "aggregate":
+            continue
+        name = b["run_name"].removesuffix("/real_time")
+        rates[name] = max(rates.get(name, 0.0), b["particle_steps_per_second"] / 1e6)
+    return rates
+
+
+def mpm_step_speed(ctx: Context) -> Section:
+    title = "MPM step speed, every method"
+    rates = {threads: bench_rates(ctx, threads) for threads in (1, 2)}
+    reference = rates[2].get("mpm/bspline2/usf")
+    rows = []
+    for name, label in MPM_BENCHMARKS.items():
+        r1, r2 = rates[1].get(name), rates[2].get(name)
+        if r1 is None and r2 is None:
+            if rates[1] or rates[2]:
+                ctx.failures.append(f"MPM step speed: benchmark {name} did not run")
+            continue
+        rows.append([label, f"`{name}`", f"{r1:.2f}" if r1 else "—", f"{r2:.2f}" if r2 else "—",
+                     f"{reference / r2:.2f}" if reference and r2 else "—"])
+    ratios = []
+    for mls, plain in MLS_PAIRS:
+        if rates[2].get(mls) and rates[2].get(plain) and rates[1].get(mls) and rates[1].get(plain):
+            ratios.append([MPM_BENCHMARKS[mls], MPM_BENCHMARKS[plain], f"{rates[1][plain] / rates[1][mls]:.2f}",
+                           f"{rates[2][plain] / rates[2][mls]:.2f}"])
+    fig, (ax,) = new_figure(width=8, height=0.3 * max(len(rows), 4) + 1)
+    labels = [r[0] for r in rows]
+    for k, threads in enumerate((1, 2)):
+        values = [rates[threads].get(name, 0.0) for name in MPM_BENCHMARKS if name in rates[1] or name in rates[2]]
+        ax.barh([i + 0.4 * k for i in range(len(values))], values, height=0.4, label=f"{threads} thread(s)")
+    ax.set_yticks([i + 0.2 for i in range(len(labels))], labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("million particle-steps per second")
+    ax.legend(fontsize=7)
+    figure = save_figure(fig, ctx.figure("performance_mpm_step"))
+    quick = (" Quick mode: one short repetition each, indicative only." if ctx.quick else "")
+    body = ("One explicit MPM step of the vibration problem (A = 0.05, its body force and initial velocity, slip "
+            "walls) on 64 x 64 cells with 9 particles per cell (36 864 particles), dt = 1e-5 s, timed by "
+            "`build/mfree_bench` (verification/benchmarks/bench_mpm.cpp; the solver is built outside the timed "
+            "loop), best of 3 repetitions of at least 0.5 s, OMP_NUM_THREADS = 1 and 2." + quick + "\n\n"
+            + table(["method", "benchmark", "1 thread [M/s]", "2 threads [M/s]",
+                     "cost / quadratic B-spline USF (2 threads)"], rows)
+            + "\n**MLS reconstruction against plain quadratic B-splines with the same update and mapping** "
+              "(step time ratio):\n\n"
+            + table(["MLS run", "plain run", "1 thread", "2 threads"], ratios)
+            + "\n" + ctx.image(figure, "MPM particle-steps per second, 64 x 64 cells, 9 particles per cell")
+            + "\nReproduce: `OMP_NUM_THREADS=2 build/mfree_bench --benchmark_filter=^mpm/ "
+              "--benchmark_counters_tabular=true`\n")
+    observed = "; ".join(f"{r[0]}: {r[2]} (1 thread), {r[3]} (2 threads)" for r in ratios)
+    return Section(title, body, [("MLS step against the plain B-spline step", "at most 3x", observed,
+                                  "—" if ctx.quick or not ratios else
+                                  ("yes" if all(float(r[3]) <= 3.0 for r in ratios) else "no"))])

@@ -513,8 +513,21 @@ def amplitude(ctx: Context, title: str) -> Section:
 def long_runs(ctx: Context, title: str) -> Section:
     sets = (["dynamics.end_time=0.04", "dynamics.error_times=[1.0]", "study.methods=[\"bspline\", \"cpdi\"]",
              "dynamics.frames=0", "output.fields=[]"] if ctx.quick else ["dynamics.frames=0", "output.fields=[]"])
-    mpm = ctx.mfree_run("converge", MPM_LONG, "stability/long_mpm", sets)
-    ctx.tolerate_failed_rows(mpm, "MPM runs that fail within ten periods are recorded with their message")
+    # The USF runs of every method; Verlet for B-splines, lCPDI and MLS; MLS with the quadratic
+    # basis under both mappings (Verlet).
+    variants = [("", "stability/long_mpm", []),
+                ("", "stability/long_mpm_verlet",
+                 ['study.methods=["bspline", "cpdi", "bspline_mls"]', 'study.updates=["verlet"]']),
+                ("quadratic MLS, ", "stability/long_mpm_mls_quadratic",
+                 ['mpm.method="bspline_mls"', 'study.methods=["bspline_mls"]', 'mpm.mls_basis="quadratic"', 'study.updates=["verlet"]',
+                  'study.mappings=["lumped", "pseudo_inverse"]'])]
+    if ctx.quick:
+        variants = variants[:1]
+    mpm_runs = []
+    for basis, name, extra in variants:
+        run = ctx.mfree_run("converge", MPM_LONG, name, sets + extra)
+        ctx.tolerate_failed_rows(run, "MPM runs that fail within ten periods are recorded with their message")
+        mpm_runs.append((basis, run, extra))
     scene = scene_table(ctx.root / MPM_LONG)
     a = scene["exact"]["amplitude"]
     end = 0.04 if ctx.quick else scene["dynamics"]["end_time"]
@@ -525,16 +538,20 @@ def long_runs(ctx: Context, title: str) -> Section:
                                           f"dynamics.time_step={dt}", f"dynamics.end_time={end}", "dynamics.frames=0",
                                           "dynamics.error_times=[1.0]", "dynamics.energy_every=20"])
     rows, curves = [], []
-    if mpm.ok:
+    for basis, mpm, _ in mpm_runs:
+        if not mpm.ok:
+            continue
         for r in read_csv(mpm.folder / "mpm_convergence.csv"):
             if number(r["time_fraction"]) == 1.0 or r["status"] != "ok":
-                rows.append([f"MPM {r['method']}", r["status"] if r["status"] == "ok" else short(r["status"], 90),
+                rows.append([f"MPM {r['method']} ({basis}{r['update']}, {r['mapping']})",
+                             r["status"] if r["status"] == "ok" else short(r["status"], 90),
                              number(r["displacement"]) / a, number(r["energy_drift"]), number(r["seconds"])])
         energy = mpm.folder / "mpm_energy.csv"
         if energy.exists():
             series = {}
             for r in read_csv(energy):
-                series.setdefault(f"MPM {r['method']}", []).append((number(r["time"]), number(r["total"])))
+                label = f"MPM {r['method']} ({basis}{r['update']}, {r['mapping']})"
+                series.setdefault(label, []).append((number(r["time"]), number(r["total"])))
             curves += list(series.items())
     for scheme, r in meshfree.items():
         rows.append([f"meshfree TL {scheme}", "ok" if r.ok else short(message(r), 90),
@@ -553,7 +570,8 @@ def long_runs(ctx: Context, title: str) -> Section:
     ax.legend(fontsize=7)
     figure = save_figure(fig, ctx.figure("stability_long_runs"))
     body = (f"The vibration problem at A = {a} for {end / 0.02:g} periods: every MPM method (16 cells, 9 particles "
-            "per cell, dt = 1e-5 s, USF) and the total-Lagrangian meshfree solver (h = 1/16, central differences "
+            "per cell, dt = 1e-5 s, USF; velocity Verlet for quadratic B-splines, lCPDI and MLS; MLS with the "
+            "quadratic basis, Verlet, under the lumped and the pseudo-inverse mapping) and the total-Lagrangian meshfree solver (h = 1/16, central differences "
             "dt = 1e-5 s and Newmark's trapezoidal rule dt = 2.5e-5 s). Energy balance E = kinetic + strain - "
             "work of the body forces, constant for the exact motion; drift = max |E(t) - E(0)| / max (kinetic + "
             "strain).\n\n"
@@ -562,7 +580,8 @@ def long_runs(ctx: Context, title: str) -> Section:
             "first-order stepping), and a method that goes unstable stops with an error.\n\n"
             + table(["method", "status", "relative u error at the end", "energy drift", "seconds"], rows)
             + "\n" + ctx.image(figure, "Energy balance through the long runs")
-            + f"\nReproduce: `{ctx.command('converge', MPM_LONG)}`\n")
+            + "\nReproduce:\n\n```sh\n" + "\n".join(ctx.command("converge", MPM_LONG, extra) for _, _, extra in mpm_runs)
+            + "\n```\n")
     drift = {row[0]: row[3] for row in rows}
     return Section(title, body, [("Long runs: energy drift", "bounded for stable methods",
                                   "; ".join(f"{k} {num(v, 2)}" for k, v in drift.items()), "—")])
