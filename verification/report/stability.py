@@ -513,14 +513,14 @@ def amplitude(ctx: Context, title: str) -> Section:
 def long_runs(ctx: Context, title: str) -> Section:
     sets = (["dynamics.end_time=0.04", "dynamics.error_times=[1.0]", "study.methods=[\"bspline\", \"cpdi\"]",
              "dynamics.frames=0", "output.fields=[]"] if ctx.quick else ["dynamics.frames=0", "output.fields=[]"])
-    # The USF runs of every method; Verlet for B-splines, lCPDI and MLS; MLS with the quadratic
-    # basis under both mappings (Verlet).
+    # The USF runs of every method; Verlet for B-splines and lCPDI; MLS (linear basis) with the
+    # seed's USL and with Verlet; MLS with the quadratic basis, USL and Verlet, under both mappings.
     variants = [("", "stability/long_mpm", []),
-                ("", "stability/long_mpm_verlet",
-                 ['study.methods=["bspline", "cpdi", "bspline_mls"]', 'study.updates=["verlet"]']),
+                ("", "stability/long_mpm_verlet", ['study.methods=["bspline", "cpdi"]', 'study.updates=["verlet"]']),
+                ("", "stability/long_mpm_mls", ['study.methods=["bspline_mls"]', 'study.updates=["usl", "verlet"]']),
                 ("quadratic MLS, ", "stability/long_mpm_mls_quadratic",
-                 ['mpm.method="bspline_mls"', 'study.methods=["bspline_mls"]', 'mpm.mls_basis="quadratic"', 'study.updates=["verlet"]',
-                  'study.mappings=["lumped", "pseudo_inverse"]'])]
+                 ['mpm.method="bspline_mls"', 'study.methods=["bspline_mls"]', 'mpm.mls_basis="quadratic"',
+                  'study.updates=["usl", "verlet"]', 'study.mappings=["lumped", "pseudo_inverse"]'])]
     if ctx.quick:
         variants = variants[:1]
     mpm_runs = []
@@ -570,8 +570,9 @@ def long_runs(ctx: Context, title: str) -> Section:
     ax.legend(fontsize=7)
     figure = save_figure(fig, ctx.figure("stability_long_runs"))
     body = (f"The vibration problem at A = {a} for {end / 0.02:g} periods: every MPM method (16 cells, 9 particles "
-            "per cell, dt = 1e-5 s, USF; velocity Verlet for quadratic B-splines, lCPDI and MLS; MLS with the "
-            "quadratic basis, Verlet, under the lumped and the pseudo-inverse mapping) and the total-Lagrangian meshfree solver (h = 1/16, central differences "
+            "per cell, dt = 1e-5 s, USF; velocity Verlet for quadratic B-splines and lCPDI; MLS with the seed's "
+            "USL and with Verlet, with the linear and the quadratic basis, the latter under the lumped and the "
+            "pseudo-inverse mapping) and the total-Lagrangian meshfree solver (h = 1/16, central differences "
             "dt = 1e-5 s and Newmark's trapezoidal rule dt = 2.5e-5 s). Energy balance E = kinetic + strain - "
             "work of the body forces, constant for the exact motion; drift = max |E(t) - E(0)| / max (kinetic + "
             "strain).\n\n"

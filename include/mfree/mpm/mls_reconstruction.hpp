@@ -10,8 +10,9 @@
 // The mfree default is the linear basis on a = 1.5 h (half the seed's support: more accurate
 // at every grid); the quadratic basis on a = 1.5 h, with the pseudo-inverse mapping and the
 // Verlet update, converges at 2.3-3.5 on the vibration problem (verification/mpm-vibration/
-// README.md; it does not last ten periods at A = 0.1 on 16 cells: the errors grow to the size
-// of the motion), but needs 6 particles not on one conic around every Gauss point: a body's edge
+// README.md; ten periods at A = 0.1 on 16 cells complete with the lumped mapping, not with the
+// pseudo-inverse, whose wall nodes run away after nine), but needs 6 particles not on one
+// conic around every Gauss point: a body's edge
 // with 2 particles per cell and direction leaves Gauss points that see two rows (a conic),
 // and the run stops there (NumericalError).
 // These are the RK functions of kernels/ with the particles as nodes (the moment matrix of
