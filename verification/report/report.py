@@ -6,7 +6,7 @@ usage (from the repository root; `bash verification/report/run.sh` builds mfree 
 
     /usr/bin/python3 verification/report/report.py            full: verification/REPORT.md,
                                                                figures in verification/report/figures/,
-                                                               runs in results/report/ (~25 min on 2 cores)
+                                                               runs in results/report/ (~42 min on 2 cores)
     /usr/bin/python3 verification/report/report.py --quick --out DIR
                                                                coarse levels only (a few minutes):
                                                                DIR/REPORT.md, DIR/figures/, DIR/runs/

@@ -87,9 +87,10 @@ class MLSReconstruction {
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;
-  /// The particles of the grid box, cell by cell: those of cell c are
-  /// bin_particle_[bin_start_[c] .. bin_start_[c + 1]).
+  /// The particles of the grid box by half cells (bins of h / 2): those of bin b are
+  /// bin_particle_[bin_start_[b] .. bin_start_[b + 1]), at bin_position_[same range].
   std::vector<Index> bin_start_, bin_particle_, bin_cell_;
+  std::vector<Vec2> bin_position_;
   /// phi_gp of the four Gauss points of one active cell: the particles p the functions of
   /// any of them reach, and the four values (zero for the points out of p's reach).
   struct Row {
