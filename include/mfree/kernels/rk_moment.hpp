@@ -47,9 +47,11 @@ class RKMoment {
     }
   }
 
-  /// The matrix of lane q (Scalar an Eigen array).
+  /// The matrix of lane q (Scalar an Eigen array). A member template, so that the explicit
+  /// instantiations of the scalar class leave it out.
+  template <class S = Scalar>
   [[nodiscard]] RKMoment<Order> lane(int q) const
-    requires(!std::is_arithmetic_v<Scalar>)
+    requires(!std::is_arithmetic_v<S>)
   {
     RKMoment<Order> m;
     for (int e = 0; e < entries; ++e) m.upper_[e] = upper_[e][q];

@@ -17,11 +17,14 @@
 // and the run stops there (NumericalError).
 // These are the RK functions of kernels/ with the particles as nodes (the moment matrix of
 // kernels/rk_moment.hpp, which the Galerkin solver's functions use too), evaluated cell by
-// cell: the particles are binned by grid cell, and one pass over those around a cell sums
+// cell: the particles are binned by half cells, and one pass over those around a cell sums
 // the four moment matrices of its Gauss points side by side (one SIMD lane each) and
 // stores phi_gp of the four points per particle, so that a reconstruction reads each
-// particle's value once per cell. Cost per step at 64^2 cells, 9 particles per cell and the
-// default kernel: about twice the rest of a B-spline step (verification/benchmarks).
+// particle's value once per cell. Cost at 64^2 cells, 9 particles per cell and the default
+// kernel: the whole MLS step about 2.5 plain B-spline steps (verification/benchmarks).
+// Limit: a body with free surfaces inside the grid gains energy once it presses against a
+// wall (the Gauss points of a partly filled cell carry the whole cell; verification/
+// mpm-vibration/README.md, "Bodies that do not fill the grid").
 //
 // The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
 // particle (cells the bodies leave empty have none), each with weight h^2 / 4 (omega_g),
