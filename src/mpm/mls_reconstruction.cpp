@@ -54,13 +54,11 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
 
   if (active != active_) {  // the Gauss points and their grid weights change with the cells
     active_ = std::move(active);
-    active_cells_.clear();
     points_.clear();
     const double offset = 0.5 / std::sqrt(3.0);  // 2-point Gauss-Legendre on [-1/2, 1/2]
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         if (!active_[i + static_cast<std::size_t>(nx) * j]) continue;
-        active_cells_.push_back(i + nx * j);
         const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
         for (const double sy : {-offset, offset})
           for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
@@ -69,7 +67,7 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
     parallel_blocks(points(), 1024, [&](Index begin, Index end) {
       for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
     });
-    rows_.resize(active_cells_.size());
+    rows_.resize(points_.size() / 4);
   }
   if (settings_.order == RKOrder::linear) update_rows<1>(positions);
   else update_rows<2>(positions);
@@ -120,7 +118,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
           const double wx0 = quadratic_spline(std::abs(z1[0])).w, wx1 = quadratic_spline(std::abs(z1[1])).w;
           const double wy0 = quadratic_spline(std::abs(z2[0])).w, wy1 = quadratic_spline(std::abs(z2[2])).w;
           const Lanes w = Lanes(wx0, wx1, wx0, wx1) * Lanes(wy0, wy0, wy1, wy1);
-          moment.add(w, Basis::lanes(z1, z2));
+          moment.add(w, Basis::value(z1, z2));
           row.particle.push_back(bin_particle_[k]);
           row.phi.push_back(w);
         }
@@ -132,7 +130,9 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
         if (!(rcond >= settings_.rcond_min)) {  // fewer than nb particles, or too regular: name the point
           const auto n = static_cast<std::size_t>(
               std::count_if(row.phi.begin(), row.phi.end(), [q](const Lanes& w) { return w[q] > 0.0; }));
-          throw_moment_failure(points_[4 * c + q], n, settings_, n < Moment::nb ? -1.0 : rcond);
+          throw_moment_failure(points_[4 * c + q], n, settings_, n < static_cast<std::size_t>(Moment::nb) ? -1.0 : rcond,
+                               "Increase [mpm] mls_support, use mls_basis = \"linear\" or more particles per cell "
+                               "near this point.");
         }
         for (int i = 0; i < Moment::nb; ++i) b[i][q] = inverse(i, 0);
       }
@@ -140,7 +140,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
       for (std::size_t k = 0; k < row.particle.size(); ++k) {
         Lanes z1, z2;
         offsets(positions[row.particle[k]], g0, g1, z1, z2);
-        const auto terms = Basis::lanes(z1, z2);
+        const auto terms = Basis::value(z1, z2);
         Lanes bh = b[0] * terms[0];
         for (int i = 1; i < Moment::nb; ++i) bh += b[i] * terms[i];
         row.phi[k] *= bh;

@@ -11,6 +11,7 @@
 // (each a store-forwarding stall when read back as one packet: half the kernel's time).
 
 #include <array>
+#include <type_traits>
 
 #include "mfree/core/types.hpp"
 
@@ -18,6 +19,15 @@ namespace mfree {
 
 enum class RKOrder { linear = 1, quadratic = 2 };
 
+/// 1 in the type of z: a double, or an Eigen array of ones.
+template <class S>
+S one_like(const S&) {
+  if constexpr (std::is_arithmetic_v<S>) return 1.0;
+  else return S::Ones();
+}
+
+/// value(z1, z2) = H(z): z1, z2 doubles, or Eigen arrays with one point per lane (the terms
+/// of several points at once).
 template <int Order>
 struct PolynomialBasis;
 
@@ -25,11 +35,9 @@ template <>
 struct PolynomialBasis<1> {
   static constexpr int size = 3;
   using Terms = std::array<double, size>;
-  static Terms value(double z1, double z2) { return {1.0, z1, z2}; }
-  /// The terms of several points at once, one per lane of the Eigen arrays z1, z2.
-  template <class Lanes>
-  static std::array<Lanes, size> lanes(const Lanes& z1, const Lanes& z2) {
-    return {Lanes::Ones(), z1, z2};
+  template <class S>
+  static std::array<S, size> value(const S& z1, const S& z2) {
+    return {one_like(z1), z1, z2};
   }
   /// dH/dz1 and dH/dz2.
   static Terms d1(double, double) { return {0.0, 1.0, 0.0}; }
@@ -40,10 +48,9 @@ template <>
 struct PolynomialBasis<2> {
   static constexpr int size = 6;
   using Terms = std::array<double, size>;
-  static Terms value(double z1, double z2) { return {1.0, z1, z2, z1 * z1, z1 * z2, z2 * z2}; }
-  template <class Lanes>
-  static std::array<Lanes, size> lanes(const Lanes& z1, const Lanes& z2) {
-    return {Lanes::Ones(), z1, z2, z1 * z1, z1 * z2, z2 * z2};
+  template <class S>
+  static std::array<S, size> value(const S& z1, const S& z2) {
+    return {one_like(z1), z1, z2, z1 * z1, z1 * z2, z2 * z2};
   }
   static Terms d1(double z1, double z2) { return {0.0, 1.0, 0.0, 2.0 * z1, z2, 0.0}; }
   static Terms d2(double z1, double z2) { return {0.0, 0.0, 1.0, 0.0, z1, 2.0 * z2}; }

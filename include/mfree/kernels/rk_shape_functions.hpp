@@ -18,6 +18,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mfree/core/name_table.hpp"
@@ -104,8 +105,11 @@ std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h
 
 /// Throws the NumericalError of a point x whose moment matrix is singular (rcond < 0 or NaN)
 /// or has a reciprocal condition number below s.rcond_min: its n neighbours, the support and
-/// what to change.
-[[noreturn]] void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond);
+/// `remedy`, what the caller's user can change.
+[[noreturn]] void throw_moment_failure(
+    const Vec2& x, std::size_t n, const RKSettings& s, double rcond,
+    std::string_view remedy = "Increase the support radius (kernel support factor) or make the cloud denser or more "
+                              "regular near this point.");
 
 /// linear, quadratic: the names scenes use.
 const NameTable<RKOrder>& order_names();

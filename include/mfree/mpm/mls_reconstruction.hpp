@@ -85,8 +85,7 @@ class MLSReconstruction {
   const Grid& grid_;
   const ParticleBasis& basis_;
   std::vector<unsigned char> active_;  ///< per cell of the grid box: holds a particle
-  std::vector<int> active_cells_;      ///< the cells holding particles, in the order of their Gauss points
-  std::vector<Vec2> points_;           ///< 4 per active cell: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<Vec2> points_;           ///< 4 per cell holding particles: (-,-), (+,-), (-,+), (+,+) about its centre
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;
