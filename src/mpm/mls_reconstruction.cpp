@@ -1,6 +1,7 @@
 #include "mfree/mpm/mls_reconstruction.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <utility>
 
@@ -18,18 +19,22 @@ MLSReconstruction::MLSReconstruction(const Grid& grid, const ParticleBasis& basi
   settings_.radius = support * grid.spacing();
 }
 
-void MLSReconstruction::update(const std::vector<Vec2>& positions) {
+void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
+                               const std::vector<double>& volume0) {
   const double h = grid_.spacing();
   const int nx = grid_.cells_x(), ny = grid_.cells_y();
-  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  const auto cell_of = [&](const Vec2& x) {
+    const Vec2 c = (x - grid_.box().lo) / h;
+    return std::clamp(static_cast<int>(std::floor(c.x())), 0, nx - 1) +
+           static_cast<std::size_t>(nx) * std::clamp(static_cast<int>(std::floor(c.y())), 0, ny - 1);
+  };
 
   // The particles binned by half cells (a counting sort; a particle outside the box in the
-  // bin next to it), their positions copied in bin order, and the cells holding particles
-  // marked. Half cells: a cell's Gauss points reach 1.79 h (support 1.5 h) to each side, 4 h
-  // of half-cell bins against 5 h of whole cells, two thirds of the candidates to test.
+  // bin next to it), their positions copied in bin order. Half cells: a cell's Gauss points
+  // reach 1.79 h (support 1.5 h) to each side, 4 h of half-cell bins against 5 h of whole
+  // cells, two thirds of the candidates to test.
   const int bx = 2 * nx, by = 2 * ny;
   const std::size_t bins = static_cast<std::size_t>(bx) * by;
-  std::vector<unsigned char> active(cells, 0);
   bin_cell_.resize(positions.size());
   bin_start_.assign(bins + 1, 0);
   for (std::size_t p = 0; p < positions.size(); ++p) {
@@ -38,7 +43,6 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
     const int j = std::clamp(static_cast<int>(std::floor(c.y())), 0, by - 1);
     bin_cell_[p] = i + bx * j;
     ++bin_start_[bin_cell_[p] + 1];
-    active[i / 2 + static_cast<std::size_t>(nx) * (j / 2)] = 1;
   }
   for (std::size_t b = 0; b < bins; ++b) bin_start_[b + 1] += bin_start_[b];
   bin_particle_.resize(positions.size());
@@ -52,28 +56,90 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions) {
     }
   }
 
-  if (active != active_) {  // the Gauss points and their grid weights change with the cells
-    active_ = std::move(active);
+  std::vector<unsigned char> interior;
+  interior_cells(positions, deformation, volume0, interior);
+  if (interior != interior_) {  // the Gauss points and their grid weights change with the cells
+    interior_ = std::move(interior);
     points_.clear();
     const double offset = 0.5 / std::sqrt(3.0);  // 2-point Gauss-Legendre on [-1/2, 1/2]
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        if (!active_[i + static_cast<std::size_t>(nx) * j]) continue;
+        if (!interior_[i + static_cast<std::size_t>(nx) * j]) continue;
         const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
         for (const double sy : {-offset, offset})
           for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
       }
-    basis_.resize(weights_, points());
-    parallel_blocks(points(), 1024, [&](Index begin, Index end) {
+    basis_.resize(weights_, gauss_count());
+    parallel_blocks(gauss_count(), 1024, [&](Index begin, Index end) {
       for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
     });
     rows_.resize(points_.size() / 4);
   }
+  // The particles of the other cells, their own quadrature points, after the Gauss points.
+  own_.clear();
+  is_own_.assign(positions.size(), 0);
+  for (std::size_t p = 0; p < positions.size(); ++p)
+    if (!interior_[cell_of(positions[p])]) {
+      own_.push_back(static_cast<Index>(p));
+      is_own_[p] = 1;
+    }
+  basis_.resize(weights_, points());
+  parallel_blocks(static_cast<Index>(own_.size()), 1024, [&](Index begin, Index end) {
+    for (Index k = begin; k < end; ++k)
+      basis_.evaluate(positions[own_[k]], Mat2::Identity(), Vec2::Zero(), weights_, gauss_count() + k);
+  });
   if (settings_.order == RKOrder::linear) update_rows<1>(positions);
   else update_rows<2>(positions);
 }
 
-/// The MLS functions of the four Gauss points of every active cell in one pass over the
+/// interior[c] = 1 where the bodies fill cell c and its neighbours on the grid. Filled: the
+/// particle domains cover the cell's corners, edge midpoints and centre (a lattice of half
+/// cells, 9 points a cell, shared). Domain of p: x_p + F_p xi with |xi_x|, |xi_y| <= (1 +
+/// 1/4) sqrt(V_p0) / 2; a lattice point s is in it when |F_p^-1 (s - x_p)|_inf <= that half
+/// width.
+void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
+                                       const std::vector<double>& volume0, std::vector<unsigned char>& interior) const {
+  const double h = grid_.spacing(), half_step = 0.5 * h;
+  const Vec2 lo = grid_.box().lo;
+  const int nx = grid_.cells_x(), ny = grid_.cells_y(), sx = 2 * nx + 1, sy = 2 * ny + 1;
+  std::vector<unsigned char> covered(static_cast<std::size_t>(sx) * sy, 0);
+  parallel_blocks(static_cast<Index>(positions.size()), 1024, [&](Index begin, Index end) {
+    for (Index p = begin; p < end; ++p) {
+      const double r = 1.25 * 0.5 * std::sqrt(volume0[p]);
+      const Mat2& F = deformation[p];
+      const Mat2 inverse = F.inverse();
+      const Vec2 extent = r * F.cwiseAbs().rowwise().sum();  // half sizes of the domain's bounding box
+      const Vec2 a = (positions[p] - extent - lo) / half_step, b = (positions[p] + extent - lo) / half_step;
+      const int i0 = std::max(0, static_cast<int>(std::ceil(a.x())));
+      const int i1 = std::min(sx - 1, static_cast<int>(std::floor(b.x())));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(a.y())));
+      const int j1 = std::min(sy - 1, static_cast<int>(std::floor(b.y())));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const Vec2 xi = inverse * (lo + half_step * Vec2(i, j) - positions[p]);
+          // Threads may mark a point at once: the same value, an atomic store.
+          if (xi.cwiseAbs().maxCoeff() <= r)
+            std::atomic_ref<unsigned char>(covered[i + static_cast<std::size_t>(sx) * j]).store(1, std::memory_order_relaxed);
+        }
+    }
+  });
+  std::vector<unsigned char> filled(static_cast<std::size_t>(nx) * ny, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      bool all = true;
+      for (int dj = 0; dj <= 2 && all; ++dj)
+        for (int di = 0; di <= 2 && all; ++di) all = covered[2 * i + di + static_cast<std::size_t>(sx) * (2 * j + dj)];
+      filled[i + static_cast<std::size_t>(nx) * j] = all;
+    }
+  interior = filled;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny - 1); ++b)
+        for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx - 1); ++a)
+          if (!filled[a + static_cast<std::size_t>(nx) * b]) interior[i + static_cast<std::size_t>(nx) * j] = 0;
+}
+
+/// The MLS functions of the four Gauss points of every interior cell in one pass over the
 /// particles of the cells their supports reach: the tensor window is a product, so the two
 /// x and two y offsets of a particle give its four windows from four 1D evaluations, and
 /// the four moment matrices fill side by side, one per lane of an Eigen::Array4d
@@ -113,6 +179,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
         for (Index k = bin_start_[i0 + bx * j]; k < bin_start_[i1 + bx * j + 1]; ++k) {
           const Vec2& x = bin_position_[k];
           if (!(x.x() > xlo && x.x() < xhi && x.y() > ylo && x.y() < yhi)) continue;
+          if (is_own_[bin_particle_[k]]) continue;  // not for the Gauss points
           Lanes z1, z2;
           offsets(x, g0, g1, z1, z2);
           const double wx0 = quadratic_spline(std::abs(z1[0])).w, wx1 = quadratic_spline(std::abs(z1[1])).w;

@@ -266,7 +266,8 @@ void MPMSolver::compute_weights() {
 }
 
 void MPMSolver::update_mls_functions() {
-  at_time(time_, [&] { mls_->update(particles_.position); });
+  const Particles& P = particles_;
+  at_time(time_, [&] { mls_->update(P.position, P.deformation, P.volume0); });
 }
 
 void MPMSolver::particles_to_grid() {
@@ -297,21 +298,32 @@ void MPMSolver::particles_to_grid() {
 void MPMSolver::reconstruct_density() {
   const Particles& P = particles_;
   // rho_p^t: the densities of the step's start serve every reconstruction of the step.
-  const double w = mls_->gauss_weight();
   density_.resize(P.mass.size());
-  for (Index p = 0; p < P.size(); ++p) density_[p] = w * P.mass[p] / P.volume[p];
+  for (Index p = 0; p < P.size(); ++p) density_[p] = P.mass[p] / P.volume[p];
   mls_->reconstruct<Eigen::Vector3d>(gauss_mass_momentum_, [&](Index p) {
     return Eigen::Vector3d(density_[p], density_[p] * P.velocity[p].x(), density_[p] * P.velocity[p].y());
   });
   // The reconstruction reproduces 1, x, y but does not conserve mass: the reconstructed
-  // densities are scaled so that the Gauss points carry the particles' mass, sum_g rho_g
-  // omega_g = sum_p m_p, and every field reconstructed with them this step by the same
-  // factor (rho v, rho b), after the reconstruction, so that a uniform velocity stays exact.
-  double reconstructed = 0.0;
-  for (const Eigen::Vector3d& g : gauss_mass_momentum_) reconstructed += g[0];
-  density_scale_ = particle_mass_ / reconstructed;
-  reconstruction_defect_ = std::abs(reconstructed - particle_mass_) / particle_mass_;
-  for (Eigen::Vector3d& g : gauss_mass_momentum_) g *= density_scale_;
+  // densities are scaled so that the Gauss points carry the mass of the particles they stand
+  // for (those of the interior cells), sum_g rho_g omega_g = sum_p m_p, and every field
+  // reconstructed with them this step by the same factor (rho v, rho b), after the
+  // reconstruction, so that a uniform velocity stays exact.
+  const double omega = mls_->gauss_weight();
+  double reconstructed = 0.0, own = 0.0;
+  for (Index g = 0; g < mls_->gauss_count(); ++g) reconstructed += omega * gauss_mass_momentum_[g][0];
+  for (const Index p : mls_->own_particles()) own += P.mass[p];
+  const double carried = particle_mass_ - own;
+  density_scale_ = reconstructed > 0.0 ? carried / reconstructed : 1.0;
+  reconstruction_defect_ = std::abs(reconstructed - carried) / particle_mass_;
+  weigh_quadrature(gauss_mass_momentum_, [&](Eigen::Vector3d& at) { at *= omega * density_scale_; });
+}
+
+template <class T, class Gauss>
+void MPMSolver::weigh_quadrature(std::vector<T>& at, Gauss&& gauss) const {
+  const Index points = mls_->gauss_count();
+  for (Index g = 0; g < points; ++g) gauss(at[g]);
+  const std::vector<Index>& own = mls_->own_particles();
+  for (std::size_t k = 0; k < own.size(); ++k) at[points + k] *= particles_.volume[own[k]];
 }
 
 void MPMSolver::scatter_mass() {
@@ -340,7 +352,8 @@ void MPMSolver::momenta_to_grid(std::vector<Vec2>& grid) {
   const Particles& P = particles_;
   if (mls_transfers()) {  // eqs. (31)-(33)
     mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
-    for (Vec2& g : gauss_momentum_) g *= density_scale_;
+    const double factor = mls_->gauss_weight() * density_scale_;
+    weigh_quadrature(gauss_momentum_, [factor](Vec2& at) { at *= factor; });
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), grid, partial2_, [&](Index g) {
       const Vec2& at = gauss_momentum_[g];
       return [&at](double S, const Vec2&) { return Vec2(S * at); };
@@ -438,14 +451,17 @@ void MPMSolver::compute_grid_forces() {
       parallel_blocks(P.size(), 1024, [&](Index begin, Index end) {
         for (Index p = begin; p < end; ++p) body_[p] = body_force(P.reference[p], tb);
       });
-    const double w = mls_->gauss_weight();
     // Both fields in one pass over the MLS functions.
     mls_->reconstruct<Eigen::Matrix<double, 2, 3>>(gauss_forces_, [&](Index p) {
       Eigen::Matrix<double, 2, 3> at;
-      at << density_[p] * body_[p], w * P.stress[p];
+      at << density_[p] * body_[p], P.stress[p];
       return at;
     });
-    for (Eigen::Matrix<double, 2, 3>& g : gauss_forces_) g.col(0) *= density_scale_;
+    const double omega = mls_->gauss_weight(), scale = density_scale_;
+    weigh_quadrature(gauss_forces_, [omega, scale](Eigen::Matrix<double, 2, 3>& at) {
+      at.col(0) *= scale;
+      at *= omega;
+    });
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), force_, partial2_, [&](Index g) {
       const Eigen::Matrix<double, 2, 3>& at = gauss_forces_[g];
       return [&at](double S, const Vec2& G) { return Vec2(S * at.col(0) - at.rightCols<2>() * G); };
@@ -535,7 +551,7 @@ void MPMSolver::midpoint_weights() {
   });
   std::swap(weights_, midpoint_weights_);
   // MLS reconstructs mass and momenta at the midpoint only when it carries them (lumped).
-  if (mls_transfers()) at_time(time_, [&] { mls_->update(midpoint_positions_); });
+  if (mls_transfers()) at_time(time_, [&] { mls_->update(midpoint_positions_, P.deformation, P.volume0); });
 }
 
 void MPMSolver::half_kick_particles() {

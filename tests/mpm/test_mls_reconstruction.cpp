@@ -1,14 +1,18 @@
 // The MLS reconstruction at the Gauss points against the RK shape functions of kernels/
 // evaluated point by point with the particles as nodes (the same functions, summed in
-// another order), its reproduction of the basis's polynomials, and the error of a Gauss point
-// that sees too few particles.
+// another order), its reproduction of the basis's polynomials, the error of a Gauss point
+// that sees too few particles, and the mixed quadrature: Gauss points in the filled cells,
+// the particles their own points elsewhere.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
+#include <utility>
 
 #include "mfree/core/error.hpp"
 #include "mfree/kernels/rk_shape_functions.hpp"
 #include "mfree/mpm/mls_reconstruction.hpp"
+#include "mfree/mpm/particles.hpp"
 
 using namespace mfree;
 
@@ -27,6 +31,11 @@ std::vector<Vec2> jittered_particles(double h, double jitter, unsigned seed) {
 
 const Box box{Vec2(0.0, 0.0), Vec2(1.0, 0.75)};
 
+/// F = I for n particles, and reference volumes whose domains (2 h / 3 wide, against the
+/// particles' h / 3 spacing) cover the jittered lattice, so that every cell is filled.
+std::vector<Mat2> undeformed(std::size_t n) { return std::vector<Mat2>(n, Mat2::Identity()); }
+std::vector<double> covering_volumes(std::size_t n, double h) { return std::vector<double>(n, 4.0 * h * h / 9.0); }
+
 }  // namespace
 
 TEST_CASE("MLS reconstruction equals the RK shape functions with the particles as nodes", "[mpm][mls]") {
@@ -37,8 +46,8 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
     for (const double support : {1.5, 3.0}) {
       const std::vector<Vec2> x = jittered_particles(h, 0.15, 7);
       MLSReconstruction mls(grid, basis, order, support);
-      mls.update(x);
-      REQUIRE(mls.points() == 4 * 8 * 6);  // every cell holds particles
+      mls.update(x, undeformed(x.size()), covering_volumes(x.size(), h));
+      REQUIRE(mls.points() == 4 * 8 * 6);  // every cell filled: Gauss points only
       // A random field on the particles, and the polynomials the basis reproduces.
       std::mt19937 rng(11);
       std::uniform_real_distribution<double> value(-1.0, 1.0);
@@ -59,7 +68,7 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
       const RKShapeFunctions rk(x, s);
       ShapeValues v;
       double random_difference = 0.0, poly_error = 0.0;
-      for (Index g = 0; g < mls.points(); ++g) {
+      for (Index g = 0; g < mls.gauss_count(); ++g) {
         rk.evaluate(mls.gauss_points()[g], v, false);
         double reference = 0.0;
         for (std::size_t k = 0; k < v.size(); ++k) reference += v.phi[k] * f[v.nodes[k]];
@@ -72,10 +81,10 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
       // The same again after the particles move (the rows are rebuilt in place).
       std::vector<Vec2> moved = x;
       for (Vec2& p : moved) p += Vec2(0.01 * std::sin(7.0 * p.y()), 0.01 * std::cos(5.0 * p.x()));
-      mls.update(moved);
+      mls.update(moved, undeformed(x.size()), covering_volumes(x.size(), h));
       mls.reconstruct<Vec2>(at_gauss, [&](Index p) { return Vec2(poly(moved[p]), 0.0); });
       double moved_error = 0.0;
-      for (Index g = 0; g < mls.points(); ++g)
+      for (Index g = 0; g < mls.gauss_count(); ++g)
         moved_error = std::max(moved_error, std::abs(at_gauss[g].x() - poly(mls.gauss_points()[g])));
       CHECK(moved_error <= 1e-12);
     }
@@ -84,9 +93,99 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
 TEST_CASE("MLS reconstruction names the Gauss point that sees too few particles", "[mpm][mls]") {
   const Grid grid(box, 8, 2, 0);
   const ParticleBasis basis(MPMMethod::bspline_mls, grid);
-  // Two particles in the bottom-left cell only: no Gauss point sees three.
+  // Two particles in the bottom-left cell only, with domains that fill it: no Gauss point
+  // sees three.
   MLSReconstruction mls(grid, basis, RKOrder::linear, 1.5);
   const std::vector<Vec2> x{Vec2(0.02, 0.02), Vec2(0.05, 0.06)};
-  CHECK_THROWS_WITH(mls.update(x), Catch::Contains("RK moment matrix at point") && Catch::Contains("2 neighbour(s)") &&
+  CHECK_THROWS_WITH(mls.update(x, undeformed(2), std::vector<double>(2, 0.25)), Catch::Contains("RK moment matrix at point") && Catch::Contains("2 neighbour(s)") &&
                                        Catch::Contains("at least 3") && Catch::Contains("mls_support"));
+}
+
+TEST_CASE("MLS quadrature: Gauss points in the cells a deformed block fills, its particles elsewhere", "[mpm][mls]") {
+  // A block of 3 x 3 particles per reference cell (spacing l), sheared, stretched and turned
+  // by F about its centre: the particle domains, widened by a quarter, cover the deformed
+  // block grown by l / 8 in its reference coordinates, so a cell is filled exactly when its
+  // corners, edge midpoints and centre map into that grown block, and interior when its
+  // neighbours are filled too.
+  const Grid grid(box, 16, 2, 0);
+  const double h = grid.spacing();
+  const ParticleBasis basis(MPMMethod::bspline_mls, grid);
+  const Box block{Vec2(0.2, 0.15), Vec2(0.7, 0.5)};
+  const double l = 0.05 / 3.0;
+  Particles P = fill_box(block, 0.05, 3, 1000.0, false);
+  const double turn = 0.3;
+  const Mat2 R = (Mat2() << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn)).finished();
+  const Mat2 F = R * (Mat2() << 1.1, 0.2, 0.0, 0.9).finished();
+  const Vec2 centre = 0.5 * (block.lo + block.hi);
+  for (Index p = 0; p < P.size(); ++p) {
+    P.deformation[p] = F;
+    P.position[p] = centre + F * (P.reference[p] - centre);
+  }
+  MLSReconstruction mls(grid, basis, RKOrder::linear, 1.5);
+  mls.update(P.position, P.deformation, P.volume0);
+
+  const auto in_grown_block = [&](const Vec2& x) {
+    const Vec2 X = centre + F.inverse() * (x - centre);
+    return (X.array() >= block.lo.array() - l / 8).all() && (X.array() <= block.hi.array() + l / 8).all();
+  };
+  std::vector<unsigned char> filled(static_cast<std::size_t>(16 * 12), 0), expected(filled.size(), 0);
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 16; ++i) {
+      bool all = true;
+      for (int dj = 0; dj <= 2; ++dj)
+        for (int di = 0; di <= 2; ++di) all = all && in_grown_block(h * Vec2(i + 0.5 * di, j + 0.5 * dj));
+      filled[i + 16 * j] = all;
+    }
+  int interior = 0;
+  for (int j = 1; j < 11; ++j)  // the block stays a cell away from the grid's edges
+    for (int i = 1; i < 15; ++i) {
+      bool all = true;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) all = all && filled[i + di + 16 * (j + dj)];
+      expected[i + 16 * j] = all;
+      interior += all;
+    }
+  REQUIRE(interior >= 4);  // the block has interior cells, and leaves many cells in part
+  REQUIRE(mls.gauss_count() == 4 * interior);
+  for (Index g = 0; g < mls.gauss_count(); g += 4) {  // the four points of one cell
+    const Vec2 c = 0.25 * (mls.gauss_points()[g] + mls.gauss_points()[g + 1] + mls.gauss_points()[g + 2] +
+                           mls.gauss_points()[g + 3]);
+    CHECK(expected[static_cast<int>(std::floor(c.x() / h)) + 16 * static_cast<int>(std::floor(c.y() / h))]);
+  }
+  // The particles of the other cells are their own quadrature points, in order, after the
+  // Gauss points, with their values.
+  std::size_t own = 0;
+  for (Index p = 0; p < P.size(); ++p) {
+    const int i = static_cast<int>(std::floor(P.position[p].x() / h)), j = static_cast<int>(std::floor(P.position[p].y() / h));
+    if (expected[i + 16 * j]) continue;
+    REQUIRE(own < mls.own_particles().size());
+    CHECK(mls.own_particles()[own++] == p);
+  }
+  CHECK(own == mls.own_particles().size());
+  CHECK(own > 0);
+  std::vector<Vec2> at;
+  mls.reconstruct<Vec2>(at, [&](Index p) { return P.position[p]; });
+  REQUIRE(static_cast<Index>(at.size()) == mls.points());
+  double error = 0.0;  // x itself: reproduced at the Gauss points, the particle's own elsewhere
+  for (Index g = 0; g < mls.gauss_count(); ++g) error = std::max(error, (at[g] - mls.gauss_points()[g]).norm());
+  for (std::size_t k = 0; k < own; ++k)
+    error = std::max(error, (at[mls.gauss_count() + k] - P.position[mls.own_particles()[k]]).norm());
+  CHECK(error <= 1e-13);
+  // The grid weights of a particle of its own are the B-spline weights at the particle.
+  WeightTable at_particles;
+  basis.resize(at_particles, P.size());
+  for (Index p = 0; p < P.size(); ++p) basis.evaluate(P.position[p], Mat2::Identity(), Vec2::Zero(), at_particles, p);
+  double weight_difference = 0.0;
+  for (std::size_t k = 0; k < own; ++k) {
+    const Index q = mls.gauss_count() + static_cast<Index>(k), p = mls.own_particles()[k];
+    std::vector<std::pair<Index, double>> a, b;
+    mls.grid_weights().for_each(q, [&](Index i, double S, const Vec2&) { a.emplace_back(i, S); });
+    at_particles.for_each(p, [&](Index i, double S, const Vec2&) { b.emplace_back(i, S); });
+    REQUIRE(a.size() == b.size());
+    for (std::size_t e = 0; e < a.size(); ++e) {
+      CHECK(a[e].first == b[e].first);
+      weight_difference = std::max(weight_difference, std::abs(a[e].second - b[e].second));
+    }
+  }
+  CHECK(weight_difference == 0.0);
 }

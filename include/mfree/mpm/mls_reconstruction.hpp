@@ -22,15 +22,28 @@
 // stores phi_gp of the four points per particle, so that a reconstruction reads each
 // particle's value once per cell. Cost at 64^2 cells, 9 particles per cell and the default
 // kernel: the whole MLS step about 2.5 plain B-spline steps (verification/benchmarks).
-// Limit: a body with free surfaces inside the grid gains energy once it presses against a
-// wall (the Gauss points of a partly filled cell carry the whole cell; verification/
-// mpm-vibration/README.md, "Bodies that do not fill the grid").
 //
-// The Gauss points are the 2 x 2 Gauss-Legendre points of every grid cell that holds a
-// particle (cells the bodies leave empty have none), each with weight h^2 / 4 (omega_g),
-// and carry the grid functions' weights (N_i, grad N_i) there. The reconstruction reproduces
-// 1, x and y but does not conserve mass (SPEC section 7): the solver scales the reconstructed
-// densities to the particles' mass each step and reports the defect it removed.
+// Quadrature (the mixed integration of Al-Kafaji, PhD thesis, Stuttgart 2013: Gauss points
+// where the material fills the cells, the particles themselves elsewhere). The Gauss points
+// are the 2 x 2 Gauss-Legendre points, weight omega_g = h^2 / 4, of every interior cell: one
+// the bodies fill, with every neighbour on the grid filled too. Filled: the cell's corners,
+// edge midpoints and centre all lie in particle domains, the square of the particle's
+// reference volume (sqrt(V_p0) wide) mapped by F_p about x_p (lCPDI's domain, seed 002),
+// widened by a quarter against the gaps neighbouring domains leave under a varying F. The
+// particles of interior cells are the data of the reconstruction; every other particle (a
+// band one to two cells deep along free surfaces and gaps to walls) is its own quadrature
+// point, weight V_p, as in plain B-spline MPM, and no Gauss point sees it. So each particle's
+// mass and stress enter one quadrature, and no Gauss point extrapolates over an edge. With
+// Gauss points in every cell holding particles, a rubber wedge dropped on a floor had 1.9-4.8
+// times the energy put in 0.12 s after impact (verification/mpm-vibration/README.md, "Bodies
+// that do not fill the grid"). A body that fills the grid (the vibration problem) has Gauss
+// points in every cell. The grid weights (N_i, grad N_i) are tabulated at all quadrature
+// points, Gauss points first. The reconstruction reproduces 1, x and y but does not conserve
+// mass (SPEC section 7): the solver scales the densities at the Gauss points to the mass of
+// the interior cells' particles each step and reports the defect it removed.
+// Limit: the work of the Gauss-point forces is not the particles' stress power, and a body
+// that deforms strongly gains energy (the wedge: a third of the energy put in, 0.6 s after
+// impact; plain B-splines 0.7 %).
 
 #include <array>
 #include <vector>
@@ -46,22 +59,31 @@ class MLSReconstruction {
   /// order: of the basis; support: kernel half width in cells (seed 000: linear, 3).
   MLSReconstruction(const Grid& grid, const ParticleBasis& basis, RKOrder order, double support);
 
-  [[nodiscard]] Index points() const { return static_cast<Index>(points_.size()); }
+  /// Quadrature points: the Gauss points, then the particles outside the interior cells.
+  [[nodiscard]] Index points() const { return gauss_count() + static_cast<Index>(own_.size()); }
+  [[nodiscard]] Index gauss_count() const { return static_cast<Index>(points_.size()); }
   [[nodiscard]] const std::vector<Vec2>& gauss_points() const { return points_; }
   [[nodiscard]] double gauss_weight() const { return omega_; }
-  /// N_i and grad N_i at the Gauss points.
+  /// The particles that are their own quadrature points: point gauss_count() + k is
+  /// particle own_particles()[k].
+  [[nodiscard]] const std::vector<Index>& own_particles() const { return own_; }
+  /// N_i and grad N_i at the quadrature points.
   [[nodiscard]] const WeightTable& grid_weights() const { return weights_; }
 
-  /// Gauss points of the cells holding particles and phi_gp for the particles at
-  /// `positions` (once per step, reused by every field). Throws NumericalError naming the
-  /// Gauss point when too few particles surround it.
-  void update(const std::vector<Vec2>& positions);
+  /// The interior cells, Gauss points and phi_gp for the particles at `positions` with
+  /// deformation gradients F_p and reference volumes V_p0 (once per step, reused by every
+  /// field). Throws NumericalError naming the Gauss point when too few particles surround it.
+  void update(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
+              const std::vector<double>& volume0);
 
-  /// at_gauss[g] = sum_p phi_gp value(p) (eqs. 18-21). Fields needed at the same time are
-  /// best reconstructed together (T stacking them): every call streams all phi_gp.
+  /// at[g] = sum_p phi_gp value(p) at the Gauss points (eqs. 18-21), value(p) at a particle
+  /// of its own. Fields needed at the same time are best reconstructed together (T stacking
+  /// them): every call streams all phi_gp.
   template <class T, class Value>
-  void reconstruct(std::vector<T>& at_gauss, Value&& value) const {
-    at_gauss.resize(points_.size());
+  void reconstruct(std::vector<T>& at, Value&& value) const {
+    at.resize(static_cast<std::size_t>(points()));
+    const std::size_t gauss = points_.size();
+    for (std::size_t k = 0; k < own_.size(); ++k) at[gauss + k] = value(own_[k]);
     parallel_blocks(static_cast<Index>(rows_.size()), 64, [&](Index begin, Index end) {
       for (Index c = begin; c < end; ++c) {
         const Row& row = rows_[c];
@@ -73,7 +95,7 @@ class MLSReconstruction {
           for (int j = 0; j < T::SizeAtCompileTime; ++j) sum.col(j) += row.phi[k] * v.data()[j];
         }
         for (int q = 0; q < 4; ++q)
-          for (int j = 0; j < T::SizeAtCompileTime; ++j) at_gauss[4 * c + q].data()[j] = sum(q, j);
+          for (int j = 0; j < T::SizeAtCompileTime; ++j) at[4 * c + q].data()[j] = sum(q, j);
       }
     });
   }
@@ -81,11 +103,15 @@ class MLSReconstruction {
  private:
   template <int Order>
   void update_rows(const std::vector<Vec2>& positions);
+  void interior_cells(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
+                      const std::vector<double>& volume0, std::vector<unsigned char>& interior) const;
 
   const Grid& grid_;
   const ParticleBasis& basis_;
-  std::vector<unsigned char> active_;  ///< per cell of the grid box: holds a particle
-  std::vector<Vec2> points_;           ///< 4 per cell holding particles: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<unsigned char> interior_;  ///< per cell of the grid box: the bodies fill it and its neighbours
+  std::vector<Vec2> points_;  ///< 4 per interior cell: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<Index> own_;    ///< the particles of the other cells
+  std::vector<unsigned char> is_own_;  ///< per particle: in own_
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;
@@ -93,7 +119,7 @@ class MLSReconstruction {
   /// bin_particle_[bin_start_[b] .. bin_start_[b + 1]), at bin_position_[same range].
   std::vector<Index> bin_start_, bin_particle_, bin_cell_;
   std::vector<Vec2> bin_position_;
-  /// phi_gp of the four Gauss points of one active cell: the particles p the functions of
+  /// phi_gp of the four Gauss points of one interior cell: the particles p the functions of
   /// any of them reach, and the four values (zero for the points out of p's reach).
   struct Row {
     std::vector<Index> particle;

@@ -189,6 +189,9 @@ class MPMSolver {
   void scatter_momentum();
   /// bspline_mls: rho omega and rho v omega at the Gauss points, scaled to the particles' mass.
   void reconstruct_density();
+  /// MLS: at[q] *= the volume of quadrature point q, after gauss(at[g]) at the Gauss points.
+  template <class T, class Gauss>
+  void weigh_quadrature(std::vector<T>& at, Gauss&& gauss) const;
   /// Whether mass and momenta reach the grid through the MLS reconstruction (bspline_mls with
   /// the lumped mapping); with the pseudo-inverse they are the particles' own data that it
   /// fits, and MLS reconstructs the forces' stress and rho b alone.
@@ -236,15 +239,16 @@ class MPMSolver {
   ScatterBuffers<Vec2> partial2_;
   ScatterBuffers<double> partial1_;
   std::vector<Vec2> body_;       ///< b_p of the step (zero without a body force)
-  std::vector<double> density_;  ///< MLS: rho_p omega_g at the start of the step
-  // MLS: the fields the grid integrals need, reconstructed at the Gauss points.
-  std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) omega_g
-  std::vector<Vec2> gauss_momentum_;                     ///< rho v omega_g of the updated velocities
-  std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b omega_g | sigma omega_g]
+  std::vector<double> density_;  ///< MLS: rho_p at the start of the step
+  // MLS: the fields the grid integrals need at the quadrature points (reconstructed at the
+  // Gauss points, a particle's own elsewhere), times the points' volumes (omega_g, V_p).
+  std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) x volume
+  std::vector<Vec2> gauss_momentum_;                     ///< rho v x volume, of the updated velocities
+  std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b | sigma] x volume
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   std::vector<double> external_work_;  ///< per body
   double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, reconstruction_defect_ = 0.0;
-  double density_scale_ = 1.0;  ///< MLS: sum_p m_p / sum_g rho_g omega_g of the step
+  double density_scale_ = 1.0;  ///< MLS: the interior cells' sum_p m_p / sum_g rho_g omega_g of the step
   int steps_ = 0, bodies_ = 0;
   bool forces_current_ = false;  ///< verlet: weights, masses and forces are those of the particles' state
   StageTimer timer_;
