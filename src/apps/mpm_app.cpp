@@ -390,10 +390,10 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
     const EnergyGrowth growth = energy_growth(run.energy);
     if (growth.relative > 0.05)  // a warning, not an error: MPM schemes drift by a few per cent
       std::cerr << fmt::format(
-          "mfree: warning: the energy balance grew by {:.3g} of the largest kinetic + strain (at t = {:.6g} s): the "
-          "discretisation created that energy. Plain B-splines with the lumped mapping and USF or Verlet keep it "
-          "within 1 % on bodies that bounce (verification/mpm-vibration/README.md, \"Bodies that do not fill the "
-          "grid\")\n",
+          "mfree: warning: the energy balance grew by {:.3g} of the largest kinetic + strain (at "
+          "t = {:.6g} s): the discretisation created that energy. Plain B-splines with the lumped "
+          "mapping and USF or Verlet keep it within 1 % on bodies that bounce "
+          "(verification/mpm-vibration/README.md, \"Bodies that do not fill the grid\")\n",
           growth.relative, growth.time);
     print_energy(scene.problem, run.energy);
     std::cout << fmt::format("  total momentum: largest |sum m_p v_p| {:.3e} kg m/s\n", largest_momentum(run.energy));

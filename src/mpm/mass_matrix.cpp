@@ -130,7 +130,8 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   std::vector<Vec2> lumped_value(n), coupling(n), u(n), r(n), z(n), p(n), Mp(n);
   // The diagonal preconditioner on the free components (rows without one have no diagonal).
   const auto precondition = [&](std::size_t i, const Vec2& v) {
-    return free[i] ? masked(i, v.cwiseQuotient(Vec2::Constant(diagonal[i]) + coupling[i])) : Vec2(Vec2::Zero());
+    return free[i] ? masked(i, v.cwiseQuotient(Vec2::Constant(diagonal[i]) + coupling[i]))
+                   : Vec2(Vec2::Zero());
   };
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 v = known[i] ? Vec2(q[i] / lumped[i]) : Vec2(Vec2::Zero());

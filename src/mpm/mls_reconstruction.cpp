@@ -71,7 +71,8 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
       }
     basis_.resize(weights_, gauss_count());
     parallel_blocks(gauss_count(), 1024, [&](Index begin, Index end) {
-      for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
+      for (Index g = begin; g < end; ++g)
+        basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
     });
     rows_.resize(points_.size() / 4);
   }
@@ -97,8 +98,10 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
 /// cells, 9 points a cell, shared). Domain of p: x_p + F_p xi with |xi_x|, |xi_y| <= (1 +
 /// 1/4) sqrt(V_p0) / 2; a lattice point s is in it when |F_p^-1 (s - x_p)|_inf <= that half
 /// width.
-void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
-                                       const std::vector<double>& volume0, std::vector<unsigned char>& interior) const {
+void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions,
+                                       const std::vector<Mat2>& deformation,
+                                       const std::vector<double>& volume0,
+                                       std::vector<unsigned char>& interior) const {
   const double h = grid_.spacing(), half_step = 0.5 * h;
   const Vec2 lo = grid_.box().lo;
   const int nx = grid_.cells_x(), ny = grid_.cells_y(), sx = 2 * nx + 1, sy = 2 * ny + 1;
@@ -119,7 +122,8 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions, const
           const Vec2 xi = inverse * (lo + half_step * Vec2(i, j) - positions[p]);
           // Threads may mark a point at once: the same value, an atomic store.
           if (xi.cwiseAbs().maxCoeff() <= r)
-            std::atomic_ref<unsigned char>(covered[i + static_cast<std::size_t>(sx) * j]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<unsigned char>(covered[i + static_cast<std::size_t>(sx) * j])
+                .store(1, std::memory_order_relaxed);
         }
     }
   });
@@ -128,7 +132,8 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions, const
     for (int i = 0; i < nx; ++i) {
       bool all = true;
       for (int dj = 0; dj <= 2 && all; ++dj)
-        for (int di = 0; di <= 2 && all; ++di) all = covered[2 * i + di + static_cast<std::size_t>(sx) * (2 * j + dj)];
+        for (int di = 0; di <= 2 && all; ++di)
+          all = covered[2 * i + di + static_cast<std::size_t>(sx) * (2 * j + dj)];
       filled[i + static_cast<std::size_t>(nx) * j] = all;
     }
   interior = filled;
@@ -136,7 +141,8 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions, const
     for (int i = 0; i < nx; ++i)
       for (int b = std::max(j - 1, 0); b <= std::min(j + 1, ny - 1); ++b)
         for (int a = std::max(i - 1, 0); a <= std::min(i + 1, nx - 1); ++a)
-          if (!filled[a + static_cast<std::size_t>(nx) * b]) interior[i + static_cast<std::size_t>(nx) * j] = 0;
+          if (!filled[a + static_cast<std::size_t>(nx) * b])
+            interior[i + static_cast<std::size_t>(nx) * j] = 0;
 }
 
 /// The MLS functions of the four Gauss points of every interior cell in one pass over the

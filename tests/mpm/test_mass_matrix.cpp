@@ -169,7 +169,8 @@ TEST_CASE("seed 004's particle basis: option 1 non-negative and compact, option 
   }
 }
 
-TEST_CASE("the partially lumped pseudo-inverse is symmetric and conserves momentum at a body's edge", "[mpm][mapping]") {
+TEST_CASE("the partially lumped pseudo-inverse is symmetric and conserves momentum at a body's edge",
+          "[mpm][mapping]") {
   // A disk of 3 x 3 particles per cell on quadratic B-splines: its edge covers some nodes by
   // less than a fifth (lumped) next to others solved for. u = A^-1 q with A symmetric and its
   // rows summing to the lumped masses: q1 . u2 = q2 . u1 and sum_i m_i u_i = sum_i q_i.
@@ -191,7 +192,8 @@ TEST_CASE("the partially lumped pseudo-inverse is symmetric and conserves moment
   GridMassMatrix M(grid, 2);
   M.assemble(weights, P.mass, P.volume);
   std::vector<double> lumped(static_cast<std::size_t>(grid.size()), 0.0);
-  for (Index p = 0; p < P.size(); ++p) weights.for_each(p, [&](Index i, double S, const Vec2&) { lumped[i] += P.mass[p] * S; });
+  for (Index p = 0; p < P.size(); ++p)
+    weights.for_each(p, [&](Index i, double S, const Vec2&) { lumped[i] += P.mass[p] * S; });
   int edge = 0, solved = 0;
   for (Index i = 0; i < grid.size(); ++i) {
     if (lumped[i] <= 0.0) continue;

@@ -34,7 +34,9 @@ const Box box{Vec2(0.0, 0.0), Vec2(1.0, 0.75)};
 /// F = I for n particles, and reference volumes whose domains (2 h / 3 wide, against the
 /// particles' h / 3 spacing) cover the jittered lattice, so that every cell is filled.
 std::vector<Mat2> undeformed(std::size_t n) { return std::vector<Mat2>(n, Mat2::Identity()); }
-std::vector<double> covering_volumes(std::size_t n, double h) { return std::vector<double>(n, 4.0 * h * h / 9.0); }
+std::vector<double> covering_volumes(std::size_t n, double h) {
+  return std::vector<double>(n, 4.0 * h * h / 9.0);
+}
 
 }  // namespace
 
@@ -97,11 +99,13 @@ TEST_CASE("MLS reconstruction names the Gauss point that sees too few particles"
   // sees three.
   MLSReconstruction mls(grid, basis, RKOrder::linear, 1.5);
   const std::vector<Vec2> x{Vec2(0.02, 0.02), Vec2(0.05, 0.06)};
-  CHECK_THROWS_WITH(mls.update(x, undeformed(2), std::vector<double>(2, 0.25)), Catch::Contains("RK moment matrix at point") && Catch::Contains("2 neighbour(s)") &&
-                                       Catch::Contains("at least 3") && Catch::Contains("mls_support"));
+  CHECK_THROWS_WITH(mls.update(x, undeformed(2), std::vector<double>(2, 0.25)),
+                    Catch::Contains("RK moment matrix at point") && Catch::Contains("2 neighbour(s)") &&
+                        Catch::Contains("at least 3") && Catch::Contains("mls_support"));
 }
 
-TEST_CASE("MLS quadrature: Gauss points in the cells a deformed block fills, its particles elsewhere", "[mpm][mls]") {
+TEST_CASE("MLS quadrature: Gauss points in the cells a deformed block fills, its particles elsewhere",
+          "[mpm][mls]") {
   // A block of 3 x 3 particles per reference cell (spacing l), sheared, stretched and turned
   // by F about its centre: the particle domains, widened by a quarter, cover the deformed
   // block grown by l / 8 in its reference coordinates, so a cell is filled exactly when its
@@ -156,7 +160,8 @@ TEST_CASE("MLS quadrature: Gauss points in the cells a deformed block fills, its
   // Gauss points, with their values.
   std::size_t own = 0;
   for (Index p = 0; p < P.size(); ++p) {
-    const int i = static_cast<int>(std::floor(P.position[p].x() / h)), j = static_cast<int>(std::floor(P.position[p].y() / h));
+    const int i = static_cast<int>(std::floor(P.position[p].x() / h)),
+              j = static_cast<int>(std::floor(P.position[p].y() / h));
     if (expected[i + 16 * j]) continue;
     REQUIRE(own < mls.own_particles().size());
     CHECK(mls.own_particles()[own++] == p);
@@ -167,14 +172,16 @@ TEST_CASE("MLS quadrature: Gauss points in the cells a deformed block fills, its
   mls.reconstruct<Vec2>(at, [&](Index p) { return P.position[p]; });
   REQUIRE(static_cast<Index>(at.size()) == mls.points());
   double error = 0.0;  // x itself: reproduced at the Gauss points, the particle's own elsewhere
-  for (Index g = 0; g < mls.gauss_count(); ++g) error = std::max(error, (at[g] - mls.gauss_points()[g]).norm());
+  for (Index g = 0; g < mls.gauss_count(); ++g)
+    error = std::max(error, (at[g] - mls.gauss_points()[g]).norm());
   for (std::size_t k = 0; k < own; ++k)
     error = std::max(error, (at[mls.gauss_count() + k] - P.position[mls.own_particles()[k]]).norm());
   CHECK(error <= 1e-13);
   // The grid weights of a particle of its own are the B-spline weights at the particle.
   WeightTable at_particles;
   basis.resize(at_particles, P.size());
-  for (Index p = 0; p < P.size(); ++p) basis.evaluate(P.position[p], Mat2::Identity(), Vec2::Zero(), at_particles, p);
+  for (Index p = 0; p < P.size(); ++p)
+    basis.evaluate(P.position[p], Mat2::Identity(), Vec2::Zero(), at_particles, p);
   double weight_difference = 0.0;
   for (std::size_t k = 0; k < own; ++k) {
     const Index q = mls.gauss_count() + static_cast<Index>(k), p = mls.own_particles()[k];

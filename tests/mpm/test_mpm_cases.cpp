@@ -126,10 +126,12 @@ TEST_CASE("collapsing block: kinetic + strain - work of gravity stays constant",
   CHECK(drift <= 0.02 * scale);
 }
 
-TEST_CASE("falling wedge: MLS keeps kinetic + strain at the energy put in through the impact", "[mpm][cases][mls]") {
+TEST_CASE("falling wedge: MLS keeps kinetic + strain at the energy put in through the impact",
+          "[mpm][cases][mls]") {
   // The wedge hits the floor at t = 0.18 s; to 0.3 s, the scene's MLS with USF. With Gauss
   // points in every cell holding particles (mls_reconstruction.hpp) the ratio was 4.75 here.
-  const MPMScene scene = case_scene("mpm-vibration/wedge_impact.toml", {"mpm.method=bspline_mls", "mpm.update=usf"});
+  const MPMScene scene =
+      case_scene("mpm-vibration/wedge_impact.toml", {"mpm.method=bspline_mls", "mpm.update=usf"});
   MPMSolver solver(scene.problem, scene.settings);
   const double start = solver.energy().sum.kinetic;
   double low = 1.0, high = 1.0, impact = 0.0;
@@ -142,8 +144,10 @@ TEST_CASE("falling wedge: MLS keeps kinetic + strain at the energy put in throug
     high = std::max(high, ratio);
     impact = std::max(impact, e.sum.strain / (start + e.sum.external));
   }
-  std::cout << fmt::format("wedge, MLS USF: (kinetic + strain) / energy put in within [{:.4f}, {:.4f}]; strain up to {:.3f} of it\n",
-                           low, high, impact);
+  std::cout << fmt::format(
+      "wedge, MLS USF: (kinetic + strain) / energy put in within [{:.4f}, {:.4f}]; strain up to {:.3f} of "
+      "it\n",
+      low, high, impact);
   CHECK(impact > 0.3);  // the impact happened: a third of the energy stored as strain
   CHECK(high <= 1.01);
   CHECK(low >= 0.99);

@@ -109,9 +109,9 @@ class MLSReconstruction {
   const Grid& grid_;
   const ParticleBasis& basis_;
   std::vector<unsigned char> interior_;  ///< per cell of the grid box: the bodies fill it and its neighbours
-  std::vector<Vec2> points_;  ///< 4 per interior cell: (-,-), (+,-), (-,+), (+,+) about its centre
-  std::vector<Index> own_;    ///< the particles of the other cells
-  std::vector<unsigned char> is_own_;  ///< per particle: in own_
+  std::vector<Vec2> points_;             ///< 4 per interior cell: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<Index> own_;               ///< the particles of the other cells
+  std::vector<unsigned char> is_own_;    ///< per particle: in own_
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;

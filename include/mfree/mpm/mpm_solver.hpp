@@ -242,8 +242,8 @@ class MPMSolver {
   std::vector<double> density_;  ///< MLS: rho_p at the start of the step
   // MLS: the fields the grid integrals need at the quadrature points (reconstructed at the
   // Gauss points, a particle's own elsewhere), times the points' volumes (omega_g, V_p).
-  std::vector<Eigen::Vector3d> gauss_mass_momentum_;     ///< (rho, rho v) x volume
-  std::vector<Vec2> gauss_momentum_;                     ///< rho v x volume, of the updated velocities
+  std::vector<Eigen::Vector3d> gauss_mass_momentum_;       ///< (rho, rho v) x volume
+  std::vector<Vec2> gauss_momentum_;                       ///< rho v x volume, of the updated velocities
   std::vector<Eigen::Matrix<double, 2, 3>> gauss_forces_;  ///< [rho b | sigma] x volume
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   std::vector<double> external_work_;  ///< per body
