@@ -622,7 +622,8 @@ def impact(ctx: Context, title: str) -> Section:
         rows.append([label, "ok", f"{at_03:.3f}", f"{series[-1][1]:.3f}", value(r, "energy_growth"), warned])
     fig, (ax,) = new_figure(width=7)
     for label, pts in curves:
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], label=label, lw=1)
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "--" if label.startswith("bspline_mls") else "-",
+                label=label, lw=1)
     ax.set_xlabel("t [s] (the wedge reaches the floor at 0.18 s)")
     ax.set_ylabel("(kinetic + strain) / (initial kinetic + work of gravity)")
     ax.grid(True, alpha=0.3)
