@@ -216,7 +216,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.allow_unstable_time_step = t.boolean_or("allow_unstable_time_step", false);
     s.courant = t.number_or("courant", 0.5, 1e-6, s.allow_unstable_time_step ? 100.0 : 1.0);
     out.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
-    out.energy_every = static_cast<int>(t.integer_or("energy_every", 0, 0, 1 << 30));
+    if (t.has("energy_every")) out.energy_every = static_cast<int>(t.integer_or("energy_every", 0, 0, 1 << 30));
     if (t.has("error_times")) {
       if (!out.exact) t.error("error_times", "errors need an [exact] solution");
       out.error_times = t.numbers("error_times", 0, 0.0, 1.0);

@@ -40,7 +40,9 @@
 //                 from it; needs one rectangle body filling the grid box, with no velocity of
 //                 its own and no gravity (the motion says what else it needs)
 //   [dynamics]    end_time, time_step, courant (default 0.5), allow_unstable_time_step,
-//                 frames, error_times (fractions of end_time), energy_every (steps)
+//                 frames, error_times (fractions of end_time), energy_every (steps between
+//                 energy records, 0: none; absent: about 500 records in a single run, so that
+//                 its energy balance is checked, and none in a study)
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain, body, error,
 //                 grid, domains: the particle domains, for the methods with domains), vtk,
 //                 particles_csv (true: particles.csv of the end state, mpm_output.hpp),
@@ -85,7 +87,7 @@ struct MPMScene {
   std::optional<ExactMotion> exact;  ///< of [exact]
   int frames = 0;                   ///< VTK frames over the run (plus t = 0)
   std::vector<double> error_times;  ///< fractions of end_time (with [exact])
-  int energy_every = 0;             ///< steps between energy records (0: none)
+  int energy_every = -1;            ///< steps between energy records (0: none; -1: not given)
   std::filesystem::path folder;
   MPMFrameFields fields;
   bool vtk = true;
