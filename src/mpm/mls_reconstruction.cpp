@@ -112,7 +112,10 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions,
       const Mat2& F = deformation[p];
       const Mat2 inverse = F.inverse();
       const Vec2 extent = r * F.cwiseAbs().rowwise().sum();  // half sizes of the domain's bounding box
-      const Vec2 a = (positions[p] - extent - lo) / half_step, b = (positions[p] + extent - lo) / half_step;
+      // The lattice range, clamped before the conversion to int (a domain may reach far).
+      const Vec2 limit(sx, sy);
+      const Vec2 a = ((positions[p] - extent - lo) / half_step).cwiseMax(Vec2::Zero()).cwiseMin(limit);
+      const Vec2 b = ((positions[p] + extent - lo) / half_step).cwiseMax(Vec2::Constant(-1.0)).cwiseMin(limit);
       const int i0 = std::max(0, static_cast<int>(std::ceil(a.x())));
       const int i1 = std::min(sx - 1, static_cast<int>(std::floor(b.x())));
       const int j0 = std::max(0, static_cast<int>(std::ceil(a.y())));
