@@ -23,11 +23,6 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
                                const std::vector<double>& volume0) {
   const double h = grid_.spacing();
   const int nx = grid_.cells_x(), ny = grid_.cells_y();
-  const auto cell_of = [&](const Vec2& x) {
-    const Vec2 c = (x - grid_.box().lo) / h;
-    return std::clamp(static_cast<int>(std::floor(c.x())), 0, nx - 1) +
-           static_cast<std::size_t>(nx) * std::clamp(static_cast<int>(std::floor(c.y())), 0, ny - 1);
-  };
 
   // The particles binned by half cells (a counting sort; a particle outside the box in the
   // bin next to it), their positions copied in bin order. Half cells: a cell's Gauss points
@@ -76,11 +71,12 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
     });
     rows_.resize(points_.size() / 4);
   }
-  // The particles of the other cells, their own quadrature points, after the Gauss points.
+  // The particles of the other cells (a particle's cell: its half-cell bin's), their own
+  // quadrature points, after the Gauss points.
   own_.clear();
   is_own_.assign(positions.size(), 0);
   for (std::size_t p = 0; p < positions.size(); ++p)
-    if (!interior_[cell_of(positions[p])]) {
+    if (const Index b = bin_cell_[p]; !interior_[(b % bx) / 2 + static_cast<std::size_t>(nx) * ((b / bx) / 2)]) {
       own_.push_back(static_cast<Index>(p));
       is_own_[p] = 1;
     }

@@ -315,15 +315,17 @@ void MPMSolver::reconstruct_density() {
   const double carried = particle_mass_ - own;
   density_scale_ = reconstructed > 0.0 ? carried / reconstructed : 1.0;
   reconstruction_defect_ = std::abs(reconstructed - carried) / particle_mass_;
-  weigh_quadrature(gauss_mass_momentum_, [&](Eigen::Vector3d& at) { at *= omega * density_scale_; });
+  weigh_quadrature(
+      gauss_mass_momentum_, [&](Eigen::Vector3d& at) { at *= omega * density_scale_; },
+      [&](Eigen::Vector3d& at, Index p) { at *= P.mass[p] / density_[p]; });
 }
 
-template <class T, class Gauss>
-void MPMSolver::weigh_quadrature(std::vector<T>& at, Gauss&& gauss) const {
+template <class T, class Gauss, class Own>
+void MPMSolver::weigh_quadrature(std::vector<T>& at, Gauss&& gauss, Own&& own) const {
   const Index points = mls_->gauss_count();
   for (Index g = 0; g < points; ++g) gauss(at[g]);
-  const std::vector<Index>& own = mls_->own_particles();
-  for (std::size_t k = 0; k < own.size(); ++k) at[points + k] *= particles_.volume[own[k]];
+  const std::vector<Index>& particles = mls_->own_particles();
+  for (std::size_t k = 0; k < particles.size(); ++k) own(at[points + k], particles[k]);
 }
 
 void MPMSolver::scatter_mass() {
@@ -353,7 +355,9 @@ void MPMSolver::momenta_to_grid(std::vector<Vec2>& grid) {
   if (mls_transfers()) {  // eqs. (31)-(33)
     mls_->reconstruct<Vec2>(gauss_momentum_, [&](Index p) { return Vec2(density_[p] * P.velocity[p]); });
     const double factor = mls_->gauss_weight() * density_scale_;
-    weigh_quadrature(gauss_momentum_, [factor](Vec2& at) { at *= factor; });
+    weigh_quadrature(
+        gauss_momentum_, [factor](Vec2& at) { at *= factor; },
+        [&](Vec2& at, Index p) { at *= P.mass[p] / density_[p]; });  // m_p v_p
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), grid, partial2_, [&](Index g) {
       const Vec2& at = gauss_momentum_[g];
       return [&at](double S, const Vec2&) { return Vec2(S * at); };
@@ -458,10 +462,16 @@ void MPMSolver::compute_grid_forces() {
       return at;
     });
     const double omega = mls_->gauss_weight(), scale = density_scale_;
-    weigh_quadrature(gauss_forces_, [omega, scale](Eigen::Matrix<double, 2, 3>& at) {
-      at.col(0) *= scale;
-      at *= omega;
-    });
+    weigh_quadrature(
+        gauss_forces_,
+        [omega, scale](Eigen::Matrix<double, 2, 3>& at) {
+          at.col(0) *= scale;
+          at *= omega;
+        },
+        [&](Eigen::Matrix<double, 2, 3>& at, Index p) {  // [m_p b_p | V_p sigma_p], as plain MPM
+          at.col(0) *= P.mass[p] / density_[p];
+          at.rightCols<2>() *= P.volume[p];
+        });
     scatter<Vec2>(mls_->grid_weights(), grid_.size(), force_, partial2_, [&](Index g) {
       const Eigen::Matrix<double, 2, 3>& at = gauss_forces_[g];
       return [&at](double S, const Vec2& G) { return Vec2(S * at.col(0) - at.rightCols<2>() * G); };

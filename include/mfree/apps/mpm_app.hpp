@@ -39,7 +39,8 @@ struct MPMRun {
   StageTimer timer;
 };
 
-/// The run behind run_mpm and converge_mpm (verbose: progress and VTK frames).
+/// The run behind run_mpm and converge_mpm (verbose: run_mpm's single run, with progress,
+/// VTK frames and, when the scene does not set energy_every, about 500 energy records).
 MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose,
                     const Checkpoints* checkpoints = nullptr);
 

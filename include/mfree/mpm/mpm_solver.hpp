@@ -189,9 +189,11 @@ class MPMSolver {
   void scatter_momentum();
   /// bspline_mls: rho omega and rho v omega at the Gauss points, scaled to the particles' mass.
   void reconstruct_density();
-  /// MLS: at[q] *= the volume of quadrature point q, after gauss(at[g]) at the Gauss points.
-  template <class T, class Gauss>
-  void weigh_quadrature(std::vector<T>& at, Gauss&& gauss) const;
+  /// MLS: the values at the quadrature points times their volumes: gauss(at[g]) at the Gauss
+  /// points, own(at[q], p) at the particles that are their own points (densities times
+  /// m_p / rho_p, the stress times V_p: exactly plain MPM's m_p v_p, m_p b_p, V_p sigma_p).
+  template <class T, class Gauss, class Own>
+  void weigh_quadrature(std::vector<T>& at, Gauss&& gauss, Own&& own) const;
   /// Whether mass and momenta reach the grid through the MLS reconstruction (bspline_mls with
   /// the lumped mapping); with the pseudo-inverse they are the particles' own data that it
   /// fits, and MLS reconstructs the forces' stress and rho b alone.
