@@ -226,6 +226,7 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   s.put("errors", std::move(errors));
   s.put("max_mass_defect", run.max_mass_defect);
   s.put("max_reconstruction_defect", run.max_reconstruction_defect);
+  s.put("demoted", std::vector<double>{static_cast<double>(run.max_demoted_cells), static_cast<double>(run.demoted_steps)});
   std::vector<double> probe;
   for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
   s.put("probe", std::move(probe));
@@ -271,6 +272,9 @@ void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::
     run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3], errors[at + 4]});
   run.max_mass_defect = s.scalar("max_mass_defect");
   run.max_reconstruction_defect = s.scalar("max_reconstruction_defect");
+  const std::vector<double>& demoted = s.get("demoted", 2);
+  run.max_demoted_cells = static_cast<Index>(demoted[0]);
+  run.demoted_steps = static_cast<int>(demoted[1]);
   const std::vector<double>& probe = s.get("probe");
   for (std::size_t at = 0; at + 3 <= probe.size(); at += 3) run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
   if (frames) frames->restore(s);
@@ -331,6 +335,8 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
       solver.step();
       run.max_mass_defect = std::max(run.max_mass_defect, solver.mass_defect());
       run.max_reconstruction_defect = std::max(run.max_reconstruction_defect, solver.reconstruction_defect());
+      run.max_demoted_cells = std::max(run.max_demoted_cells, solver.demoted_cells());
+      run.demoted_steps += solver.demoted_cells() > 0 ? 1 : 0;
       if (scene.exact)
         for (int s : at)
           if (s == n) run.errors.push_back(particle_errors(solver, *scene.exact));
@@ -387,6 +393,10 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
     std::cout << fmt::format("  MLS reconstruction: its mass differed from the particles' by up to {:.3e} (relative) before "
                              "the densities were scaled; the grid mass then differs by up to {:.3e}\n",
                              run.max_reconstruction_defect, run.max_mass_defect);
+  if (run.demoted_steps > 0)
+    std::cout << fmt::format("  MLS reconstruction: up to {} interior cell(s) in {} step(s) integrated by their particles, a "
+                             "Gauss point there having too few particles around it for the moment matrix\n",
+                             run.max_demoted_cells, run.demoted_steps);
   if (!run.energy.empty()) {
     std::cout << fmt::format("  energy: kinetic + strain + dissipated - work of body forces drifts by {:.3e} of the largest "
                              "kinetic + strain\n", energy_drift(run.energy));
@@ -429,6 +439,8 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   summary.number("particle_steps_per_second", throughput);
   summary.number("mass_defect", run.max_mass_defect);
   summary.number("reconstruction_defect", run.max_reconstruction_defect);
+  summary.number("demoted_cells", static_cast<double>(run.max_demoted_cells));
+  summary.number("demoted_steps", run.demoted_steps);
   if (!run.probe.empty()) summary.numbers("probe_displacement", {run.probe.back().second.x(), run.probe.back().second.y()});
   if (!run.energy.empty()) {
     summary.number("energy_drift", energy_drift(run.energy));

@@ -51,42 +51,60 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
     }
   }
 
+  // The data of the reconstruction: the particles of the interior cells.
   std::vector<unsigned char> interior;
   interior_cells(positions, deformation, volume0, interior);
-  if (interior != interior_) {  // the Gauss points and their grid weights change with the cells
-    interior_ = std::move(interior);
-    points_.clear();
-    const double offset = 0.5 / std::sqrt(3.0);  // 2-point Gauss-Legendre on [-1/2, 1/2]
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (!interior_[i + static_cast<std::size_t>(nx) * j]) continue;
-        const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
-        for (const double sy : {-offset, offset})
-          for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
-      }
-    basis_.resize(weights_, gauss_count());
-    parallel_blocks(gauss_count(), 1024, [&](Index begin, Index end) {
-      for (Index g = begin; g < end; ++g)
-        basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
-    });
-    rows_.resize(points_.size() / 4);
+  const auto cell_of_bin = [&](Index b) { return (b % bx) / 2 + static_cast<std::size_t>(nx) * ((b / bx) / 2); };
+  is_data_.resize(positions.size());
+  for (std::size_t p = 0; p < positions.size(); ++p) is_data_[p] = interior[cell_of_bin(bin_cell_[p])];
+  // Gauss points in the interior cells; a cell where one of them sees too few data for the
+  // moment matrix returns to its particles' quadrature (the rows of the others stand: they
+  // read the same data).
+  place_gauss_points(interior);
+  const std::vector<unsigned char> failed =
+      settings_.order == RKOrder::linear ? update_rows<1>(positions) : update_rows<2>(positions);
+  demoted_ = std::count(failed.begin(), failed.end(), 1);
+  if (demoted_ > 0) {
+    std::size_t kept = 0;
+    for (std::size_t c = 0; c < rows_.size(); ++c)
+      if (!failed[c]) std::swap(rows_[kept++], rows_[c]);
+    rows_.resize(kept);  // before the cells go: place_gauss_points resizes the rows to the cells
+    std::size_t c = 0;
+    for (unsigned char& cell : interior)
+      if (cell && failed[c++]) cell = 0;
+    place_gauss_points(interior);
   }
   // The particles of the other cells (a particle's cell: its half-cell bin's), their own
   // quadrature points, after the Gauss points.
   own_.clear();
-  is_own_.assign(positions.size(), 0);
   for (std::size_t p = 0; p < positions.size(); ++p)
-    if (const Index b = bin_cell_[p]; !interior_[(b % bx) / 2 + static_cast<std::size_t>(nx) * ((b / bx) / 2)]) {
-      own_.push_back(static_cast<Index>(p));
-      is_own_[p] = 1;
-    }
+    if (!gauss_cells_[cell_of_bin(bin_cell_[p])]) own_.push_back(static_cast<Index>(p));
   basis_.resize(weights_, points());
   parallel_blocks(static_cast<Index>(own_.size()), 1024, [&](Index begin, Index end) {
     for (Index k = begin; k < end; ++k)
       basis_.evaluate(positions[own_[k]], Mat2::Identity(), Vec2::Zero(), weights_, gauss_count() + k);
   });
-  if (settings_.order == RKOrder::linear) update_rows<1>(positions);
-  else update_rows<2>(positions);
+}
+
+void MLSReconstruction::place_gauss_points(const std::vector<unsigned char>& cells) {
+  if (cells == gauss_cells_) return;  // the Gauss points and their grid weights change with the cells
+  gauss_cells_ = cells;
+  const double h = grid_.spacing();
+  const int nx = grid_.cells_x(), ny = grid_.cells_y();
+  points_.clear();
+  const double offset = 0.5 / std::sqrt(3.0);  // 2-point Gauss-Legendre on [-1/2, 1/2]
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (!gauss_cells_[i + static_cast<std::size_t>(nx) * j]) continue;
+      const Vec2 centre = grid_.box().lo + h * Vec2(i + 0.5, j + 0.5);
+      for (const double sy : {-offset, offset})
+        for (const double sx : {-offset, offset}) points_.push_back(centre + h * Vec2(sx, sy));
+    }
+  basis_.resize(weights_, gauss_count());
+  parallel_blocks(gauss_count(), 1024, [&](Index begin, Index end) {
+    for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
+  });
+  rows_.resize(points_.size() / 4);
 }
 
 /// interior[c] = 1 where the bodies fill cell c and its neighbours on the grid. Filled: the
@@ -151,7 +169,7 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions,
 /// (rk_moment.hpp). The same functions as RKShapeFunctions with the particles as nodes
 /// (quadratic spline window, tensor support of half width a), summed in another order.
 template <int Order>
-void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
+std::vector<unsigned char> MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
   using Basis = PolynomialBasis<Order>;
   using Lanes = Eigen::Array4d;  // lane q: Gauss point q of the cell
   using Moment = RKMoment<Order, Lanes>;
@@ -169,6 +187,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
     z2 << y0, y0, y1, y1;
   };
 
+  std::vector<unsigned char> failed(rows_.size(), 0);
   parallel_blocks(static_cast<Index>(rows_.size()), 16, [&](Index begin, Index end) {
     for (Index c = begin; c < end; ++c) {
       const Vec2 g0 = points_[4 * c], g1 = points_[4 * c + 3];  // the (-,-) and (+,+) points
@@ -184,7 +203,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
         for (Index k = bin_start_[i0 + bx * j]; k < bin_start_[i1 + bx * j + 1]; ++k) {
           const Vec2& x = bin_position_[k];
           if (!(x.x() > xlo && x.x() < xhi && x.y() > ylo && x.y() < yhi)) continue;
-          if (is_own_[bin_particle_[k]]) continue;  // not for the Gauss points
+          if (!is_data_[bin_particle_[k]]) continue;
           Lanes z1, z2;
           offsets(x, g0, g1, z1, z2);
           const double wx0 = quadratic_spline(std::abs(z1[0])).w, wx1 = quadratic_spline(std::abs(z1[1])).w;
@@ -198,16 +217,11 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
       std::array<Lanes, Moment::nb> b;
       for (int q = 0; q < 4; ++q) {
         typename RKMoment<Order>::Matrix inverse;
-        const double rcond = moment.lane(q).invert(inverse);
-        if (!(rcond >= settings_.rcond_min)) {  // fewer than nb particles, or too regular: name the point
-          const auto n = static_cast<std::size_t>(
-              std::count_if(row.phi.begin(), row.phi.end(), [q](const Lanes& w) { return w[q] > 0.0; }));
-          throw_moment_failure(points_[4 * c + q], n, settings_, n < static_cast<std::size_t>(Moment::nb) ? -1.0 : rcond,
-                               "Increase [mpm] mls_support, use mls_basis = \"linear\" or more particles per cell "
-                               "near this point.");
-        }
+        // Fewer than nb particles, or too regular (on a line; on a conic for the quadratic basis).
+        if (!(moment.lane(q).invert(inverse) >= settings_.rcond_min)) failed[c] = 1;
         for (int i = 0; i < Moment::nb; ++i) b[i][q] = inverse(i, 0);
       }
+      if (failed[c]) continue;
       // Pass 2: phi_gp = b . H(z) w.
       for (std::size_t k = 0; k < row.particle.size(); ++k) {
         Lanes z1, z2;
@@ -219,6 +233,7 @@ void MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
       }
     }
   });
+  return failed;
 }
 
 }  // namespace mfree

@@ -265,6 +265,8 @@ void MPMSolver::compute_weights() {
   });
 }
 
+Index MPMSolver::demoted_cells() const { return mls_ ? mls_->demoted_cells() : 0; }
+
 void MPMSolver::update_mls_functions() {
   const Particles& P = particles_;
   at_time(time_, [&] { mls_->update(P.position, P.deformation, P.volume0); });

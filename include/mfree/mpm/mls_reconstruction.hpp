@@ -10,11 +10,9 @@
 // The mfree default is the linear basis on a = 1.5 h (half the seed's support: more accurate
 // at every grid); the quadratic basis on a = 1.5 h, with the pseudo-inverse mapping and the
 // Verlet update, converges at 2.3-3.5 on the vibration problem (verification/mpm-vibration/
-// README.md; ten periods at A = 0.1 on 16 cells complete with the lumped mapping, not with the
-// pseudo-inverse, whose wall nodes run away after nine), but needs 6 particles not on one
-// conic around every Gauss point: a body's edge
-// with 2 particles per cell and direction leaves Gauss points that see two rows (a conic),
-// and the run stops there (NumericalError).
+// README.md; over ten periods at A = 0.1 on 16 cells every MLS configuration gains energy,
+// the pseudo-inverse's most), but needs 6 particles not on one conic around every Gauss
+// point (the linear basis 3 not on a line).
 // These are the RK functions of kernels/ with the particles as nodes (the moment matrix of
 // kernels/rk_moment.hpp, which the Galerkin solver's functions use too), evaluated cell by
 // cell: the particles are binned by half cells, and one pass over those around a cell sums
@@ -33,7 +31,10 @@
 // particles of interior cells are the data of the reconstruction; every other particle (a
 // band one to two cells deep along free surfaces and gaps to walls) is its own quadrature
 // point, weight V_p, as in plain B-spline MPM, and no Gauss point sees it. So each particle's
-// mass and stress enter one quadrature, and no Gauss point extrapolates over an edge. With
+// mass and stress enter one quadrature, and no Gauss point extrapolates over an edge. An
+// interior cell with a Gauss point whose moment matrix is singular (the particles drew
+// apart, or lie on a line or conic) is integrated by its particles too; they stay data for
+// the other cells' Gauss points. With
 // Gauss points in every cell holding particles, a rubber wedge dropped on a floor had 1.9-4.8
 // times the energy put in 0.12 s after impact (verification/mpm-vibration/README.md, "Bodies
 // that do not fill the grid"). A body that fills the grid (the vibration problem) has Gauss
@@ -67,12 +68,16 @@ class MLSReconstruction {
   /// The particles that are their own quadrature points: point gauss_count() + k is
   /// particle own_particles()[k].
   [[nodiscard]] const std::vector<Index>& own_particles() const { return own_; }
+  /// Interior cells the last update() returned to particle quadrature.
+  [[nodiscard]] Index demoted_cells() const { return demoted_; }
   /// N_i and grad N_i at the quadrature points.
   [[nodiscard]] const WeightTable& grid_weights() const { return weights_; }
 
   /// The interior cells, Gauss points and phi_gp for the particles at `positions` with
   /// deformation gradients F_p and reference volumes V_p0 (once per step, reused by every
-  /// field). Throws NumericalError naming the Gauss point when too few particles surround it.
+  /// field). An interior cell with a Gauss point whose moment matrix is singular (too few
+  /// data around it, or all on a line or conic) gets no Gauss points: its particles are
+  /// their own quadrature points (demoted_cells()).
   void update(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
               const std::vector<double>& volume0);
 
@@ -101,17 +106,20 @@ class MLSReconstruction {
   }
 
  private:
+  /// The rows of the cells with Gauss points; 1 for a cell where a moment matrix is singular.
   template <int Order>
-  void update_rows(const std::vector<Vec2>& positions);
+  std::vector<unsigned char> update_rows(const std::vector<Vec2>& positions);
+  void place_gauss_points(const std::vector<unsigned char>& cells);
   void interior_cells(const std::vector<Vec2>& positions, const std::vector<Mat2>& deformation,
                       const std::vector<double>& volume0, std::vector<unsigned char>& interior) const;
 
   const Grid& grid_;
   const ParticleBasis& basis_;
-  std::vector<unsigned char> interior_;  ///< per cell of the grid box: the bodies fill it and its neighbours
-  std::vector<Vec2> points_;             ///< 4 per interior cell: (-,-), (+,-), (-,+), (+,+) about its centre
-  std::vector<Index> own_;               ///< the particles of the other cells
-  std::vector<unsigned char> is_own_;    ///< per particle: in own_
+  std::vector<unsigned char> gauss_cells_;  ///< per cell of the grid box: interior, not demoted
+  std::vector<Vec2> points_;  ///< 4 per Gauss cell: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<Index> own_;    ///< the particles of the other cells
+  std::vector<unsigned char> is_data_;  ///< per particle: in an interior cell (demoted or not)
+  Index demoted_ = 0;
   double omega_ = 0.0;
   WeightTable weights_;
   RKSettings settings_;

@@ -159,6 +159,9 @@ class MPMSolver {
   /// bspline_mls: |sum_g rho_g omega_g - sum_p m_p| / sum_p m_p of the reconstruction in the
   /// last step, before the densities are scaled to remove it (0 for the other methods).
   [[nodiscard]] double reconstruction_defect() const { return reconstruction_defect_; }
+  /// bspline_mls: interior cells integrated by their particles in the last step, as a Gauss
+  /// point there had too few particles around it (MLSReconstruction::update; 0 otherwise).
+  [[nodiscard]] Index demoted_cells() const;
   [[nodiscard]] MPMEnergy energy() const;
   [[nodiscard]] int bodies() const { return bodies_; }  ///< bodies the particles belong to
   /// Work of the body forces per body so far [J per unit thickness] (BodyEnergy::external).
