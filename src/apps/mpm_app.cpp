@@ -226,7 +226,8 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   s.put("errors", std::move(errors));
   s.put("max_mass_defect", run.max_mass_defect);
   s.put("max_reconstruction_defect", run.max_reconstruction_defect);
-  s.put("demoted", std::vector<double>{static_cast<double>(run.max_demoted_cells), static_cast<double>(run.demoted_steps)});
+  s.put("demoted", std::vector<double>{static_cast<double>(run.max_demoted_cells),
+                                       static_cast<double>(run.demoted_steps)});
   std::vector<double> probe;
   for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
   s.put("probe", std::move(probe));
@@ -394,9 +395,10 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
                              "the densities were scaled; the grid mass then differs by up to {:.3e}\n",
                              run.max_reconstruction_defect, run.max_mass_defect);
   if (run.demoted_steps > 0)
-    std::cout << fmt::format("  MLS reconstruction: up to {} interior cell(s) in {} step(s) integrated by their particles, a "
-                             "Gauss point there having too few particles around it for the moment matrix\n",
-                             run.max_demoted_cells, run.demoted_steps);
+    std::cout << fmt::format(
+        "  MLS reconstruction: up to {} interior cell(s) in {} step(s) integrated by their particles, a "
+        "Gauss point there having too few particles around it for the moment matrix\n",
+        run.max_demoted_cells, run.demoted_steps);
   if (!run.energy.empty()) {
     std::cout << fmt::format("  energy: kinetic + strain + dissipated - work of body forces drifts by {:.3e} of the largest "
                              "kinetic + strain\n", energy_drift(run.energy));

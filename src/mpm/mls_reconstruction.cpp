@@ -54,7 +54,9 @@ void MLSReconstruction::update(const std::vector<Vec2>& positions, const std::ve
   // The data of the reconstruction: the particles of the interior cells.
   std::vector<unsigned char> interior;
   interior_cells(positions, deformation, volume0, interior);
-  const auto cell_of_bin = [&](Index b) { return (b % bx) / 2 + static_cast<std::size_t>(nx) * ((b / bx) / 2); };
+  const auto cell_of_bin = [&](Index b) {
+    return (b % bx) / 2 + static_cast<std::size_t>(nx) * ((b / bx) / 2);
+  };
   is_data_.resize(positions.size());
   for (std::size_t p = 0; p < positions.size(); ++p) is_data_[p] = interior[cell_of_bin(bin_cell_[p])];
   // Gauss points in the interior cells; a cell where one of them sees too few data for the
@@ -102,7 +104,8 @@ void MLSReconstruction::place_gauss_points(const std::vector<unsigned char>& cel
     }
   basis_.resize(weights_, gauss_count());
   parallel_blocks(gauss_count(), 1024, [&](Index begin, Index end) {
-    for (Index g = begin; g < end; ++g) basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
+    for (Index g = begin; g < end; ++g)
+      basis_.evaluate(points_[g], Mat2::Identity(), Vec2::Zero(), weights_, g);
   });
   rows_.resize(points_.size() / 4);
 }

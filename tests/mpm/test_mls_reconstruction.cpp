@@ -93,8 +93,9 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
     }
 }
 
-TEST_CASE("MLS reconstruction returns a cell to particle quadrature where a Gauss point sees too few particles",
-          "[mpm][mls]") {
+TEST_CASE(
+    "MLS reconstruction returns a cell to particle quadrature where a Gauss point sees too few particles",
+    "[mpm][mls]") {
   // The jittered lattice with a hole of 4 x 4 cells (x in [2 h, 6 h], y in [h, 5 h]) and
   // domains 4 h wide, which cover the hole: every cell is interior, but the Gauss points
   // within 1.5 h of the hole's centre see no particle, and those near its edges few (a
@@ -128,8 +129,8 @@ TEST_CASE("MLS reconstruction returns a cell to particle quadrature where a Gaus
             expected[c] = 1;
           }
     const auto demoted = static_cast<Index>(std::count(expected.begin(), expected.end(), 1));
-    REQUIRE(demoted >= 4);   // the hole's centre
-    REQUIRE(demoted < 16);   // and not the whole hole
+    REQUIRE(demoted >= 4);  // the hole's centre
+    REQUIRE(demoted < 16);  // and not the whole hole
     CHECK(mls.demoted_cells() == demoted);
     REQUIRE(mls.gauss_count() == 4 * (8 * 6 - demoted));
     const auto cell_of = [&](const Vec2& p) {

@@ -34,8 +34,8 @@ struct MPMRun {
   std::vector<std::pair<double, Vec2>> probe;  ///< (t, u^h at the scene's probe) every step
   double max_mass_defect = 0.0;
   double max_reconstruction_defect = 0.0;  ///< bspline_mls, before its correction (MPMSolver)
-  Index max_demoted_cells = 0;  ///< bspline_mls: most cells integrated by their particles in a step
-  int demoted_steps = 0;        ///< steps with such cells
+  Index max_demoted_cells = 0;         ///< bspline_mls: most cells integrated by their particles in a step
+  int demoted_steps = 0;               ///< steps with such cells
   std::optional<std::string> failure;  ///< what stopped the run early
   std::string particle_table;          ///< particles.csv of the end state (when the scene asks)
   StageTimer timer;

@@ -116,9 +116,9 @@ class MLSReconstruction {
   const Grid& grid_;
   const ParticleBasis& basis_;
   std::vector<unsigned char> gauss_cells_;  ///< per cell of the grid box: interior, not demoted
-  std::vector<Vec2> points_;  ///< 4 per Gauss cell: (-,-), (+,-), (-,+), (+,+) about its centre
-  std::vector<Index> own_;    ///< the particles of the other cells
-  std::vector<unsigned char> is_data_;  ///< per particle: in an interior cell (demoted or not)
+  std::vector<Vec2> points_;                ///< 4 per Gauss cell: (-,-), (+,-), (-,+), (+,+) about its centre
+  std::vector<Index> own_;                  ///< the particles of the other cells
+  std::vector<unsigned char> is_data_;      ///< per particle: in an interior cell (demoted or not)
   Index demoted_ = 0;
   double omega_ = 0.0;
   WeightTable weights_;
