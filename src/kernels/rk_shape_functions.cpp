@@ -183,7 +183,7 @@ RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
   cells_ = CellList(nodes_, 0.5 * max_radius_);
 }
 
-void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond, std::string_view remedy) {
+void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond) {
   const int nb = s.order == RKOrder::linear ? 3 : 6;
   const std::string what = rcond >= 0.0
                                ? fmt::format("badly conditioned (reciprocal condition {:.2e} < {:.1e})",
@@ -191,9 +191,10 @@ void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, dou
                                : std::string("singular");
   throw NumericalError(fmt::format(
       "RK moment matrix at point ({:.6g}, {:.6g}) is {}: {} neighbour(s) within the {} support of "
-      "radius {:.4g}; a {} basis needs at least {} neighbours, not all on one {}. {}",
+      "radius {:.4g}; a {} basis needs at least {} neighbours, not all on one {}. Increase the support radius "
+      "(kernel support factor) or make the cloud denser or more regular near this point.",
       x.x(), x.y(), what, n, to_string(s.support), s.radius, to_string(s.order), nb,
-      s.order == RKOrder::linear ? "line" : "conic", remedy));
+      s.order == RKOrder::linear ? "line" : "conic"));
 }
 
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,

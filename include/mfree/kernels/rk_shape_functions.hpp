@@ -105,11 +105,8 @@ std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h
 
 /// Throws the NumericalError of a point x whose moment matrix is singular (rcond < 0 or NaN)
 /// or has a reciprocal condition number below s.rcond_min: its n neighbours, the support and
-/// `remedy`, what the caller's user can change.
-[[noreturn]] void throw_moment_failure(
-    const Vec2& x, std::size_t n, const RKSettings& s, double rcond,
-    std::string_view remedy = "Increase the support radius (kernel support factor) or make the cloud denser or more "
-                              "regular near this point.");
+/// what the user can change.
+[[noreturn]] void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond);
 
 /// linear, quadratic: the names scenes use.
 const NameTable<RKOrder>& order_names();

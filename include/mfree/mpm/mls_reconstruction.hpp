@@ -19,7 +19,7 @@
 // the four moment matrices of its Gauss points side by side (one SIMD lane each) and
 // stores phi_gp of the four points per particle, so that a reconstruction reads each
 // particle's value once per cell. Cost at 64^2 cells, 9 particles per cell and the default
-// kernel: the whole MLS step 2.5-2.7 plain B-spline steps (verification/benchmarks).
+// kernel: the whole MLS step 2.5-2.8 plain B-spline steps (verification/benchmarks).
 //
 // Quadrature (the mixed integration of Al-Kafaji, PhD thesis, Stuttgart 2013: Gauss points
 // where the material fills the cells, the particles themselves elsewhere). The Gauss points
