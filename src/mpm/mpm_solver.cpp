@@ -203,12 +203,13 @@ void MPMSolver::check_corners(const Particles& P) const {
 }
 
 void MPMSolver::step() {
+  demoted_cells_ = 0;
   if (settings_.update == UpdateScheme::verlet) return verlet_step();
   const bool first = settings_.update == UpdateScheme::usf || settings_.update == UpdateScheme::usavg;
   const bool again = settings_.update == UpdateScheme::szs || settings_.update == UpdateScheme::usavg;
   const double stress_dt = settings_.update == UpdateScheme::usavg ? 0.5 * dt_ : dt_;
   timer_.time("weights", [&] { compute_weights(); });
-  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
+  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(particles_.position); });
   timer_.time("particles to grid", [&] { particles_to_grid(); });
   if (first) timer_.time("stress update", [&] { update_stress(stress_dt); });
   timer_.time("grid forces", [&] { compute_grid_forces(); });
@@ -246,7 +247,7 @@ void MPMSolver::verlet_step() {
 
 void MPMSolver::accelerations_at_positions() {
   timer_.time("weights", [&] { compute_weights(); });
-  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(); });
+  if (mls_) timer_.time("MLS functions", [&] { update_mls_functions(particles_.position); });
   timer_.time("particles to grid", [&] { scatter_mass(); });
   // MLS with the pseudo-inverse: the particles carried the mass; the forces' rho b needs the
   // reconstructed densities all the same.
@@ -265,11 +266,10 @@ void MPMSolver::compute_weights() {
   });
 }
 
-Index MPMSolver::demoted_cells() const { return mls_ ? mls_->demoted_cells() : 0; }
-
-void MPMSolver::update_mls_functions() {
+void MPMSolver::update_mls_functions(const std::vector<Vec2>& positions) {
   const Particles& P = particles_;
-  at_time(time_, [&] { mls_->update(P.position, P.deformation, P.volume0); });
+  at_time(time_, [&] { mls_->update(positions, P.deformation, P.volume0); });
+  demoted_cells_ = std::max(demoted_cells_, mls_->demoted_cells());
 }
 
 void MPMSolver::particles_to_grid() {
@@ -563,7 +563,7 @@ void MPMSolver::midpoint_weights() {
   });
   std::swap(weights_, midpoint_weights_);
   // MLS reconstructs mass and momenta at the midpoint only when it carries them (lumped).
-  if (mls_transfers()) at_time(time_, [&] { mls_->update(midpoint_positions_, P.deformation, P.volume0); });
+  if (mls_transfers()) update_mls_functions(midpoint_positions_);
 }
 
 void MPMSolver::half_kick_particles() {

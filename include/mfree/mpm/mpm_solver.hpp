@@ -159,9 +159,10 @@ class MPMSolver {
   /// bspline_mls: |sum_g rho_g omega_g - sum_p m_p| / sum_p m_p of the reconstruction in the
   /// last step, before the densities are scaled to remove it (0 for the other methods).
   [[nodiscard]] double reconstruction_defect() const { return reconstruction_defect_; }
-  /// bspline_mls: interior cells integrated by their particles in the last step, as a Gauss
-  /// point there had too few particles around it (MLSReconstruction::update; 0 otherwise).
-  [[nodiscard]] Index demoted_cells() const;
+  /// bspline_mls: interior cells integrated by their particles in the last step (the most of
+  /// its reconstructions, Verlet's midpoint one too), as a Gauss point there had too few
+  /// particles around it (MLSReconstruction::update; 0 otherwise).
+  [[nodiscard]] Index demoted_cells() const { return demoted_cells_; }
   [[nodiscard]] MPMEnergy energy() const;
   [[nodiscard]] int bodies() const { return bodies_; }  ///< bodies the particles belong to
   /// Work of the body forces per body so far [J per unit thickness] (BodyEnergy::external).
@@ -177,7 +178,9 @@ class MPMSolver {
   /// InputError unless P has corners for every particle with cpdi2 and none otherwise.
   void check_corners(const Particles& P) const;
   void compute_weights();
-  void update_mls_functions();
+  /// bspline_mls: the MLS functions for the particles at `positions` (their current ones or
+  /// Verlet's midpoints), counting the cells returned to particle quadrature.
+  void update_mls_functions(const std::vector<Vec2>& positions);
   void particles_to_grid();
   void update_stress(double dt);
   void compute_grid_forces();
@@ -253,6 +256,7 @@ class MPMSolver {
   double particle_mass_ = 0.0;  ///< sum_p m_p (constant)
   std::vector<double> external_work_;  ///< per body
   double time_ = 0.0, dt_ = 0.0, h_over_c_ = 0.0, mass_defect_ = 0.0, reconstruction_defect_ = 0.0;
+  Index demoted_cells_ = 0;
   double density_scale_ = 1.0;  ///< MLS: the interior cells' sum_p m_p / sum_g rho_g omega_g of the step
   int steps_ = 0, bodies_ = 0;
   bool forces_current_ = false;  ///< verlet: weights, masses and forces are those of the particles' state
