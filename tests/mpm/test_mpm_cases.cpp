@@ -152,3 +152,37 @@ TEST_CASE("falling wedge: MLS keeps kinetic + strain at the energy put in throug
   CHECK(high <= 1.01);
   CHECK(low >= 0.99);
 }
+
+TEST_CASE(
+    "vibration: the energy balance with a body force that changes in time converges at the update's order",
+    "[mpm][cases]") {
+  // The manufactured body force of the vibration does several times the initial kinetic
+  // energy in work each quarter period. The largest |E(t) - E(0)| over one period, E =
+  // kinetic + strain - work of the body force, relative to the largest kinetic + strain, at
+  // dt and dt / 2: Verlet's balance is second order (with b at one end of the step the work
+  // was first order, and the ratio 2); USF's first order.
+  const auto drift = [](const char* update, double dt) {
+    const MPMScene scene = case_scene("mpm-vibration/vibration.toml",
+                                      {"mpm.cells=8", fmt::format("mpm.update={}", update),
+                                       "dynamics.end_time=0.02", fmt::format("dynamics.time_step={}", dt)});
+    MPMSolver solver(scene.problem, scene.settings);
+    const double E0 = solver.energy().sum.total();
+    double worst = 0.0, scale = 0.0;
+    for (int n = 0; n < solver.steps(); ++n) {
+      solver.step();
+      const MPMEnergy e = solver.energy();
+      worst = std::max(worst, std::abs(e.sum.total() - E0));
+      scale = std::max(scale, e.sum.kinetic + e.sum.strain);
+    }
+    return worst / scale;
+  };
+  const double verlet = drift("verlet", 2e-4), verlet_half = drift("verlet", 1e-4);
+  const double usf = drift("usf", 2e-4), usf_half = drift("usf", 1e-4);
+  std::cout << fmt::format(
+      "vibration energy balance, dt = 2e-4 and 1e-4: verlet {:.3e} {:.3e} (order {:.2f}); usf "
+      "{:.3e} {:.3e} (order {:.2f})\n",
+      verlet, verlet_half, std::log2(verlet / verlet_half), usf, usf_half, std::log2(usf / usf_half));
+  CHECK(std::log2(verlet / verlet_half) > 1.8);
+  CHECK(verlet_half < 3e-4);
+  CHECK(std::log2(usf / usf_half) > 0.8);
+}

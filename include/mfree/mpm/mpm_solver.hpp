@@ -220,6 +220,9 @@ class MPMSolver {
   /// S_ip a_i (eq. 29).
   template <bool kick>
   void move_particles();
+  /// verlet: the second half of the body forces' work over the drift, m_p b(t + dt) . dx_p / 2
+  /// (move_particles adds the first, with b(t)).
+  void complete_drift_work();
   /// Nodes with |m_i| below this have no velocity (1e-12 of a particle's mass). The mass may
   /// be negative: qCPDI's corner weights are, and a node that only corners of the body reach
   /// (beyond a body's corner) gets m_i < 0; p_i / m_i is still the particles' velocity there,
@@ -247,6 +250,7 @@ class MPMSolver {
   ScatterBuffers<Vec2> partial2_;
   ScatterBuffers<double> partial1_;
   std::vector<Vec2> body_;       ///< b_p of the step (zero without a body force)
+  std::vector<Vec2> drift_;      ///< verlet with a body force: dx_p of the step's drift
   std::vector<double> density_;  ///< MLS: rho_p at the start of the step
   // MLS: the fields the grid integrals need at the quadrature points (reconstructed at the
   // Gauss points, a particle's own elsewhere), times the points' volumes (omega_g, V_p).
