@@ -580,8 +580,11 @@ def long_runs(ctx: Context, title: str) -> Section:
             "work of the body forces, constant for the exact motion; drift = max |E(t) - E(0)| / max (kinetic + "
             "strain).\n\n"
             "Expected: Newmark's trapezoidal rule conserves energy up to the Newton tolerance; central "
-            "differences conserve a shadow energy (bounded oscillation); MPM drifts (FLIP/PIC transfers and "
-            "first-order stepping), and a method that goes unstable stops with an error.\n\n"
+            "differences conserve a shadow energy (bounded oscillation); MPM with the symplectic Euler "
+            "updates (USF, USL) drifts at first order in dt, velocity Verlet holds the balance to second order "
+            "(the body forces' work integrated to the update's order), MLS reconstruction gains energy (its "
+            "Gauss-point forces are not the derivative of the particles' stored energy), and a method that goes "
+            "unstable stops with an error.\n\n"
             + table(["method", "status", "relative u error at the end", "energy drift", "seconds"], rows)
             + "\n" + ctx.image(figure, "Energy balance through the long runs")
             + "\nReproduce:\n\n```sh\n" + "\n".join(ctx.command("converge", MPM_LONG, extra) for _, _, extra in mpm_runs)
