@@ -607,7 +607,7 @@ void MPMSolver::move_particles() {
   // at the instant the forces took it leaves an error in the energy balance first order in
   // dt that grows with the run where b changes in time (with Verlet 9 % of the largest
   // kinetic + strain energy over the ten periods of verification/mpm-vibration/long_run.toml;
-  // 2e-6 now). So:
+  // 1.3e-6 now). So:
   //   kick (USF, USL, SZS, USAVG)  the impulse dt m_p b_p on the mean of the grid velocities at
   //     the particle before and after the update, m_p b_p . dt (v - dt a / 2): the work of
   //     the update's own momentum change;
