@@ -115,7 +115,7 @@ struct BodyEnergy {
   double kinetic = 0.0;   ///< sum 1/2 m_p |v_p|^2
   double strain = 0.0;    ///< sum V_p0 W(F_p), W the stored energy of the particle's material
   double dissipated = 0.0;  ///< plastic work sum V_p0 W_p (plastic laws; 0 for elastic ones)
-  double external = 0.0;  ///< work of the body forces, sum over steps of m_p b_p . dx_p (to the update's order in time: MPMSolver::move_particles)
+  double external = 0.0;  ///< work of the body forces over the steps (to the update's order: move_particles)
   Vec2 momentum = Vec2::Zero();  ///< sum m_p v_p
   /// kinetic + strain + dissipated - external: constant for an undamped motion.
   [[nodiscard]] double total() const { return kinetic + strain + dissipated - external; }
