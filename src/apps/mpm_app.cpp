@@ -372,9 +372,10 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
 
 int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   const MPMSettings& s = scene.settings;
-  std::cout << fmt::format("mfree run: {} (MPM, {} weights, {}, {} mapping, {} thread(s))\n", scene.file.string(),
-                           method_name(method_of(s)), to_string(s.update), grid_mapping_names().name(s.mapping),
-                           thread_count());
+  std::cout << fmt::format(
+      "mfree run: {} (MPM, {} weights, {}, {} mapping{}, {} thread(s))\n", scene.file.string(),
+      method_name(method_of(s)), to_string(s.update), grid_mapping_names().name(s.mapping),
+      s.mass_filter > 0.0 ? fmt::format(" with mass_filter {}", s.mass_filter) : "", thread_count());
   if (checkpoints) checkpoints->restore_output(scene.folder);
   const MPMRun run = simulate_mpm(scene, s, true, checkpoints);
   if (!run.errors.empty()) {
@@ -435,6 +436,7 @@ int run_mpm(const MPMScene& scene, const Checkpoints* checkpoints) {
   summary.text("method", method_name(method_of(s)));
   summary.text("update", std::string(to_string(s.update)));
   summary.text("mapping", grid_mapping_names().name(s.mapping));
+  summary.number("mass_filter", s.mass_filter);
   summary.number("particles", static_cast<double>(run.particles));
   summary.number("steps", run.steps);
   summary.number("time_step", run.time_step);

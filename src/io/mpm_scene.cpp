@@ -190,6 +190,9 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.mapping = read_choice_or(t, "mapping", grid_mapping_names(), GridMapping::lumped);
     s.cells = static_cast<int>(t.integer("cells", 1, 100000));
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
+    s.mass_filter = t.number_or("mass_filter", 0.0, 0.0, 1.0);
+    if (t.has("mass_filter") && s.mapping != GridMapping::pseudo_inverse)
+      t.error("mass_filter", "only the pseudo_inverse mapping has a mass matrix to filter");
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
     if (t.has("mls_support") && s.method != MPMMethod::bspline_mls) t.error("mls_support", "only bspline_mls reconstructs");
     s.mls_basis = read_choice_or(t, "mls_basis", order_names(), s.mls_basis);
@@ -273,6 +276,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       t.error("updates", "the verlet update takes no damping, and [mpm] sets damping");
     st.mappings = {s.mapping};
     if (t.has("mappings")) st.mappings = read_choices(t, "mappings", grid_mapping_names());
+    if (s.mass_filter > 0.0 && std::count(st.mappings.begin(), st.mappings.end(), GridMapping::lumped) > 0)
+      t.error("mappings", "[mpm] sets mass_filter, which the lumped mapping has no mass matrix for");
     st.particles_per_side = {s.particles_per_side};
     if (t.has("particles_per_cell")) {
       for (const MPMBody& b : pr.bodies)

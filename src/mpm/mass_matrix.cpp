@@ -1,9 +1,11 @@
 #include "mfree/mpm/mass_matrix.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
+#include <stdexcept>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -15,8 +17,16 @@ const NameTable<GridMapping>& grid_mapping_names() {
   return table;
 }
 
-GridMassMatrix::GridMassMatrix(const Grid& grid, int radius)
-    : grid_(grid), nodes_(grid.size()), nx_(grid.nx()), radius_(radius), width_(2 * radius + 1) {}
+GridMassMatrix::GridMassMatrix(const Grid& grid, int radius, double filter)
+    : grid_(grid),
+      nodes_(grid.size()),
+      nx_(grid.nx()),
+      radius_(radius),
+      width_(2 * radius + 1),
+      filter_(filter) {
+  if (!(filter >= 0.0))
+    throw std::invalid_argument(fmt::format("MPM mass matrix: filter {} is not >= 0", filter));
+}
 
 int GridMassMatrix::offset(Index i, Index j) const {
   const Index dx = j % nx_ - i % nx_, dy = j / nx_ - i / nx_;
@@ -76,6 +86,25 @@ void GridMassMatrix::assemble(const WeightTable& weights, const std::vector<doub
       values_[k] = sum;
     }
   });
+  // m_i, and the diagonal of M~: M_ii + beta sum_j D_ij^2 / m_j.
+  const std::size_t centre = static_cast<std::size_t>(radius_) * (width_ + 1);
+  lumped_.resize(static_cast<std::size_t>(nodes_));
+  diagonal_.resize(static_cast<std::size_t>(nodes_));
+  for (Index i = 0; i < nodes_; ++i) lumped_[i] = row_sum(i);
+  const Index ny = nodes_ / nx_;
+  for (Index i = 0; i < nodes_; ++i) {
+    const double* r = values_.data() + i * row;
+    double filtered = 0.0;
+    const Index ix = i % nx_, iy = i / nx_;
+    for (Index dy = std::max<Index>(-radius_, -iy); dy <= std::min<Index>(radius_, ny - 1 - iy); ++dy)
+      for (Index dx = std::max<Index>(-radius_, -ix); dx <= std::min<Index>(radius_, nx_ - 1 - ix); ++dx) {
+        const Index j = i + dx + nx_ * dy;
+        const std::size_t o = static_cast<std::size_t>((dx + radius_) + width_ * (dy + radius_));
+        const double D = (o == centre ? lumped_[i] : 0.0) - r[o];
+        if (lumped_[j] > 0.0) filtered += D * D / lumped_[j];
+      }
+    diagonal_[i] = r[centre] + filter_ * filtered;
+  }
 }
 
 double GridMassMatrix::entry(Index i, Index j) const {
@@ -109,11 +138,26 @@ void GridMassMatrix::multiply(const std::vector<Vec2>& x, std::vector<Vec2>& y) 
   });
 }
 
+void GridMassMatrix::multiply_filtered(const std::vector<Vec2>& x, std::vector<Vec2>& y, std::vector<Vec2>& d,
+                                       std::vector<Vec2>& f) const {
+  multiply(x, y);
+  if (filter_ == 0.0) return;
+  // d = L^-1 D x (zero on empty nodes, whose rows of D vanish), then y += beta D d.
+  for (std::size_t i = 0; i < y.size(); ++i)
+    d[i] = lumped_[i] > 0.0 ? Vec2(x[i] - y[i] / lumped_[i]) : Vec2(Vec2::Zero());
+  multiply(d, f);
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] += filter_ * (lumped_[i] * d[i] - f[i]);
+}
+
+std::vector<Vec2> GridMassMatrix::filtered_product(const std::vector<Vec2>& x) const {
+  std::vector<Vec2> y(x.size()), d(x.size()), f(x.size());
+  multiply_filtered(x, y, d, f);
+  return y;
+}
+
 std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::vector<double>& lumped,
                                         const std::vector<unsigned char>& held, double floor) const {
   const auto n = static_cast<std::size_t>(nodes_);
-  const auto row = static_cast<std::size_t>(width_) * width_;
-  const std::size_t centre = static_cast<std::size_t>(radius_) * (width_ + 1);
   // known[i]: the components of node i with a value (bit 0: x, bit 1: y); free[i]: those
   // of them the system determines, the others keep their lumped value.
   std::vector<unsigned char> known(n), free(n);
@@ -121,13 +165,13 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   for (std::size_t i = 0; i < n; ++i) {
     known[i] = std::abs(lumped[i]) > floor ? static_cast<unsigned char>(~held[i] & 3) : 0;
     free[i] = cover_[i] >= 0.2 ? known[i] : 0;
-    diagonal[i] = values_[i * row + centre];
+    diagonal[i] = diagonal_[i];
   }
   const auto masked = [&](std::size_t i, const Vec2& v) {
     return Vec2((free[i] & 1) ? v.x() : 0.0, (free[i] & 2) ? v.y() : 0.0);
   };
   // The lumped values of the known components; the system solves for the free ones.
-  std::vector<Vec2> lumped_value(n), coupling(n), u(n), r(n), z(n), p(n), Mp(n);
+  std::vector<Vec2> lumped_value(n), coupling(n), u(n), r(n), z(n), p(n), Mp(n), d(n), f(n);
   // The diagonal preconditioner on the free components (rows without one have no diagonal).
   const auto precondition = [&](std::size_t i, const Vec2& v) {
     return free[i] ? masked(i, v.cwiseQuotient(Vec2::Constant(diagonal[i]) + coupling[i]))
@@ -144,9 +188,9 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   // with the row sums m_i, so the mapping conserves momentum and, in the time step, the
   // kinetic energy 1/2 v^T M v. (Taking the lumped values as known in the free rows instead
   // made the system unsymmetric: a rubber wedge bouncing on a floor gained 67 % energy.)
-  multiply(p, coupling);
+  multiply_filtered(p, coupling, d, f);
   const auto apply = [&](const std::vector<Vec2>& x, std::vector<Vec2>& y) {
-    multiply(x, y);
+    multiply_filtered(x, y, d, f);
     for (std::size_t i = 0; i < n; ++i) y[i] = masked(i, y[i] + coupling[i].cwiseProduct(x[i]));
   };
   // Start from the lumped values: exact where the particles move rigidly.

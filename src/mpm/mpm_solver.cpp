@@ -68,6 +68,11 @@ const MPMSettings& checked(const MPMSettings& s, const MPMProblem& p) {
     throw InputError("MPM: the verlet update takes no damping; use usf, usl, szs or usavg with damping");
   if (s.method == MPMMethod::bspline_mls && !(s.mls_support >= 1.0))
     throw InputError(fmt::format("MPM: mls_support must be at least one cell (got {})", s.mls_support));
+  if (!(s.mass_filter >= 0.0 && s.mass_filter <= 1.0))
+    throw InputError(fmt::format("MPM: mass_filter must lie in [0, 1] (got {})", s.mass_filter));
+  if (s.mass_filter > 0.0 && s.mapping != GridMapping::pseudo_inverse)
+    throw InputError(
+        "MPM: mass_filter filters the pseudo-inverse mapping's mass matrix; the lumped mapping has none");
   return s;
 }
 
@@ -180,7 +185,8 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
     const double factor = consistent_mass_courant(settings_.method, settings_.degree);
     h_over_c_ *= factor;
     limit = fmt::format("{} h / c (the pseudo-inverse mapping's consistent mass)", factor);
-    mass_matrix_ = std::make_unique<GridMassMatrix>(grid_, mass_matrix_radius(settings_.method, settings_.degree));
+    mass_matrix_ = std::make_unique<GridMassMatrix>(
+        grid_, mass_matrix_radius(settings_.method, settings_.degree), settings_.mass_filter);
   }
   const bool allowed = settings_.allow_unstable_time_step;
   if (settings_.courant > 1.0 && !allowed)

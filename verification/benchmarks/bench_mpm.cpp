@@ -15,8 +15,9 @@
 // stresses reach 1e6 Pa, so most steps of most particles are plastic), for the cost of a law
 // with history against the Neo-Hookean one.
 //
-// The velocity Verlet update, the pseudo-inverse mapping and the quadratic MLS basis (the
-// configuration of verification/mpm-vibration/mls.toml) have runs of their own.
+// The velocity Verlet update, the pseudo-inverse mapping (with and without the short-wave mass
+// filter) and the quadratic MLS basis (the configuration of
+// verification/mpm-vibration/mls.toml: filtered) have runs of their own.
 //
 // Counters: particle_steps_per_second (particles x steps / wall time), and the seconds per
 // step of each stage of the solver's own StageTimer (weights, particles to grid, stress
@@ -42,7 +43,8 @@ const char* const stages[] = {"weights",       "MLS functions",     "particles t
                               "grid momentum", "grid to particles", "second extrapolation"};
 
 void BM_mpm_step(benchmark::State& state, MPMMethod method, int degree, UpdateScheme update, bool body_force,
-                 bool j2 = false, GridMapping mapping = GridMapping::lumped, RKOrder mls_basis = RKOrder::linear) {
+                 bool j2 = false, GridMapping mapping = GridMapping::lumped,
+                 RKOrder mls_basis = RKOrder::linear, double mass_filter = 0.0) {
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
   const Box unit{Vec2(0.0, 0.0), Vec2(1.0, 1.0)};
   MaterialParameters plastic;
@@ -60,6 +62,7 @@ void BM_mpm_step(benchmark::State& state, MPMMethod method, int degree, UpdateSc
   s.update = update;
   s.mapping = mapping;
   s.mls_basis = mls_basis;
+  s.mass_filter = mass_filter;
   s.cells = 64;
   s.particles_per_side = 3;
   // A whole period: dt = T / ceil(T / 1e-5) stays at the test's 1e-5 s, and the run never
@@ -131,3 +134,8 @@ BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet_pinv, MPMMethod::cpdi, 2, UpdateSchem
 BENCHMARK_CAPTURE(BM_mpm_step, mls_quadratic, MPMMethod::bspline_mls, 2, UpdateScheme::verlet, true, false,
                   GridMapping::pseudo_inverse, RKOrder::quadratic)
     ->Name("mpm/bspline_mls_quadratic/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, mls_quadratic_filtered, MPMMethod::bspline_mls, 2, UpdateScheme::verlet, true,
+                  false, GridMapping::pseudo_inverse, RKOrder::quadratic, 0.3)
+    ->Name("mpm/bspline_mls_quadratic/verlet/pseudo_inverse_filtered")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

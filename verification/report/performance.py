@@ -277,10 +277,13 @@ MPM_BENCHMARKS = {
     "mpm/bspline2/verlet/pseudo_inverse": "quadratic B-spline, Verlet, pseudo-inverse",
     "mpm/cpdi/verlet/pseudo_inverse": "lCPDI, Verlet, pseudo-inverse",
     "mpm/bspline_mls_quadratic/verlet/pseudo_inverse": "MLS (quadratic basis), Verlet, pseudo-inverse",
+    "mpm/bspline_mls_quadratic/verlet/pseudo_inverse_filtered":
+        "MLS (quadratic basis), Verlet, pseudo-inverse with mass_filter 0.3 (mls.toml)",
 }
 # (MLS run, the plain B-spline run of the same update and mapping) for the cost ratio.
 MLS_PAIRS = [("mpm/bspline_mls/usf", "mpm/bspline2/usf"),
-             ("mpm/bspline_mls_quadratic/verlet/pseudo_inverse", "mpm/bspline2/verlet/pseudo_inverse")]
+             ("mpm/bspline_mls_quadratic/verlet/pseudo_inverse", "mpm/bspline2/verlet/pseudo_inverse"),
+             ("mpm/bspline_mls_quadratic/verlet/pseudo_inverse_filtered", "mpm/bspline2/verlet/pseudo_inverse")]
 
 
 def bench_rates(ctx: Context, threads: int) -> dict[str, float]:

@@ -1034,7 +1034,8 @@ with the options that change the time update and the particle-to-grid mapping
 the half-kicked particles at their midpoint positions, second order in time) against USF, and
 `mapping = "pseudo_inverse"` (seed 004's option 2: nodal values that fit the particle data in least
 squares through the consistent mass matrix) against the lumped mapping; and the MLS-reconstructed
-B-spline MPM with the quadratic basis on 1.5 cells, the pseudo-inverse and Verlet (`mls.toml`).
+B-spline MPM with the quadratic basis on 1.5 cells, the pseudo-inverse with the short-wave mass filter
+(`mass_filter = 0.3`, which holds the grid's short modes over long runs) and Verlet (`mls.toml`).
 
 **Expected**: Verlet removes the time error that USF leaves at the finest grids (lCPDI and cubic
 B-splines); the pseudo-inverse lowers the error where it is the projection's; the MLS

@@ -30,6 +30,25 @@
 // a = M^-1 f, the Galerkin (consistent-mass) semi-discretisation. The rows of M sum to the
 // lumped masses m_i (partition of unity), so both mappings carry the same total mass.
 //
+// Short-wave filter (filter = beta > 0; an addition to seed 004): the solves use
+//
+//   M~ = M + beta D L^-1 D,   L = diag(m_i) the lumped masses, D = L - M,
+//
+// in place of M, in both mappings of the time step (particle momenta to velocities, forces
+// to accelerations). D has zero row sums, a non-negative diagonal and non-positive
+// off-diagonal entries (the particles' couplings as a weighted graph Laplacian), so M~ is
+// symmetric positive definite with the row sums m_i: momentum is carried as with M, and
+// constants are reproduced. D acts on a smooth field of wave number k as O(kh) L where a
+// node's particles lie to one side of it (walls, moved arrangements) and O((kh)^2) L where
+// they are spread symmetrically, so D L^-1 D changes the mass of smooth modes by O((kh)^2)
+// to O((kh)^4); on the grid's shortest modes (two or three cells), where M is several
+// times smaller than L, it adds mass of the order of L. Linear fields are no longer
+// reproduced exactly (by O(beta (kh)^2) at one-sided nodes). Why: with MLS-reconstructed
+// forces, which are not the derivative of a stored energy, those short modes grow over
+// several periods under the pseudo-inverse, and beta = 0.3 holds them with the one-period
+// errors nearly unchanged (verification/mpm-vibration/README.md). beta = 0: seed 004's
+// pseudo-inverse.
+//
 // Storage: M as a stencil, for every node the (2r + 1)^2 entries of the nodes within r
 // nodes along each axis (r = the radius of the basis: degree for B-splines, 1 for Classic,
 // 3 for the methods with particle domains, whose hats reach up to 4 nodes apart). Units: kg
@@ -50,29 +69,30 @@ const NameTable<GridMapping>& grid_mapping_names();
 
 class GridMassMatrix {
  public:
-  /// radius: the largest node distance (per axis) of two nodes one particle reaches.
-  GridMassMatrix(const Grid& grid, int radius);
+  /// radius: the largest node distance (per axis) of two nodes one particle reaches;
+  /// filter: beta of the short-wave filter (>= 0; 0: the pseudo-inverse itself).
+  GridMassMatrix(const Grid& grid, int radius, double filter = 0.0);
 
   /// M_ij = sum_q mass[q] S_qi S_qj over the points q of the table, and the nodes' cover
   /// sum_q volume[q] S_qi / int N_i. NumericalError naming the point when two of its nodes
   /// lie farther apart than the radius.
   void assemble(const WeightTable& weights, const std::vector<double>& mass, const std::vector<double>& volume);
 
-  /// M u = q for u, node by node and component by component, with the lumped masses m_i
-  /// (the row sums, as scattered): u = 0 on the nodes whose
-  /// lumped mass is at most `floor` and on the components `held` holds (bit 0: x,
-  /// bit 1: y; the walls' zero velocities), u_i = q_i / m_i on the nodes covered by less than
-  /// a fifth, M u = q in the rows of the others with their couplings to those nodes summed
-  /// on the diagonal (a symmetric matrix with the row sums m_i: sum_i m_i u_i = sum_i q_i on
-  /// the components not held). Conjugate
-  /// gradients with the diagonal as preconditioner, started from the lumped values
-  /// q_i / m_i, to a residual of 1e-13 |q|. NumericalError naming the place when M is
+  /// M~ u = q (the filtered matrix; M itself when beta = 0) for u, node by node and component by component,
+  /// with the lumped masses m_i (the row sums, as scattered): u = 0 on the nodes whose lumped mass is at most
+  /// `floor` and on the components `held` holds (bit 0: x, bit 1: y; the walls' zero velocities), u_i = q_i /
+  /// m_i on the nodes covered by less than a fifth, M~ u = q in the rows of the others with their couplings
+  /// to those nodes summed on the diagonal (a symmetric matrix with the row sums m_i: sum_i m_i u_i = sum_i
+  /// q_i on the components not held). Conjugate gradients with the diagonal of M~ as preconditioner, started
+  /// from the lumped values q_i / m_i, to a residual of 1e-13 |q|. NumericalError naming the place when M is
   /// (nearly) singular on the free nodes, which shows as a nodal value over 100 times the
   /// largest lumped one (too few particles to determine it), or the iteration does not
   /// converge.
   [[nodiscard]] std::vector<Vec2> solve(const std::vector<Vec2>& q, const std::vector<double>& lumped,
                                         const std::vector<unsigned char>& held, double floor) const;
 
+  /// M~ x over every node (no walls, no lumped nodes): the matrix the solves invert.
+  [[nodiscard]] std::vector<Vec2> filtered_product(const std::vector<Vec2>& x) const;
   /// M_ij (0 beyond the radius).
   [[nodiscard]] double entry(Index i, Index j) const;
   /// sum_j M_ij, the lumped mass m_i.
@@ -85,11 +105,17 @@ class GridMassMatrix {
   [[nodiscard]] int offset(Index i, Index j) const;
   /// y = M x.
   void multiply(const std::vector<Vec2>& x, std::vector<Vec2>& y) const;
+  /// y = M~ x; d and f: work vectors of the nodes' size.
+  void multiply_filtered(const std::vector<Vec2>& x, std::vector<Vec2>& y, std::vector<Vec2>& d,
+                         std::vector<Vec2>& f) const;
 
   const Grid& grid_;
   Index nodes_, nx_;
   int radius_, width_;                 ///< width = 2 radius + 1
+  double filter_;                      ///< beta
   std::vector<double> values_;         ///< node i's row: width^2 entries, (dx, dy) at (dx + r) + width (dy + r)
+  std::vector<double> lumped_;         ///< per node: m_i, the row sum of M
+  std::vector<double> diagonal_;       ///< per node: M~_ii
   ScatterBuffers<double> partial_;     ///< per-thread rows of the assembly
   std::vector<double> cover_;          ///< per node: sum_p V_p S_ip / int N_i
   ScatterBuffers<double> partial_cover_;

@@ -88,6 +88,7 @@ struct MPMSettings {
   int degree = 2;  ///< B-spline degree (2 or 3); the other methods use hats
   UpdateScheme update = UpdateScheme::usf;
   GridMapping mapping = GridMapping::lumped;  ///< particle data to nodal values (mass_matrix.hpp)
+  double mass_filter = 0.0;  ///< pseudo_inverse: beta of the short-wave filter (mass_matrix.hpp; 0: none)
   int cells = 16;                      ///< cells across the grid box's width
   int particles_per_side = 3;          ///< per cell side (9 per cell), for bodies stating none
   RKOrder mls_basis = RKOrder::linear;  ///< bspline_mls: the MLS basis (seed 000's)
