@@ -192,7 +192,8 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     s.particles_per_side = per_side(t, "particles_per_cell", t.integer_or("particles_per_cell", 4, 1, 25));
     s.mass_filter = t.number_or("mass_filter", 0.0, 0.0, 1.0);
     if (s.mass_filter > 0.0 && s.mapping != GridMapping::pseudo_inverse)
-      t.error("mass_filter", "only the pseudo_inverse mapping has a mass matrix to filter (0 turns the filter off)");
+      t.error("mass_filter",
+              "only the pseudo_inverse mapping has a mass matrix to filter (0 turns the filter off)");
     s.mls_support = t.number_or("mls_support", s.mls_support, 1.0, 10.0);
     if (t.has("mls_support") && s.method != MPMMethod::bspline_mls) t.error("mls_support", "only bspline_mls reconstructs");
     s.mls_basis = read_choice_or(t, "mls_basis", order_names(), s.mls_basis);
