@@ -45,8 +45,9 @@
 // times smaller than L, it adds mass of the order of L. Linear fields are no longer
 // reproduced exactly (by O(beta (kh)^2) at one-sided nodes). Why: with MLS-reconstructed
 // forces, which are not the derivative of a stored energy, those short modes grow over
-// several periods under the pseudo-inverse, and beta = 0.3 holds them with the one-period
-// errors nearly unchanged (verification/mpm-vibration/README.md). beta = 0: seed 004's
+// several periods under the pseudo-inverse, and beta = 0.3 holds them over ten periods on 16
+// cells, the one-period errors within a factor 2.5 of the unfiltered ones and their rates
+// near 3 (verification/mpm-vibration/README.md). beta = 0: seed 004's
 // pseudo-inverse.
 //
 // Storage: M as a stencil, for every node the (2r + 1)^2 entries of the nodes within r
