@@ -28,6 +28,14 @@ GridMassMatrix::GridMassMatrix(const Grid& grid, int radius, double filter)
     throw std::invalid_argument(fmt::format("MPM mass matrix: filter {} is not >= 0", filter));
 }
 
+template <class F>
+void GridMassMatrix::for_each_in_stencil(Index i, F&& f) const {
+  const Index ny = nodes_ / nx_, ix = i % nx_, iy = i / nx_;
+  for (Index dy = std::max<Index>(-radius_, -iy); dy <= std::min<Index>(radius_, ny - 1 - iy); ++dy)
+    for (Index dx = std::max<Index>(-radius_, -ix); dx <= std::min<Index>(radius_, nx_ - 1 - ix); ++dx)
+      f(i + dx + nx_ * dy, static_cast<std::size_t>((dx + radius_) + width_ * (dy + radius_)));
+}
+
 int GridMassMatrix::offset(Index i, Index j) const {
   const Index dx = j % nx_ - i % nx_, dy = j / nx_ - i / nx_;
   if (std::abs(dx) > radius_ || std::abs(dy) > radius_) return -1;
@@ -91,18 +99,13 @@ void GridMassMatrix::assemble(const WeightTable& weights, const std::vector<doub
   lumped_.resize(static_cast<std::size_t>(nodes_));
   diagonal_.resize(static_cast<std::size_t>(nodes_));
   for (Index i = 0; i < nodes_; ++i) lumped_[i] = row_sum(i);
-  const Index ny = nodes_ / nx_;
   for (Index i = 0; i < nodes_; ++i) {
     const double* r = values_.data() + i * row;
     double filtered = 0.0;
-    const Index ix = i % nx_, iy = i / nx_;
-    for (Index dy = std::max<Index>(-radius_, -iy); dy <= std::min<Index>(radius_, ny - 1 - iy); ++dy)
-      for (Index dx = std::max<Index>(-radius_, -ix); dx <= std::min<Index>(radius_, nx_ - 1 - ix); ++dx) {
-        const Index j = i + dx + nx_ * dy;
-        const std::size_t o = static_cast<std::size_t>((dx + radius_) + width_ * (dy + radius_));
-        const double D = (o == centre ? lumped_[i] : 0.0) - r[o];
-        if (lumped_[j] > 0.0) filtered += D * D / lumped_[j];
-      }
+    for_each_in_stencil(i, [&](Index j, std::size_t o) {
+      const double D = (o == centre ? lumped_[i] : 0.0) - r[o];
+      if (lumped_[j] > 0.0) filtered += D * D / lumped_[j];
+    });
     diagonal_[i] = r[centre] + filter_ * filtered;
   }
 }
@@ -120,19 +123,13 @@ double GridMassMatrix::row_sum(Index i) const {
 }
 
 void GridMassMatrix::multiply(const std::vector<Vec2>& x, std::vector<Vec2>& y) const {
-  const Index ny = nodes_ / nx_;
   const auto row = static_cast<std::size_t>(width_) * width_;
   y.resize(x.size());
   parallel_blocks(nodes_, 1024, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) {
-      const Index ix = i % nx_, iy = i / nx_;
-      const Index dx0 = std::max<Index>(-radius_, -ix), dx1 = std::min<Index>(radius_, nx_ - 1 - ix);
-      const Index dy0 = std::max<Index>(-radius_, -iy), dy1 = std::min<Index>(radius_, ny - 1 - iy);
       const double* r = values_.data() + i * row;
       Vec2 sum = Vec2::Zero();
-      for (Index dy = dy0; dy <= dy1; ++dy)
-        for (Index dx = dx0; dx <= dx1; ++dx)
-          sum += r[(dx + radius_) + width_ * (dy + radius_)] * x[i + dx + nx_ * dy];
+      for_each_in_stencil(i, [&](Index j, std::size_t o) { sum += r[o] * x[j]; });
       y[i] = sum;
     }
   });
@@ -161,20 +158,19 @@ std::vector<Vec2> GridMassMatrix::solve(const std::vector<Vec2>& q, const std::v
   // known[i]: the components of node i with a value (bit 0: x, bit 1: y); free[i]: those
   // of them the system determines, the others keep their lumped value.
   std::vector<unsigned char> known(n), free(n);
-  std::vector<double> diagonal(n);
   for (std::size_t i = 0; i < n; ++i) {
     known[i] = std::abs(lumped[i]) > floor ? static_cast<unsigned char>(~held[i] & 3) : 0;
     free[i] = cover_[i] >= 0.2 ? known[i] : 0;
-    diagonal[i] = diagonal_[i];
   }
   const auto masked = [&](std::size_t i, const Vec2& v) {
     return Vec2((free[i] & 1) ? v.x() : 0.0, (free[i] & 2) ? v.y() : 0.0);
   };
   // The lumped values of the known components; the system solves for the free ones.
-  std::vector<Vec2> lumped_value(n), coupling(n), u(n), r(n), z(n), p(n), Mp(n), d(n), f(n);
+  std::vector<Vec2> lumped_value(n), coupling(n), u(n), r(n), z(n), p(n), Mp(n);
+  std::vector<Vec2> d(filter_ > 0.0 ? n : 0), f(filter_ > 0.0 ? n : 0);  // the filter's work vectors
   // The diagonal preconditioner on the free components (rows without one have no diagonal).
   const auto precondition = [&](std::size_t i, const Vec2& v) {
-    return free[i] ? masked(i, v.cwiseQuotient(Vec2::Constant(diagonal[i]) + coupling[i]))
+    return free[i] ? masked(i, v.cwiseQuotient(Vec2::Constant(diagonal_[i]) + coupling[i]))
                    : Vec2(Vec2::Zero());
   };
   for (std::size_t i = 0; i < n; ++i) {

@@ -104,6 +104,9 @@ class GridMassMatrix {
  private:
   /// Stencil position of node j in node i's row, or -1 beyond the radius.
   [[nodiscard]] int offset(Index i, Index j) const;
+  /// f(j, o) for every node j of the grid within node i's stencil, o its stencil position.
+  template <class F>
+  void for_each_in_stencil(Index i, F&& f) const;
   /// y = M x.
   void multiply(const std::vector<Vec2>& x, std::vector<Vec2>& y) const;
   /// y = M~ x; d and f: work vectors of the nodes' size.
