@@ -128,7 +128,7 @@ MPMBody read_body(const SceneTable& t, const std::vector<MPMMaterial>& materials
 std::string method_name(const MPMMethodChoice& m) { return mpm_method_names().name(m); }
 
 MPMMethodChoice method_of(const MPMSettings& s) {
-  return {s.method, s.method == MPMMethod::bspline ? s.degree : is_bspline(s.method) ? 2 : 1};
+  return {s.method, s.method == MPMMethod::bspline_mls ? 2 : is_bspline(s.method) ? s.degree : 1};
 }
 
 bool is_mpm_scene(const std::filesystem::path& file) { return Scene::load(file).root().has("mpm"); }
@@ -247,8 +247,12 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
       }
     if (out.fields.error && !out.exact) t.error("fields", "'error' needs an [exact] section");
     if (out.fields.domains && !uses_domains(s.method))
-      t.error("fields", fmt::format("'domains' needs a method with particle domains (ugimp, cpgimp, cpdi, qcpdi, cpdi2), "
-                                    "not {}", method_name(method_of(s))));
+      t.error(
+          "fields",
+          fmt::format("'domains' needs a method with particle domains (ugimp, cpgimp, cpdi, qcpdi, cpdi2, "
+                      "bspline_cpgimp, bspline_cpgimp_cubic), "
+                      "not {}",
+                      method_name(method_of(s))));
     out.vtk = t.boolean_or("vtk", true);
     out.particles_csv = t.boolean_or("particles_csv", false);
     out.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));

@@ -26,9 +26,9 @@ double BSplineAxis::node(int i) const {
   return s / p_;
 }
 
-BSplineAxis::Values BSplineAxis::cox_de_boor(double x) const {
-  // Knot span k with xi_k <= x < xi_{k+1}; the functions non-zero there are N_{k-p} .. N_k.
-  const int cell = std::clamp(static_cast<int>(std::floor((x - x0_) / h_)), 0, cells_ - 1);
+BSplineAxis::Values BSplineAxis::cox_de_boor_on(int cell, double x) const {
+  // Knot span k = cell + p, xi_k <= x < xi_{k+1} for x on the cell; the functions non-zero
+  // there are N_{k-p} .. N_k.
   const int k = cell + p_;
   // Cox–de Boor (seed 000 eq. 2) bottom-up, with eq. (1) read the right way round
   // (N_{k,0} = 1 on the span, SPEC section 7): n[d][m] = N_{k-d+m, d}, m = 0..d.

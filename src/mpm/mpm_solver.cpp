@@ -98,9 +98,11 @@ Mat2 exp_series(const Mat2& L, double dt, int kmax) {
 }
 
 /// The largest node distance (per axis) of two nodes one particle reaches: the degree for the
-/// point-evaluated bases, 3 for the averaged hats of the methods with domains (a domain up
-/// to two cells wide).
+/// point-evaluated bases, the degree + 1 for the averaged B-splines (a domain within two
+/// cells), 3 for the averaged hats of the other methods with domains (a domain up to two
+/// cells wide).
 int mass_matrix_radius(MPMMethod m, int degree) {
+  if (m == MPMMethod::bspline_cpgimp) return degree + 1;
   if (uses_domains(m)) return 3;
   return m == MPMMethod::classic ? 1 : degree;
 }
@@ -559,7 +561,8 @@ void MPMSolver::midpoint_weights() {
   const double* mass = mass_.data();  // raw pointers, as in update_stress()
   const Vec2* velocity = velocity_.data();
   // The domain follows F for these (CPDI2's follows its corners; the others have none that moves).
-  const bool deforms = settings_.method == MPMMethod::cpgimp || settings_.method == MPMMethod::cpdi ||
+  const bool deforms = settings_.method == MPMMethod::cpgimp ||
+                       settings_.method == MPMMethod::bspline_cpgimp || settings_.method == MPMMethod::cpdi ||
                        settings_.method == MPMMethod::qcpdi;
   const bool corners = settings_.method == MPMMethod::cpdi2;
   if (corners) midpoint_corners_.resize(P.corners.size());

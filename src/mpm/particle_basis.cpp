@@ -11,12 +11,17 @@
 namespace mfree {
 
 const NameTable<MPMMethodChoice>& mpm_method_names() {
-  static const NameTable<MPMMethodChoice> table{
-      {"classic", {MPMMethod::classic, 1}},  {"ugimp", {MPMMethod::ugimp, 1}},
-      {"cpgimp", {MPMMethod::cpgimp, 1}},    {"cpdi", {MPMMethod::cpdi, 1}},
-      {"qcpdi", {MPMMethod::qcpdi, 1}},      {"cpdi2", {MPMMethod::cpdi2, 1}},
-      {"bspline", {MPMMethod::bspline, 2}},  {"bspline_cubic", {MPMMethod::bspline, 3}},
-      {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
+  static const NameTable<MPMMethodChoice> table{{"classic", {MPMMethod::classic, 1}},
+                                                {"ugimp", {MPMMethod::ugimp, 1}},
+                                                {"cpgimp", {MPMMethod::cpgimp, 1}},
+                                                {"cpdi", {MPMMethod::cpdi, 1}},
+                                                {"qcpdi", {MPMMethod::qcpdi, 1}},
+                                                {"cpdi2", {MPMMethod::cpdi2, 1}},
+                                                {"bspline", {MPMMethod::bspline, 2}},
+                                                {"bspline_cubic", {MPMMethod::bspline, 3}},
+                                                {"bspline_cpgimp", {MPMMethod::bspline_cpgimp, 2}},
+                                                {"bspline_cpgimp_cubic", {MPMMethod::bspline_cpgimp, 3}},
+                                                {"bspline_mls", {MPMMethod::bspline_mls, 2}}};
   return table;
 }
 
@@ -32,7 +37,9 @@ bool uses_domains(MPMMethod m) {
     case MPMMethod::cpgimp:
     case MPMMethod::cpdi:
     case MPMMethod::qcpdi:
-    case MPMMethod::cpdi2: return true;
+    case MPMMethod::cpdi2:
+    case MPMMethod::bspline_cpgimp:
+      return true;
     case MPMMethod::classic:
     case MPMMethod::bspline:
     case MPMMethod::bspline_mls: return false;
@@ -40,8 +47,10 @@ bool uses_domains(MPMMethod m) {
   throw std::logic_error("MPM: a method without a kind");
 }
 
-int grid_padding(MPMMethod m) { return uses_domains(m) ? 1 : 0; }
-bool is_bspline(MPMMethod m) { return m == MPMMethod::bspline || m == MPMMethod::bspline_mls; }
+bool is_bspline(MPMMethod m) {
+  return m == MPMMethod::bspline || m == MPMMethod::bspline_cpgimp || m == MPMMethod::bspline_mls;
+}
+int grid_padding(MPMMethod m) { return uses_domains(m) && !is_bspline(m) ? 1 : 0; }
 
 namespace {
 
@@ -82,6 +91,48 @@ bool gimp_axis(const BSplineAxis& a, double x, double l, GimpAxis<n>& g) {
   return true;
 }
 
+/// B-spline cpGIMP in one direction: the averages over [a, b] = [x - l, x + l], clipped to the
+/// axis' ends, of the functions N_i of a degree-p axis, (1 / (b - a)) int_a^b N_i, and of their
+/// derivatives, (N_i(b) - N_i(a)) / (b - a), in a slot of p + 2 functions. Each cell's piece of
+/// [a, b] is integrated on that cell's polynomials by two-point Gauss–Legendre, exact for
+/// p <= 3. False (and g untouched) when [a, b] meets more than two cells.
+template <int p>
+bool bspline_average_axis(const BSplineAxis& ax, double x, double l, GimpAxis<p + 2>& g) {
+  constexpr int n = p + 2;
+  const double h = ax.spacing();
+  const double a = std::max(ax.lo(), x - l), b = std::min(ax.hi(), x + l);
+  const int c0 = ax.cell_of(a);
+  const int c1 = std::clamp(static_cast<int>(std::ceil((b - ax.lo()) / h)) - 1, c0, ax.cells() - 1);
+  if (c1 - c0 > 1) return false;
+  g.first = std::min(c0, ax.size() - n);  // at the far end the slot starts a function early
+  const double inv = 1.0 / (b - a);
+  constexpr double r = 0.28867513459481287;  // the Gauss points mid -+ (e - s) / (2 sqrt(3))
+  for (int c = c0; c <= c1; ++c) {
+    const double s = std::max(a, ax.lo() + c * h), e = std::min(b, ax.lo() + (c + 1) * h);
+    if (!(e > s)) continue;
+    const double mid = 0.5 * (s + e), w = 0.5 * (e - s) * inv;
+    for (const double y : {mid - r * (e - s), mid + r * (e - s)}) {
+      const BSplineAxis::Values v = ax.evaluate_on<p>(c, y);
+      for (int k = 0; k <= p; ++k) g.value[v.first - g.first + k] += w * v.value[k];
+    }
+  }
+  const BSplineAxis::Values va = ax.evaluate_on<p>(c0, a), vb = ax.evaluate_on<p>(c1, b);
+  for (int k = 0; k <= p; ++k) {
+    g.derivative[va.first - g.first + k] -= inv * va.value[k];
+    g.derivative[vb.first - g.first + k] += inv * vb.value[k];
+  }
+  return true;
+}
+
+NumericalError domain_too_large(const char* method, const Vec2& x, const Vec2& half, int n, double h) {
+  return NumericalError(
+      fmt::format("{}: the particle domain at ({:.6g}, {:.6g}) with half sizes ({:.4g}, {:.4g}) touches more "
+                  "than the {} functions "
+                  "per axis of its slot (cells of size {:.4g}): it has grown too large; use more particles "
+                  "per cell or another method",
+                  method, x.x(), x.y(), half.x(), half.y(), n, h));
+}
+
 }  // namespace
 
 ParticleBasis::ParticleBasis(MPMMethod method, const Grid& grid) : method_(method), grid_(grid) {
@@ -93,11 +144,16 @@ ParticleBasis::ParticleBasis(MPMMethod method, const Grid& grid) : method_(metho
   switch (method) {
     case MPMMethod::ugimp: axis_ = 3; break;
     case MPMMethod::cpgimp: axis_ = 4; break;
+    case MPMMethod::bspline_cpgimp:
+      axis_ = p + 2;
+      break;
     case MPMMethod::cpdi:
     case MPMMethod::cpdi2:
     case MPMMethod::qcpdi: axis_ = 0; break;
     default: axis_ = p + 1;
   }
+  if (method == MPMMethod::bspline_cpgimp && grid.x_axis().size() < axis_)
+    throw InputError(fmt::format("MPM: method {} needs at least two cells per axis", to_string(method)));
   stride_ = method == MPMMethod::qcpdi ? 32 : axis_ == 0 ? 16 : axis_ * axis_;
 }
 
@@ -128,11 +184,18 @@ void ParticleBasis::gimp_weights(const Vec2& x, const Vec2& half, WeightTable& t
   check_on_grid(x + half, what, x);
   GimpAxis<n> gx, gy;
   if (!gimp_axis<n>(grid_.x_axis(), x.x(), half.x(), gx) || !gimp_axis<n>(grid_.y_axis(), x.y(), half.y(), gy))
-    throw NumericalError(fmt::format(
-        "{}: the particle domain at ({:.6g}, {:.6g}) with half sizes ({:.4g}, {:.4g}) touches more than the {} hats per "
-        "axis of its slot (cells of size {:.4g}): it has grown too large; use more particles per cell or another method",
-        method, x.x(), x.y(), half.x(), half.y(), n, grid_.spacing()));
+    throw domain_too_large(method, x, half, n, grid_.spacing());
   table.set_tensor<n>(q, grid_.index(gx.first, gy.first), gx, gy);  // the averages factor by axis
+}
+
+template <int p>
+void ParticleBasis::bspline_gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const {
+  check_on_grid(x, "a particle", x);  // the domain is clipped to the grid, the walls
+  GimpAxis<p + 2> gx, gy;
+  if (!bspline_average_axis<p>(grid_.x_axis(), x.x(), half.x(), gx) ||
+      !bspline_average_axis<p>(grid_.y_axis(), x.y(), half.y(), gy))
+    throw domain_too_large("B-spline cpGIMP", x, half, p + 2, grid_.spacing());
+  table.set_tensor<p + 2>(q, grid_.index(gx.first, gy.first), gx, gy);
 }
 
 template <int n>
@@ -183,6 +246,9 @@ void ParticleBasis::evaluate(const Vec2& x, const Mat2& F, const Vec2& half, Wei
   switch (method_) {
     case MPMMethod::ugimp: return gimp_weights<3>(x, half, table, q);
     case MPMMethod::cpgimp: return gimp_weights<4>(x, stretched_half(x, F, half), table, q);
+    case MPMMethod::bspline_cpgimp:
+      return axis_ == 4 ? bspline_gimp_weights<2>(x, stretched_half(x, F, half), table, q)
+                        : bspline_gimp_weights<3>(x, stretched_half(x, F, half), table, q);
     case MPMMethod::cpdi: return evaluate_quadrilateral(parallelogram_corners(x, F, half), x, table, q);
     case MPMMethod::qcpdi: return node_sum<8>(serendipity_nodes(x, F, half), x, "a qCPDI particle node", table, q);
     case MPMMethod::cpdi2: throw std::logic_error("MPM: CPDI2's weights come from its tracked corners");
@@ -205,7 +271,9 @@ DomainCorners ParticleBasis::domain_corners(const Particles& P, Index p) const {
   const Vec2& x = P.position[p];
   switch (method_) {
     case MPMMethod::ugimp: return parallelogram_corners(x, Mat2::Identity(), P.half_size[p]);
-    case MPMMethod::cpgimp: return parallelogram_corners(x, Mat2(P.deformation[p].diagonal().asDiagonal()), P.half_size[p]);
+    case MPMMethod::cpgimp:
+    case MPMMethod::bspline_cpgimp:
+      return parallelogram_corners(x, Mat2(P.deformation[p].diagonal().asDiagonal()), P.half_size[p]);
     case MPMMethod::cpdi:
     case MPMMethod::qcpdi: return parallelogram_corners(x, P.deformation[p], P.half_size[p]);
     case MPMMethod::cpdi2: return P.corners[p];

@@ -62,8 +62,10 @@ TEST_CASE("MPM scenes: the vibration scene reads into its settings", "[io]") {
   CHECK_FALSE(s.fields.von_mises);
   REQUIRE(s.study);
   CHECK(s.study->cells == std::vector<int>{8, 16, 32, 64});
-  CHECK(s.study->methods.size() == 9);
+  CHECK(s.study->methods.size() == 11);
   CHECK(method_name(s.study->methods[7]) == "bspline_cubic");
+  CHECK(method_name(s.study->methods[9]) == "bspline_cpgimp_cubic");
+  CHECK(s.study->methods[9] == MPMMethodChoice{MPMMethod::bspline_cpgimp, 3});
   CHECK(s.study->particles_per_side == std::vector<int>{3, 2});
   // The initial velocity and body force are the vibration's.
   CHECK((s.problem.bodies.front().initial_velocity(Vec2(0.25, 0.3)) - s.exact->velocity(Vec2(0.25, 0.3), 0.0)).norm() ==

@@ -29,7 +29,8 @@ double total_mass(const Particles& P) {
 
 TEST_CASE("colliding disks: the total momentum stays zero to round-off through the impact", "[mpm][cases]") {
   // To t = 2: the disks meet at t = 1.4 and are in full contact by 2.
-  for (const char* method : {"classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline"}) {
+  for (const char* method :
+       {"classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline", "bspline_cpgimp"}) {
     const MPMScene scene = case_scene("mpm-disks/disks.toml", {"dynamics.end_time=2.0", fmt::format("mpm.method={}", method)});
     MPMSolver solver(scene.problem, scene.settings);
     REQUIRE(solver.bodies() == 2);
@@ -60,7 +61,8 @@ TEST_CASE("vibrating bar: the period of v_cm within 1 % at 16 cells along the ba
   // Two periods of the scene's run (16 cells along the bar). The period is read from the zero
   // crossings of v_cm(t) (linear interpolation between steps): v_cm = v0 / (beta L)
   // cos(omega t) crosses zero at T/4, 3T/4, ..., T/2 apart.
-  for (const char* method : {"classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline", "bspline_cubic"}) {
+  for (const char* method : {"classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline",
+                             "bspline_cubic", "bspline_cpgimp", "bspline_cpgimp_cubic"}) {
     const MPMScene scene = case_scene("mpm-bar/bar.toml", {"dynamics.end_time=20.0", fmt::format("mpm.method={}", method)});
     MPMSolver solver(scene.problem, scene.settings);
     const double mass = total_mass(solver.particles());

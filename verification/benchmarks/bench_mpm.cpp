@@ -17,7 +17,9 @@
 //
 // The velocity Verlet update, the pseudo-inverse mapping (with and without the short-wave mass
 // filter) and the quadratic MLS basis (the configuration of
-// verification/mpm-vibration/mls.toml: filtered) have runs of their own.
+// verification/mpm-vibration/mls.toml: filtered) have runs of their own, and so have the
+// B-splines averaged over cpGIMP's domains (quadratic and cubic with USF; quadratic with Verlet
+// and the pseudo-inverse, verification/mpm-vibration/bspline_cpgimp.toml).
 //
 // Counters: particle_steps_per_second (particles x steps / wall time), and the seconds per
 // step of each stage of the solver's own StageTimer (weights, particles to grid, stress
@@ -116,6 +118,14 @@ BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usf_j2, MPMMethod::bspline, 2, UpdateSch
     ->Name("mpm/bspline2/usf/j2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline3, MPMMethod::bspline, 3, UpdateScheme::usf, true)
     ->Name("mpm/bspline3/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline_cpgimp2, MPMMethod::bspline_cpgimp, 2, UpdateScheme::usf, true)
+    ->Name("mpm/bspline_cpgimp2/usf")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline_cpgimp3, MPMMethod::bspline_cpgimp, 3, UpdateScheme::usf, true)
+    ->Name("mpm/bspline_cpgimp3/usf")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline_mls, MPMMethod::bspline_mls, 2, UpdateScheme::usf, true)
     ->Name("mpm/bspline_mls/usf")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, bspline2_verlet, MPMMethod::bspline, 2, UpdateScheme::verlet, true)
@@ -128,6 +138,11 @@ BENCHMARK_CAPTURE(BM_mpm_step, bspline2_usf_pinv, MPMMethod::bspline, 2, UpdateS
 BENCHMARK_CAPTURE(BM_mpm_step, bspline2_verlet_pinv, MPMMethod::bspline, 2, UpdateScheme::verlet, true, false,
                   GridMapping::pseudo_inverse)
     ->Name("mpm/bspline2/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_mpm_step, bspline_cpgimp2_verlet_pinv, MPMMethod::bspline_cpgimp, 2,
+                  UpdateScheme::verlet, true, false, GridMapping::pseudo_inverse)
+    ->Name("mpm/bspline_cpgimp2/verlet/pseudo_inverse")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_mpm_step, cpdi_verlet_pinv, MPMMethod::cpdi, 2, UpdateScheme::verlet, true, false,
                   GridMapping::pseudo_inverse)
     ->Name("mpm/cpdi/verlet/pseudo_inverse")->Unit(benchmark::kMillisecond)->UseRealTime();

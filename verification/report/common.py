@@ -41,7 +41,8 @@ VIBRATION = Path("verification/vibration/vibration.toml")
 MPM_VIBRATION = Path("verification/mpm-vibration/vibration.toml")
 MPM_LONG = Path("verification/mpm-vibration/long_run.toml")
 MPM_WEDGE = Path("verification/mpm-vibration/wedge_impact.toml")
-MPM_METHODS = ["classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline", "bspline_cubic", "bspline_mls"]
+MPM_METHODS = ["classic", "ugimp", "cpgimp", "cpdi", "qcpdi", "cpdi2", "bspline", "bspline_cubic", "bspline_cpgimp",
+               "bspline_cpgimp_cubic", "bspline_mls"]
 QUIET = ["output.fields=[]", "output.vtk=false"]  # a sweep point writes no fields
 
 # A run folder name is a relative path of plain components: it is deleted before each run.

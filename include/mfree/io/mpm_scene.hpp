@@ -3,7 +3,8 @@
 // [domain], [nodes], [kernel] and [quadrature] (see verification/mpm-*/*.toml):
 //
 //   [mpm]         method (classic | ugimp | cpgimp | cpdi | qcpdi | cpdi2 | bspline |
-//                 bspline_cubic | bspline_mls; mpm/particle_basis.hpp),
+//                 bspline_cubic | bspline_cpgimp | bspline_cpgimp_cubic | bspline_mls;
+//                 mpm/particle_basis.hpp),
 //                 update (usf | usl | szs | usavg | verlet), mapping (lumped |
 //                 pseudo_inverse: particle data to nodal values, mpm/mass_matrix.hpp),
 //                 box = [[x0, y0], [x1, y1]] (the grid box), cells (across its width; square

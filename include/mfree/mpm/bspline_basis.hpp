@@ -62,18 +62,29 @@ class BSplineAxis {
   /// closed form unrolls into the particle loops (twice per particle and step).
   template <int p>
   [[nodiscard]] Values evaluate_as(double x) const {
-    const double t = (x - x0_) / h_;
-    const int cell = std::clamp(static_cast<int>(std::floor(t)), 0, cells_ - 1);
+    return evaluate_on<p>(cell_of(x), x);
+  }
+  /// The p + 1 functions of `cell` and their derivatives, as polynomials of that cell, at x
+  /// (which may lie on or just outside the cell's ends): a piece of an integral over the cell
+  /// stays on the cell's polynomials however x rounds.
+  template <int p>
+  [[nodiscard]] Values evaluate_on(int cell, double x) const {
     // The recursion and eq. (3) read the knots xi_{k-p+1} .. xi_{k+p} of span k = cell + p,
     // that is x0 + (cell - p + 1) h .. x0 + (cell + p) h clamped to the ends: equally spaced
     // unless the clamp acts, which it does for cell < p - 1 or cell > cells - p.
-    if (cell < p - 1 || cell > cells_ - p) return cox_de_boor(x);
+    if (cell < p - 1 || cell > cells_ - p) return cox_de_boor_on(cell, x);
     // s from the cell's own left knot, as the recursion measures: t - cell would carry the
     // rounding of t, up to cells ulps of 1.
     return uniform<p>(cell, (x - (x0_ + h_ * cell)) * inv_h_);
   }
+  /// The cell holding x, clamped to [0, cells - 1] (the far end belongs to the last cell).
+  [[nodiscard]] int cell_of(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - x0_) / h_)), 0, cells_ - 1);
+  }
   /// The same values by the Cox–de Boor recursion on the open knot vector, on every cell.
-  [[nodiscard]] Values cox_de_boor(double x) const;
+  [[nodiscard]] Values cox_de_boor(double x) const { return cox_de_boor_on(cell_of(x), x); }
+  /// The recursion on the span of `cell`, at any x.
+  [[nodiscard]] Values cox_de_boor_on(int cell, double x) const;
 
   /// Knot xi_j of the open knot vector, j in [0, cells + 2p].
   [[nodiscard]] double knot(int j) const;

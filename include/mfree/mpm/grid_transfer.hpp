@@ -100,7 +100,10 @@ struct WeightTable {
       }
       case 2: return for_each_tensor<2>(q, f);
       case 3: return for_each_tensor<3>(q, f);
-      default: return for_each_tensor<4>(q, f);
+      case 4:
+        return for_each_tensor<4>(q, f);
+      default:
+        return for_each_tensor<5>(q, f);
     }
   }
 

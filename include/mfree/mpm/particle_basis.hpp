@@ -25,6 +25,15 @@
 //             weights and gradient integrals of domain_nodes.hpp
 //   bspline   S_ip = N_i(x_p), G_ip = grad N_i(x_p), quadratic or cubic B-splines (seed 000
 //             eqs. 4-5); the MLS-reconstructed method uses the same functions at particles
+//   bspline_cpgimp
+//             the exact averages of the quadratic or cubic B-splines over cpGIMP's rectangle,
+//             clipped to the grid (whose ends are the walls of the open knot vectors). Point
+//             values of the B-splines make the particles a quadrature of the internal force
+//             whose error stops the convergence once particles have crossed knot lines; the
+//             averages integrate the functions exactly over domains that tile the body, so
+//             only the stress, constant on each domain, is approximated (Steffen, Kirby,
+//             Berzins 2008 trace the stall to that quadrature). In 1D, and in 2D without shear,
+//             the rectangles are the deformed domains themselves.
 //
 // Corners are counter-clockwise, c_0 at (-l_x, -l_y) of the reference domain, and
 // perp(d) = (d_y, -d_x) turns a counter-clockwise edge into its outward normal (times length).
@@ -38,8 +47,10 @@
 // entries: the two axes' functions for the tensor-product bases (classic, the GIMPs,
 // B-splines), explicit entries for the CPDIs (4 hats at each of 4 or 8 points: 16 or 32, so
 // they always fit). uGIMP's domain is at most a cell wide (3 hats per axis); cpGIMP's slot
-// holds 4 hats per axis, a domain of up to two cells, and one that outgrows it is a
-// NumericalError naming the particle. Unused entries have S = 0 and G = 0 (the CPDIs' at
+// holds 4 hats per axis, a domain of up to two cells, and B-spline cpGIMP's p + 2 functions
+// per axis, a domain within two cells (a domain wider than one cell, or one not on the grid
+// at all, then has no slot); one that outgrows its slot is a NumericalError naming the
+// particle. Unused entries have S = 0 and G = 0 (the CPDIs' at
 // node 0, the GIMPs' at hats beside those the domain touches), so loops need no branch.
 
 #include <array>
@@ -53,7 +64,7 @@
 
 namespace mfree {
 
-enum class MPMMethod { classic, ugimp, cpgimp, cpdi, qcpdi, cpdi2, bspline, bspline_mls };
+enum class MPMMethod { classic, ugimp, cpgimp, cpdi, qcpdi, cpdi2, bspline, bspline_cpgimp, bspline_mls };
 
 /// One method as a scene names it: the weights and, for B-splines, the degree.
 struct MPMMethodChoice {
@@ -62,14 +73,15 @@ struct MPMMethodChoice {
   bool operator==(const MPMMethodChoice&) const = default;
 };
 /// classic, ugimp, cpgimp, cpdi, qcpdi, cpdi2, bspline (quadratic), bspline_cubic,
-/// bspline_mls.
+/// bspline_cpgimp (quadratic), bspline_cpgimp_cubic, bspline_mls.
 const NameTable<MPMMethodChoice>& mpm_method_names();
 /// The name of the method's first entry in mpm_method_names() (bspline for every degree).
 std::string_view to_string(MPMMethod m);
 /// Whether the method's weights need particle domains (Particles::half_size, and for CPDI2
-/// Particles::corners): the GIMPs and the CPDIs.
+/// Particles::corners): the GIMPs (B-spline cpGIMP too) and the CPDIs.
 bool uses_domains(MPMMethod m);
-/// Grid padding (cells on every side) a method needs: one for the methods with domains.
+/// Grid padding (cells on every side) a method needs: one for the hat-function methods with
+/// domains (B-spline cpGIMP clips its domains at the walls instead).
 int grid_padding(MPMMethod m);
 bool is_bspline(MPMMethod m);
 
@@ -87,7 +99,7 @@ class ParticleBasis {
   /// point q of `table` (sized by resize()).
   void evaluate(const Particles& P, Index p, WeightTable& table, Index q) const;
   /// Weights of a particle at x with deformation gradient F and reference domain half sizes
-  /// (l_x, l_y) (F is read by cpgimp, cpdi and qcpdi, half by the methods with domains), into
+  /// (l_x, l_y) (F is read by the cpGIMPs, cpdi and qcpdi, half by the methods with domains), into
   /// point q of `table`. Every method but cpdi2 (std::logic_error: its domain is its corners).
   /// Throws NumericalError naming the position when the particle (or a point of its domain)
   /// is not on the grid or its domain is degenerate or outgrows the slot.
@@ -95,8 +107,8 @@ class ParticleBasis {
   /// CPDI2's weights for the quadrilateral with counter-clockwise corners c of the particle at
   /// x (x names it in messages); for cpdi2 (and the parallelogram of cpdi) only.
   void evaluate_quadrilateral(const DomainCorners& c, const Vec2& x, WeightTable& table, Index q) const;
-  /// The particle domain as the method sees it (ugimp: the reference square; cpgimp: the
-  /// stretched rectangle; cpdi, qcpdi: the parallelogram; cpdi2: the tracked corners),
+  /// The particle domain as the method sees it (ugimp: the reference square; the cpGIMPs: the
+  /// stretched rectangle, not clipped; cpdi, qcpdi: the parallelogram; cpdi2: the tracked corners),
   /// counter-clockwise; for the methods with domains only (std::logic_error otherwise).
   [[nodiscard]] DomainCorners domain_corners(const Particles& P, Index p) const;
   /// sum_i N_i(x) v_i with the grid's hats N_i (degree 1), x on the grid: the grid velocity
@@ -108,6 +120,8 @@ class ParticleBasis {
   void point_weights(const Vec2& x, WeightTable& table, Index q) const;
   template <int n>
   void gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const;
+  template <int p>
+  void bspline_gimp_weights(const Vec2& x, const Vec2& half, WeightTable& table, Index q) const;
   template <int n>
   void node_sum(const DomainNodes<n>& nodes, const Vec2& x, const char* what, WeightTable& table, Index q) const;
   [[nodiscard]] Vec2 stretched_half(const Vec2& x, const Mat2& F, const Vec2& half) const;
