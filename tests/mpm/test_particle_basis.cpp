@@ -392,21 +392,19 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("B-spline cpGIMP: a domain over more than two cells is refused, naming the particle", "[mpm]") {
-  const Grid grid(domain, 8, 2, 0);
-  const ParticleBasis basis(MPMMethod::bspline_cpgimp, grid);
-  const Vec2 half = Vec2::Constant(grid.spacing() / 2);
-  WeightTable table;
-  basis.resize(table, 1);
-  Mat2 F = Mat2::Identity();
-  F(1, 1) = 2.2;  // 2.2 cells tall: it meets three cells wherever it lies
-  CHECK_THROWS_WITH(basis.evaluate(Vec2(0.5, 0.4), F, half, table, 0),
+TEST_CASE("cpGIMP: a domain outgrowing its slot or with F_ii <= 0 is refused, naming the particle", "[mpm]") {
+  // B-spline cpGIMP's slot of 4 quadratics per axis holds a domain within two cells: one 2.2
+  // cells tall meets three wherever it lies.
+  const Grid splines(domain, 8, 2, 0);
+  const ParticleBasis averaged(MPMMethod::bspline_cpgimp, splines);
+  WeightTable averaged_table;
+  averaged.resize(averaged_table, 1);
+  CHECK_THROWS_WITH(averaged.evaluate(Vec2(0.5, 0.4), Mat2(Vec2(1.0, 2.2).asDiagonal()),
+                                      Vec2::Constant(splines.spacing() / 2), averaged_table, 0),
                     Catch::Contains("B-spline cpGIMP: the particle domain at (0.5, 0.4)") &&
                         Catch::Contains("more than the 4 functions per axis"));
-  CHECK_THROWS_AS(ParticleBasis(MPMMethod::bspline_cpgimp, Grid(domain, 1, 2, 0)), InputError);
-}
+  CHECK_THROWS_AS(ParticleBasis(MPMMethod::bspline_cpgimp, Grid(domain, 1, 2, 0)), InputError);  // one cell
 
-TEST_CASE("cpGIMP: a domain outgrowing its slot or with F_ii <= 0 is refused, naming the particle", "[mpm]") {
   const Grid grid(domain, 8, 1, 1);
   const ParticleBasis basis(MPMMethod::cpgimp, grid);
   const Vec2 half = Vec2::Constant(grid.spacing() / 2);
