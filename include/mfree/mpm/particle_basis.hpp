@@ -48,9 +48,8 @@
 // B-splines), explicit entries for the CPDIs (4 hats at each of 4 or 8 points: 16 or 32, so
 // they always fit). uGIMP's domain is at most a cell wide (3 hats per axis); cpGIMP's slot
 // holds 4 hats per axis, a domain of up to two cells, and B-spline cpGIMP's p + 2 functions
-// per axis, a domain within two cells (a domain wider than one cell, or one not on the grid
-// at all, then has no slot); one that outgrows its slot is a NumericalError naming the
-// particle. Unused entries have S = 0 and G = 0 (the CPDIs' at
+// per axis, a domain that meets at most two cells (always when it is at most a cell wide);
+// one that outgrows its slot is a NumericalError naming the particle. Unused entries have S = 0 and G = 0 (the CPDIs' at
 // node 0, the GIMPs' at hats beside those the domain touches), so loops need no branch.
 
 #include <array>
