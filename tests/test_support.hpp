@@ -12,6 +12,11 @@
 
 namespace mfree::testing {
 
+/// The source tree's root (meshes/, verification/, tests/ below it), set by the build for
+/// test_support.cpp alone, so that no other test file's compile line names a folder of this
+/// machine and the compiler cache serves clones in other folders.
+std::string source_dir();
+
 /// The message of the exception of type E that f throws, or a marker when it throws none.
 /// Exceptions of other types propagate (and fail the test case).
 template <class E = std::exception, class F>

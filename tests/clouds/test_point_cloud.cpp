@@ -1,6 +1,7 @@
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 
+#include "../test_support.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 
@@ -20,7 +21,7 @@ double boundary_distance(const Domain& d, const Vec2& p) {
 }  // namespace
 
 TEST_CASE("clouds are reproducible from their seed and lie in the domain", "[clouds]") {
-  const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/plate_with_hole.wkt");
+  const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/plate_with_hole.wkt");
   for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random}) {
     CAPTURE(to_string(kind));
     CloudSettings s;

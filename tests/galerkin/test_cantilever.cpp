@@ -1,13 +1,15 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "../test_support.hpp"
 #include "mfree/io/elasticity_scene.hpp"
 
 using namespace mfree;
 
 // The Timoshenko cantilever of verification/cantilever, read from its scene.
-TEST_CASE("cantilever: optimal rates for linear RK and the tip deflection within 1%", "[galerkin]") {
-  ElasticityScene scene = read_elasticity_scene(std::string(MFREE_SOURCE_DIR) + "/verification/cantilever/cantilever.toml", false);
+TEST_CASE("cantilever: optimal rates for linear RK and the tip deflection within 1%", "[galerkin][study]") {
+  ElasticityScene scene =
+      read_elasticity_scene(mfree::testing::source_dir() + "/verification/cantilever/cantilever.toml", false);
   const ExactElasticity exact = *scene.exact();
   std::vector<double> h, l2, energy;
   double tip = 0.0;

@@ -72,7 +72,8 @@ struct VibrationCase {
 
 }  // namespace
 
-TEST_CASE("vibration, central differences: displacement converges at rate >= 1.8 (A = 0.05)", "[galerkin][dynamics]") {
+TEST_CASE("vibration, central differences: displacement converges at rate >= 1.8 (A = 0.05)",
+          "[galerkin][dynamics][study]") {
   DynamicsSettings s;
   s.scheme = TimeScheme::central_difference;
   s.time_step = 2.5e-5;  // below the stability limits of both levels (about 1e-4 s and 5e-5 s)
@@ -87,7 +88,7 @@ TEST_CASE("vibration, central differences: displacement converges at rate >= 1.8
 }
 
 TEST_CASE("free vibration, Newmark: energy error falls with dt^2, below 5e-3 over 10 periods",
-          "[galerkin][dynamics]") {
+          "[galerkin][dynamics][study]") {
   // A free Neo-Hookean body (no walls, no body force) set moving by the vibration's initial
   // velocity: nothing does work on it, so kinetic + strain energy must stay constant. The
   // average-acceleration rule conserves it exactly for linear problems only; for this large

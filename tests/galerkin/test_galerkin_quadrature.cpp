@@ -30,7 +30,7 @@ Discretisation projected(const Domain& domain, CloudKind kind, RKOrder order, do
   return discretise(domain, s, timer);
 }
 
-Domain l_shape() { return Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/l_shape.wkt"); }
+Domain l_shape() { return Domain::from_file(mfree::testing::source_dir() + "/meshes/l_shape.wkt"); }
 
 }  // namespace
 

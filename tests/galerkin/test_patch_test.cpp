@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include "../test_support.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/problems/polynomial_fields.hpp"
 
@@ -71,7 +72,7 @@ TEST_CASE("linear patch test to 1e-8 with Nitsche boundaries, projected gradient
       for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells})
         for (Consistency c : {Consistency::symmetric, Consistency::vci}) {
           CAPTURE(name, to_string(kind), to_string(q), to_string(c));
-          const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+          const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/" + name);
           const double e = patch_error(d, kind, q, c, RKOrder::linear, linear_patch());
           INFO("patch error " << std::scientific << e);
           CHECK(e <= 1e-8);
@@ -84,7 +85,7 @@ TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov m
   krylov.direct_limit = 0;  // auto: Krylov at every size
   // The nodal error is the solve's residual times the condition number (1e4 to 1e5 here).
   krylov.tolerance = 1e-13;
-  const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/l_shape.wkt");
+  const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/l_shape.wkt");
   for (CloudKind kind : {CloudKind::lattice, CloudKind::random})
     for (Consistency c : {Consistency::symmetric, Consistency::vci}) {
       CAPTURE(to_string(kind), to_string(c));
@@ -96,7 +97,7 @@ TEST_CASE("linear patch test to 1e-8 with every linear solve by PETSc's Krylov m
 
 TEST_CASE("without a consistency correction the patch test fails (the correction matters)",
           "[galerkin]") {
-  const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/l_shape.wkt");
+  const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/l_shape.wkt");
   for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells}) {
     CAPTURE(to_string(q));
     CHECK(patch_error(d, CloudKind::perturbed, q, Consistency::none, RKOrder::linear, linear_patch()) > 1e-6);
@@ -109,7 +110,7 @@ TEST_CASE("quadratic patch test to 1e-8 with quadratic RK and quadratic VCI, pro
     for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
       for (QuadratureScheme q : {QuadratureScheme::projected, QuadratureScheme::gauss_cells}) {
         CAPTURE(name, to_string(kind), to_string(q));
-        const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+        const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/" + name);
         const double e = patch_error(d, kind, q, Consistency::vci, RKOrder::quadratic, quadratic_patch());
         INFO("patch error " << std::scientific << e);
         CHECK(e <= 1e-8);
@@ -118,7 +119,7 @@ TEST_CASE("quadratic patch test to 1e-8 with quadratic RK and quadratic VCI, pro
 
 TEST_CASE("the linear symmetric correction fails the quadratic patch test (the moments matter)",
           "[galerkin]") {
-  const Domain d = Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/rectangle.wkt");
+  const Domain d = Domain::from_file(mfree::testing::source_dir() + "/meshes/rectangle.wkt");
   for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
     CAPTURE(to_string(kind));
     CHECK(patch_error(d, kind, QuadratureScheme::projected, Consistency::symmetric, RKOrder::quadratic,

@@ -19,9 +19,7 @@ namespace {
 
 const double pi = std::acos(-1.0);
 
-std::string mesh_path(const std::string& name) {
-  return std::string(MFREE_SOURCE_DIR) + "/meshes/" + name;
-}
+std::string mesh_path(const std::string& name) { return mfree::testing::source_dir() + "/meshes/" + name; }
 
 Domain mesh(const std::string& name) { return Domain::from_file(mesh_path(name)); }
 
@@ -302,7 +300,7 @@ TEST_CASE("bad WKT and bad rings are InputErrors naming the source", "[geometry]
 
   const std::string missing = mesh_path("no_such_mesh.wkt");
   CHECK_THAT(input_error_message([&] { (void)Domain::from_file(missing); }), Contains(missing));
-  const std::string directory = std::string(MFREE_SOURCE_DIR) + "/meshes";
+  const std::string directory = mfree::testing::source_dir() + "/meshes";
   CHECK_THAT(input_error_message([&] { (void)Domain::from_file(directory); }),
              Contains(directory));
   CHECK_THAT(input_error_message([] { (void)Domain::rectangle(Vec2(0, 0), Vec2(1, 0)); }),

@@ -23,7 +23,7 @@ using mfree::Vec2;
 namespace {
 
 Domain mesh(const std::string& name) {
-  return Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+  return Domain::from_file(mfree::testing::source_dir() + "/meshes/" + name);
 }
 
 /// Points built one by one: GCC 12 at -O2 with -march=native on AVX-512 processors copies

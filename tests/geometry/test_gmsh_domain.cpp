@@ -22,7 +22,7 @@ namespace {
 
 const double pi = std::acos(-1.0);
 
-std::string mesh_path(const std::string& name) { return std::string(MFREE_SOURCE_DIR) + "/meshes/" + name; }
+std::string mesh_path(const std::string& name) { return mfree::testing::source_dir() + "/meshes/" + name; }
 
 Domain mesh(const std::string& name) { return Domain::from_file(mesh_path(name)); }
 

@@ -14,7 +14,7 @@ using namespace mfree;
 namespace {
 
 std::string cantilever_text() {
-  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/cantilever/cantilever.toml");
+  std::ifstream in(mfree::testing::source_dir() + "/verification/cantilever/cantilever.toml");
   return {std::istreambuf_iterator<char>(in), {}};
 }
 

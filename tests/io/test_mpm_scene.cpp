@@ -17,7 +17,7 @@ using namespace mfree;
 namespace {
 
 std::string vibration_text() {
-  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/mpm-vibration/vibration.toml");
+  std::ifstream in(mfree::testing::source_dir() + "/verification/mpm-vibration/vibration.toml");
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
@@ -74,7 +74,7 @@ TEST_CASE("MPM scenes: the vibration scene reads into its settings", "[io]") {
 }
 
 TEST_CASE("MPM scenes: bodies, materials, walls, gravity and damping read as the cases state them", "[io]") {
-  const std::string cases = std::string(MFREE_SOURCE_DIR) + "/verification/";
+  const std::string cases = mfree::testing::source_dir() + "/verification/";
   const MPMScene disks = read_mpm_scene(cases + "mpm-disks/disks.toml", false);
   REQUIRE(disks.problem.bodies.size() == 2);
   const MPMBody& upper = disks.problem.bodies[1];
@@ -101,7 +101,8 @@ TEST_CASE("MPM scenes: bodies, materials, walls, gravity and damping read as the
   CHECK(column.particles_csv);
 
   // The WKT polygon of tests/apps/mpm_polygon.toml, and its gravity formula in t.
-  const MPMScene polygon = read_mpm_scene(std::string(MFREE_SOURCE_DIR) + "/tests/apps/mpm_polygon.toml", false);
+  const MPMScene polygon =
+      read_mpm_scene(mfree::testing::source_dir() + "/tests/apps/mpm_polygon.toml", false);
   const MPMBody& ell = polygon.problem.bodies.front();
   CHECK(ell.shape == Shape::polygon);
   CHECK(ell.contains(Vec2(-0.5, 0.5)));

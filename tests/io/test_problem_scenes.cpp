@@ -17,7 +17,7 @@ using namespace mfree;
 namespace {
 
 std::string cantilever_text() {
-  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/cantilever/cantilever.toml");
+  std::ifstream in(mfree::testing::source_dir() + "/verification/cantilever/cantilever.toml");
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
@@ -158,11 +158,12 @@ TEST_CASE("problem scenes: gravity and a body-force formula load the body", "[io
 
 namespace {
 ElasticityScene verification_scene(const std::string& file, const std::vector<std::string>& overrides) {
-  return read_elasticity_scene(std::string(MFREE_SOURCE_DIR) + "/verification/" + file, false, overrides);
+  return read_elasticity_scene(mfree::testing::source_dir() + "/verification/" + file, false, overrides);
 }
 }  // namespace
 
-TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of linear RK at least 1.8", "[io][problems]") {
+TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of linear RK at least 1.8",
+          "[io][problems][study]") {
   std::vector<double> errors;
   for (const char* h : {"0.2", "0.1"}) {
     const ElasticityScene scene = verification_scene("lame/lame.toml", {std::string("nodes.spacing=") + h});
@@ -176,8 +177,9 @@ TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of
   CHECK(errors[1] < 3e-3);
 }
 
-TEST_CASE("plastic thick cylinder: elastic-plastic radius within 1.5 % of the classical one, Newton to 98 % of p_L",
-          "[io][problems][plasticity]") {
+TEST_CASE(
+    "plastic thick cylinder: elastic-plastic radius within 1.5 % of the classical one, Newton to 98 % of p_L",
+    "[io][problems][plasticity][study]") {
   // verification/plastic-cylinder at h = 0.1 (the folder's run uses 0.05): J2, perfectly
   // plastic, small strain, nu = 0.49. Classical (SPEC section 10): p = (sigma_y / sqrt 3)
   // [2 ln(c / a) + 1 - c^2 / b^2], p_L = (2 sigma_y / sqrt 3) ln 2.
@@ -220,8 +222,9 @@ TEST_CASE("plastic thick cylinder: elastic-plastic radius within 1.5 % of the cl
   CHECK(sol.steps.size() == scene.newton->load_factors.size());  // no cut-back needed
 }
 
-TEST_CASE("plastic strip footing: Drucker–Prager to 98 % of Prandtl's collapse load, Newton without cut-backs",
-          "[io][problems][plasticity]") {
+TEST_CASE(
+    "plastic strip footing: Drucker–Prager to 98 % of Prandtl's collapse load, Newton without cut-backs",
+    "[io][problems][plasticity][study]") {
   // verification/plastic-footing at h = 0.25 (the folder's run uses 0.1): Drucker–Prager,
   // c = 10, phi = 20 degrees, q_u = c N_c = 148.35; associative to 0.98 q_u, and
   // non-associative (psi = 0, an unsymmetric tangent) to 0.85 q_u.
@@ -273,7 +276,7 @@ TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away
 }
 
 TEST_CASE("problem scenes: initial fields of dynamics are formulas in X and Y, never of t", "[io][problems]") {
-  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/tests/apps/vibration_quick.toml");
+  std::ifstream in(mfree::testing::source_dir() + "/tests/apps/vibration_quick.toml");
   std::string text{std::istreambuf_iterator<char>(in), {}};
   CHECK_THAT(scene_error(replace(text, "\\[dynamics\\]", "[dynamics]\ninitial_velocity = [\"0.1 * x\", 0]")),
              Catch::Contains("dynamics.initial_velocity") && Catch::Contains("[exact] motion sets the initial state"));

@@ -15,7 +15,7 @@ namespace {
 /// `folder`/frames.
 ElasticityScene vibration_scene(const std::filesystem::path& folder, const std::string& fields) {
   const auto dir = folder / "frames";
-  std::ifstream in(std::string(MFREE_SOURCE_DIR) + "/verification/vibration/vibration.toml");
+  std::ifstream in(mfree::testing::source_dir() + "/verification/vibration/vibration.toml");
   std::string text{std::istreambuf_iterator<char>(in), {}};
   text = std::regex_replace(text, std::regex("spacing = 0.0625"), "spacing = 0.25");
   text = std::regex_replace(text, std::regex("folder = \"results/vibration\""), "folder = \"" + dir.string() + "\"");
@@ -92,7 +92,7 @@ TEST_CASE("VTK frames of a law with history: stress and plastic strain at the qu
           "[io][plasticity]") {
   const testing::ScratchFolder folder("frames_history");
   const ElasticityScene scene = read_elasticity_scene(
-      std::string(MFREE_SOURCE_DIR) + "/verification/plastic-cylinder/cylinder.toml", false,
+      mfree::testing::source_dir() + "/verification/plastic-cylinder/cylinder.toml", false,
       {"nodes.spacing=0.2", "output.folder=\"" + (folder.path / "out").string() + "\"",
        "output.fields=[\"displacement\", \"stress\", \"plastic_strain\"]"});
   StageTimer timer;

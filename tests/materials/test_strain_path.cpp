@@ -23,7 +23,7 @@ using namespace mfree;
 
 namespace {
 
-const std::string scenes = MFREE_SOURCE_DIR "/verification/material-point/";
+const std::string scenes = mfree::testing::source_dir() + "/verification/material-point/";
 
 /// A symmetric plane-strain tensor (xx, yy, zz, xy); xz = yz = 0.
 using Sym = Eigen::Vector4d;

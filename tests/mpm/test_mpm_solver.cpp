@@ -116,7 +116,10 @@ TEST_CASE("a rigid translation leaves the stress exactly zero, particles on cell
     }
 }
 
-TEST_CASE("USF, USL, SZS, USAVG and Verlet each reproduce a uniform-strain motion, with either mapping", "[mpm]") {
+namespace {
+
+// Every method under update scheme s and both mappings, one step of a uniform-strain motion.
+void check_uniform_strain_motion(UpdateScheme s) {
   // Particles whose every grid node is surrounded by the symmetric particle layout must see
   // the velocity gradient L exactly, so F = dF(dt L) = I + dt L + (dt L)^2 / 2 (USAVG:
   // dF(dt L / 2)^2), their velocities stay and x moves by dt (v0 + L x). Verlet reads the
@@ -133,8 +136,7 @@ TEST_CASE("USF, USL, SZS, USAVG and Verlet each reproduce a uniform-strain motio
   const AffineBlock motion;
   const Mat2& L = motion.L;
   for (const Method& m : methods)
-    for (UpdateScheme s : schemes)
-      for (GridMapping g : mappings) {
+    for (GridMapping g : mappings) {
       const Particles start = motion.particles(uses_domains(m.method));
       MPMSolver solver(block_problem(), settings_for(m, s, 64, g), start);
       solver.step();
@@ -163,6 +165,25 @@ TEST_CASE("USF, USL, SZS, USAVG and Verlet each reproduce a uniform-strain motio
       CHECK(worst_v <= (exact ? 1e-12 : 2e-7));
       CHECK(worst_x <= (exact ? 1e-14 : 1e-11));
     }
+}
+
+}  // namespace
+
+// One case per scheme, so that they run side by side (each takes minutes under the sanitizers).
+TEST_CASE("USF reproduces a uniform-strain motion with every method and either mapping", "[mpm]") {
+  check_uniform_strain_motion(UpdateScheme::usf);
+}
+TEST_CASE("USL reproduces a uniform-strain motion with every method and either mapping", "[mpm]") {
+  check_uniform_strain_motion(UpdateScheme::usl);
+}
+TEST_CASE("SZS reproduces a uniform-strain motion with every method and either mapping", "[mpm]") {
+  check_uniform_strain_motion(UpdateScheme::szs);
+}
+TEST_CASE("USAVG reproduces a uniform-strain motion with every method and either mapping", "[mpm]") {
+  check_uniform_strain_motion(UpdateScheme::usavg);
+}
+TEST_CASE("Verlet reproduces a uniform-strain motion with every method and either mapping", "[mpm]") {
+  check_uniform_strain_motion(UpdateScheme::verlet);
 }
 
 TEST_CASE("CPDI2: corners follow an affine velocity field exactly, the domain area stays J V0", "[mpm]") {
@@ -229,7 +250,7 @@ ParticleErrors quarter_period_errors(const Method& m, int cells, UpdateScheme up
 
 }  // namespace
 
-TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration problem", "[mpm]") {
+TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration problem", "[mpm][study]") {
   // A = 0.05, 9 particles per cell, USF, grids of 16 and 32 cells (from 8 cells the MLS
   // reconstruction with the seed's kernel, 3 cells wide, is pre-asymptotic).
   for (const Method& m : {Method{MPMMethod::bspline, 2}, Method{MPMMethod::bspline_mls, 2}}) {
@@ -242,7 +263,8 @@ TEST_CASE("B-spline and MLS-reconstructed B-spline MPM converge on the vibration
   }
 }
 
-TEST_CASE("B-splines averaged over the particle domains keep converging where point values stall", "[mpm]") {
+TEST_CASE("B-splines averaged over the particle domains keep converging where point values stall",
+          "[mpm][study]") {
   // A = 0.05, 9 particles per cell, Verlet and the pseudo-inverse, 16 and 32 cells: with the
   // time and projection errors removed, point-evaluated quadratic B-splines stall at the
   // particles' quadrature of the internal force, and the averages over cpGIMP's rectangles
@@ -269,7 +291,7 @@ TEST_CASE("B-splines averaged over the particle domains keep converging where po
   CHECK(averaged_fine <= plain_fine / 10.0);
 }
 
-TEST_CASE("velocity Verlet is second order in time, the symplectic Euler schemes first", "[mpm]") {
+TEST_CASE("velocity Verlet is second order in time, the symplectic Euler schemes first", "[mpm][study]") {
   // The vibration problem on 8 cells (quadratic B-splines, lCPDI) to t = T/4 at time steps
   // 4e-5, 2e-5 and 1e-5 s, each against the same grid at 1.25e-6 s: the RMS difference of
   // the particle positions. Verlet's drift reads the grid at the midpoint positions, without
@@ -331,8 +353,10 @@ TEST_CASE("the pseudo-inverse mapping stops a run whose particles do not determi
   }
 }
 
-TEST_CASE("MLS with the quadratic basis, the pseudo-inverse mapping and Verlet converges at 3 and beats plain B-splines",
-          "[mpm]") {
+TEST_CASE(
+    "MLS with the quadratic basis, the pseudo-inverse mapping and Verlet converges at 3 and beats plain "
+    "B-splines",
+    "[mpm][study]") {
   // u at T/4 on 8 and 16 cells (verification/mpm-vibration/README.md: 3.8e-4 and 4.3e-5,
   // against plain quadratic B-splines' 3.5e-3 and 1.2e-3).
   const Method mls{MPMMethod::bspline_mls, 2}, plain{MPMMethod::bspline, 2};

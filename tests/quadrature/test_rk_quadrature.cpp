@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../test_support.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
@@ -11,7 +12,7 @@ using namespace mfree;
 namespace {
 
 Domain mesh(const std::string& name) {
-  return Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+  return Domain::from_file(mfree::testing::source_dir() + "/meshes/" + name);
 }
 
 /// RK quadrature weights on a quadrature cloud of the given kind and spacing.

@@ -18,7 +18,7 @@ using mfree::Vec2;
 namespace {
 
 Domain mesh(const std::string& name) {
-  return Domain::from_file(std::string(MFREE_SOURCE_DIR) + "/meshes/" + name);
+  return Domain::from_file(mfree::testing::source_dir() + "/meshes/" + name);
 }
 
 // n points drawn uniformly from the domain by rejection from its bounding box.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The fast test of the granular column collapse (ctest: cli.mpm_granular_collapse_quick): the
+# The fast test of the granular column collapse (ctest: study.mpm_granular_collapse_quick): the
 # scene at a = 1 on a grid twice as coarse (h = 0.01, L0 / h = 20; 1600 particles) to t = 0.8 s
 # (the front stops by 0.5 s), then runout.py --check: (L_inf - L0) / L0 in [1.0, 2.5]
 # (measured 1.8 here; Lube et al. 2005: 1.2, Lajeunesse et al. 2005: 1.8; a friction angle near 0

@@ -14,7 +14,7 @@ struct QuadratureRule {
 };
 
 /// Gauss–Legendre points and weights on [0, 1] (n >= 1 points, exact to degree 2n - 1),
-/// by the Golub–Welsch eigenvalue method.
+/// ascending, from the roots of the Legendre polynomial P_n by Newton's method.
 struct GaussLegendre1D {
   std::vector<double> points;
   std::vector<double> weights;
