@@ -12,7 +12,8 @@
 // Exit codes (also in --help and README): 0 success, 1 bad input (a scene, a mesh, a file
 // that cannot be read or written, not enough memory), 2 bad command line, 3 a numerical
 // failure (a singular matrix, an inverted material, Newton not converging). The message on
-// standard error says what and where.
+// standard error says what and where. Every exception ends here with one of them: none
+// reaches std::terminate.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -127,6 +128,20 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     std::cerr << "mfree: error: out of memory: the problem does not fit this machine (fewer nodes, particles "
                  "or cells, or a coarser spacing)\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the file system refuses (a loop of symbolic links, no permission, a name too
+    // long): what() names the operation and the path.
+    std::cerr << "mfree: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    // Input that reached the standard library unchecked: a bad input all the same, and a
+    // check missing in mfree.
+    std::cerr << "mfree: error: " << e.what() << " (an error mfree did not expect here: please report it with the "
+              << "scene and command line)\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "mfree: error: an exception of unknown type (please report it with the scene and command line)\n";
     return 1;
   }
   return 0;

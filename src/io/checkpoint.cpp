@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -62,10 +63,21 @@ std::vector<std::pair<long long, fs::path>> checkpoints_in(const fs::path& folde
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind(prefix, 0) != 0 || !fs::exists(e.path() / "state.bin")) continue;
+    if (name.rfind(prefix, 0) != 0) continue;
+    const fs::path state = e.path() / "state.bin";
+    std::error_code missing;
+    if (!fs::exists(state, missing)) {
+      if (missing && missing != std::errc::no_such_file_or_directory)  // a link loop, no permission
+        throw InputError(fmt::format("checkpoint {}: {}", state.string(), missing.message()));
+      continue;
+    }
     const std::string digits = name.substr(std::strlen(prefix));
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    out.emplace_back(std::stoll(digits), e.path());
+    long long step = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), step);
+    if (error != std::errc() || end != digits.data() + digits.size())
+      throw InputError(fmt::format("checkpoint {}: the step number {} is out of range", e.path().string(), digits));
+    out.emplace_back(step, e.path());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -183,8 +195,11 @@ Checkpoints::Checkpoints(fs::path output_folder, int every, std::uint64_t finger
       for (const auto& [step, path] : checkpoints_in(folder_)) fs::remove_all(path);
     return;
   }
-  if (!fs::is_directory(restart))
-    throw InputError(fmt::format("--restart {}: no such folder of checkpoints", restart.string()));
+  std::error_code ec;
+  if (!fs::is_directory(restart, ec))
+    throw InputError(fmt::format("--restart {}: {}", restart.string(),
+                                 ec && ec != std::errc::no_such_file_or_directory ? ec.message()
+                                                                                   : "no such folder of checkpoints"));
   const auto found = checkpoints_in(restart);
   if (found.empty())
     throw InputError(fmt::format("--restart {}: holds no checkpoint (step_N folders with a state.bin)", restart.string()));

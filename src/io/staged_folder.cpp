@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -32,8 +33,11 @@ void remove_abandoned(const fs::path& target) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0) continue;
     const std::string pid = name.substr(prefix.size());
-    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) continue;
-    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
+    // A name whose number is no process id was not made by a run: left alone.
+    pid_t id = 0;
+    const auto [end, error] = std::from_chars(pid.data(), pid.data() + pid.size(), id);
+    if (pid.empty() || error != std::errc() || end != pid.data() + pid.size() || id <= 0) continue;
+    if (::kill(id, 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
   }
 }
 

@@ -3,13 +3,37 @@
 # exit code EXIT, an error message matching EXPECT (which names the file and the key, line or
 # point), and the earlier results as they were, with nothing else left in WORK.
 #   cmake -DMFREE=exe -DARGS="run;scene;--set;..." -DEXIT=1 -DEXPECT=regex -DWORK=dir -P check.cmake
+# Paths the file system makes hostile are built in WORK for an argument that names them:
+#   @LOOP@              a symbolic link to itself (WORK/loop)
+#   @CHECKPOINT_LOOP@   a checkpoint folder (WORK/ck) whose step folder is a link to itself
+#   @CHECKPOINT_STEP@   a checkpoint folder whose step number has 25 digits
 cmake_policy(SET CMP0054 NEW)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/out")
 file(WRITE "${WORK}/out/.mfree-output" "written by mfree: a run replaces this folder as a whole\n")
 file(WRITE "${WORK}/out/previous.txt" "the results of an earlier run\n")
+set(made "")
+if(ARGS MATCHES "@LOOP@")
+  file(CREATE_LINK loop "${WORK}/loop" SYMBOLIC)
+  list(TRANSFORM ARGS REPLACE "@LOOP@" "loop")
+  list(APPEND made loop)
+endif()
+if(ARGS MATCHES "@CHECKPOINT_LOOP@")
+  file(MAKE_DIRECTORY "${WORK}/ck")
+  file(CREATE_LINK step_0000000002 "${WORK}/ck/step_0000000002" SYMBOLIC)
+  list(TRANSFORM ARGS REPLACE "@CHECKPOINT_LOOP@" "ck")
+  list(APPEND made ck)
+endif()
+if(ARGS MATCHES "@CHECKPOINT_STEP@")
+  file(WRITE "${WORK}/ck/step_9999999999999999999999999/state.bin" "")
+  list(TRANSFORM ARGS REPLACE "@CHECKPOINT_STEP@" "ck")
+  list(APPEND made ck)
+endif()
 execute_process(COMMAND ${MFREE} ${ARGS} WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE code
                 OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
+foreach(path IN LISTS made)
+  file(REMOVE_RECURSE "${WORK}/${path}")
+endforeach()
 if(NOT code STREQUAL "${EXIT}")
   message(FATAL_ERROR "expected exit code ${EXIT}, got ${code}\n${stdout}${err}")
 endif()

@@ -73,6 +73,14 @@ TEST_CASE("staged output: a folder mfree did not write is never replaced; a kill
   // largest) is removed by the next run into the same folder.
   const fs::path abandoned = scratch.path / ".results.partial-4194305";
   fs::create_directories(abandoned);
+  // One whose number is no process id (too long for one, or negative) was not made by a run:
+  // it stays, and the run goes on.
+  const fs::path foreign = scratch.path / ".results.partial-99999999999999999999999";
+  const fs::path negative = scratch.path / ".results.partial--5";
+  fs::create_directories(foreign);
+  fs::create_directories(negative);
   { StagedFolder next(scratch.path / "results"); }
   CHECK_FALSE(fs::exists(abandoned));
+  CHECK(fs::exists(foreign));
+  CHECK(fs::exists(negative));
 }
