@@ -15,9 +15,11 @@
 // standard error says what and where. Every exception ends here with one of them: none
 // reaches std::terminate.
 
-#include <CLI/CLI.hpp>
-#include <filesystem>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <filesystem>
 #include <iostream>
 #include <new>
 
@@ -28,8 +30,9 @@
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
-#include "mfree/io/checkpoint.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/checkpoint.hpp"
+#include "mfree/io/interrupt.hpp"
 #include "mfree/io/scene_reader.hpp"
 
 namespace {
@@ -50,6 +53,10 @@ int run_integration(const std::filesystem::path& scene_path, const std::filesyst
 }  // namespace
 
 int main(int argc, char** argv) {
+  mfree::remove_staging_folders_on_signals();
+  // A write past a file-size limit fails with an error naming the file (EFBIG) instead of
+  // ending the program by SIGXFSZ with its staging folder left behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"mfree: meshfree Galerkin solid mechanics and the Material Point Method"};
   app.footer(
       "Exit codes: 0 success, 1 bad input (scene, mesh, files, memory), 2 bad command line, "

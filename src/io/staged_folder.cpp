@@ -9,10 +9,12 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <map>
+#include <mutex>
 #include <string>
 
 #include "mfree/core/error.hpp"
+#include "mfree/io/atomic_file.hpp"
 
 namespace mfree {
 
@@ -21,6 +23,18 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* marker = ".mfree-output";
+
+/// The staging folders of the StagedFolders alive (staging folder -> target), for a run
+/// stopped by a signal. Its lock is held while a staging folder is made, committed or removed.
+struct LiveFolders {
+  std::mutex lock;
+  std::map<fs::path, fs::path> staging;
+};
+
+LiveFolders& live_folders() {
+  static LiveFolders folders;
+  return folders;
+}
 
 /// The folder holding `p` (the working directory for a bare name).
 fs::path parent_of(const fs::path& p) { return p.has_parent_path() ? p.parent_path() : fs::path("."); }
@@ -71,19 +85,46 @@ StagedFolder::StagedFolder(fs::path target) : target_(std::move(target)) {
   if (ec) throw Error(fmt::format("cannot create folder {}: {}", parent_of(target_).string(), ec.message()));
   remove_abandoned(target_);
   staging_ = parent_of(target_) / fmt::format(".{}.partial-{}", target_.filename().string(), ::getpid());
-  fs::remove_all(staging_, ec);
-  fs::create_directory(staging_, ec);
-  if (ec) throw Error(fmt::format("cannot create folder {}: {}", staging_.string(), ec.message()));
-  std::ofstream(staging_ / marker) << "written by mfree: a run replaces this folder as a whole\n";
+  {
+    const std::scoped_lock hold(live_folders().lock);
+    fs::remove_all(staging_, ec);
+    fs::create_directory(staging_, ec);
+    if (ec) throw Error(fmt::format("cannot create folder {}: {}", staging_.string(), ec.message()));
+    live_folders().staging.emplace(staging_, target_);
+  }
+  try {
+    write_file_atomically(staging_ / marker, "written by mfree: a run replaces this folder as a whole\n");
+  } catch (...) {
+    remove_staging();
+    throw;
+  }
 }
 
 StagedFolder::~StagedFolder() {
-  if (committed_) return;
+  if (!committed_) remove_staging();
+}
+
+void StagedFolder::remove_staging() {
+  const std::scoped_lock hold(live_folders().lock);
   std::error_code ec;
   fs::remove_all(staging_, ec);
+  live_folders().staging.erase(staging_);
+}
+
+std::vector<fs::path> abandon_staging_folders() {
+  live_folders().lock.lock();  // never released: the process ends
+  std::vector<fs::path> targets;
+  for (const auto& [staging, target] : live_folders().staging) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    targets.push_back(target);
+  }
+  return targets;
 }
 
 void StagedFolder::commit() {
+  const std::scoped_lock hold(live_folders().lock);
+  live_folders().staging.erase(staging_);
   std::error_code ec;
   const fs::path parent = parent_of(target_);
   if (fs::exists(target_, ec)) {

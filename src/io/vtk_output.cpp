@@ -7,6 +7,8 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
+#include <vtkExecutive.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -194,8 +196,12 @@ void write_dataset(const std::filesystem::path& path, vtkXMLWriter& writer, vtkD
   }
   const std::filesystem::path tmp = temporary_beside(path);  // hidden, and not *.vtu
 
+  // A failed write (a full disk, a file-size limit, an I/O error) is reported by the writer's
+  // error code and by its executive ("returned failure for request"), not by Write()'s value:
+  // both are watched.
   vtkNew<ErrorCollector> errors;
   writer.AddObserver(vtkCommand::ErrorEvent, errors);
+  writer.GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   writer.SetFileName(tmp.c_str());
   writer.SetInputData(&data);
   // Raw binary after the XML header (no base64): the smallest and fastest form ParaView reads.
@@ -207,11 +213,13 @@ void write_dataset(const std::filesystem::path& path, vtkXMLWriter& writer, vtkD
   writer.SetHeaderTypeToUInt64();
   writer.SetCompressorTypeToLZ4();
   const int ok = writer.Write();
-  if (ok != 1 || errors->failed) {
+  const unsigned long code = writer.GetErrorCode();
+  if (ok != 1 || errors->failed || code != vtkErrorCode::NoError) {
     std::filesystem::remove(tmp, ec);
-    throw Error(fmt::format("cannot write {}: {}", path.string(),
-                            errors->message.empty() ? std::string("VTK's writer failed")
-                                                    : tidy(errors->message)));
+    const std::string why = code != vtkErrorCode::NoError ? vtkErrorCode::GetStringFromErrorCode(code)
+                            : errors->message.empty()     ? std::string("VTK's writer failed")
+                                                          : tidy(errors->message);
+    throw Error(fmt::format("cannot write {}: {}", path.string(), why));
   }
   sync_file(tmp);
   std::filesystem::rename(tmp, path, ec);

@@ -7,6 +7,8 @@
 #   @LOOP@              a symbolic link to itself (WORK/loop)
 #   @CHECKPOINT_LOOP@   a checkpoint folder (WORK/ck) whose step folder is a link to itself
 #   @CHECKPOINT_STEP@   a checkpoint folder whose step number has 25 digits
+# A token that limits the run instead (anywhere among the arguments; it is taken out):
+#   @FILE_SIZE_LIMIT@   files of at most 64 KiB (ulimit -f 64): a larger write fails
 cmake_policy(SET CMP0054 NEW)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/out")
@@ -29,7 +31,12 @@ if(ARGS MATCHES "@CHECKPOINT_STEP@")
   list(TRANSFORM ARGS REPLACE "@CHECKPOINT_STEP@" "ck")
   list(APPEND made ck)
 endif()
-execute_process(COMMAND ${MFREE} ${ARGS} WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE code
+set(limit "")
+if(ARGS MATCHES "@FILE_SIZE_LIMIT@")
+  list(REMOVE_ITEM ARGS "@FILE_SIZE_LIMIT@")
+  set(limit sh -c "ulimit -f 64 && exec \"$0\" \"$@\"")
+endif()
+execute_process(COMMAND ${limit} ${MFREE} ${ARGS} WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE code
                 OUTPUT_VARIABLE stdout ERROR_VARIABLE err)
 foreach(path IN LISTS made)
   file(REMOVE_RECURSE "${WORK}/${path}")

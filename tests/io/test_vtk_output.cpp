@@ -1,22 +1,24 @@
-#include <catch2/catch.hpp>
-
-#include "../test_support.hpp"
+#include <sys/resource.h>
 #include <unistd.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLUtilities.h>
 
+#include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
-#include <initializer_list>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/vtk_output.hpp"
 
@@ -196,6 +198,41 @@ TEST_CASE("vtu: mismatched fields and failed writes are errors naming the path",
   std::ofstream(folder.path / "plain") << "x";
   CHECK_THROWS_AS(mfree::write_point_cloud_vtu(folder.path / "plain" / "a.vtu", points, {}),
                   mfree::Error);
+}
+
+TEST_CASE("vtu and vti: a write cut short by a file-size limit is an error; no file is left", "[io][vtk]") {
+  // VTK reports a failed write through its executive and error code, not Write()'s value.
+  ScratchFolder folder("vtu_file_size");
+  std::mt19937_64 rng(7);
+  const std::size_t n = 20000;  // 20000 points x 4 fields: about 1 MB, past a 64 KiB limit
+  std::vector<Vec2> points(n);
+  for (std::size_t i = 0; i < n; ++i) points[i] = Vec2(double(i), std::sqrt(double(i)));
+  const std::vector<PointField> fields{{"a", 1, awkward_values(n, rng)},
+                                       {"b", 2, awkward_values(2 * n, rng)},
+                                       {"c", 3, awkward_values(3 * n, rng)}};
+  rlimit before{};
+  REQUIRE(::getrlimit(RLIMIT_FSIZE, &before) == 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);  // writes past the limit fail with EFBIG
+  rlimit small = before;
+  small.rlim_cur = 64 * 1024;
+  REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+  const auto cloud = [&] { mfree::write_point_cloud_vtu(folder.path / "cloud.vtu", points, fields); };
+  const std::string message = message_of(cloud);
+  const auto image = [&] {
+    mfree::write_image_vti(folder.path / "grid.vti", Vec2(0, 0), 1.0, 200, 100, fields);
+  };
+  const std::string image_message = message_of(image);
+  ::setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, old_handler);
+  CHECK_THAT(message, Catch::Contains("cannot write") && Catch::Contains("cloud.vtu"));
+  CHECK_THAT(image_message, Catch::Contains("cannot write") && Catch::Contains("grid.vti"));
+  CHECK(folder.entries().empty());
+  // Without the limit the same writes succeed.
+  cloud();
+  image();
+  std::vector<std::string> written = folder.entries();
+  std::sort(written.begin(), written.end());
+  CHECK(written == std::vector<std::string>{"cloud.vtu", "grid.vti"});
 }
 
 TEST_CASE("read_vtu: missing and invalid files are input errors naming them", "[io]") {

@@ -7,10 +7,15 @@
 // folder (when its process is gone).
 //
 // An existing folder is replaced only when mfree wrote it (it holds the marker file
-// .mfree-output, or a run's summary.json or a study's table) or it is empty: a scene naming a folder of the user's is an InputError,
-// never a deletion.
+// .mfree-output, or a run's summary.json or a study's table) or it is empty: a scene naming
+// a folder of the user's is an InputError, never a deletion.
+//
+// A run stopped by a signal (io/interrupt.hpp) removes its staging folders through
+// abandon_staging_folders(): every StagedFolder alive registers its staging folder until it
+// is committed or destroyed.
 
 #include <filesystem>
+#include <vector>
 
 namespace mfree {
 
@@ -31,8 +36,13 @@ class StagedFolder {
   void commit();
 
  private:
+  void remove_staging();
   std::filesystem::path target_, staging_;
   bool committed_ = false;
 };
+
+/// Removes the staging folder of every StagedFolder alive and returns their targets. No
+/// StagedFolder is made, committed or removed after it: the caller ends the process.
+std::vector<std::filesystem::path> abandon_staging_folders();
 
 }  // namespace mfree
