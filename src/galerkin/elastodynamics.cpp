@@ -60,6 +60,33 @@ double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& l
 
 namespace {
 
+/// NumericalError when a nodal displacement or velocity is not finite: the first such value,
+/// its node (index and position), the step and the time.
+void require_finite(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const std::vector<Vec2>& nodes,
+                    int step, double t) {
+  for (const auto& [name, x] : {std::pair{"displacement", &d}, std::pair{"velocity", &v}}) {
+    for (Eigen::Index k = 0; k < x->size(); ++k) {
+      if (std::isfinite((*x)[k])) continue;
+      const Vec2& at = nodes[static_cast<std::size_t>(k / 2)];
+      throw NumericalError(
+          fmt::format("dynamics: the {} coefficient {} of node {} at ({:.6g}, {:.6g}) is {} at step {} "
+                      "(t = {:.4e} s): the run diverged",
+                      name, k % 2 == 0 ? "x" : "y", k / 2, at.x(), at.y(), (*x)[k], step, t));
+    }
+  }
+}
+
+/// NumericalError when a term of the energy balance over the body is not finite.
+void require_finite(const EnergyRecord& e, int step) {
+  for (const auto& [name, value] :
+       {std::pair{"kinetic energy", e.kinetic}, std::pair{"strain energy", e.strain},
+        std::pair{"external work", e.external_work}, std::pair{"dissipated energy", e.dissipated}}) {
+    if (!std::isfinite(value))
+      throw NumericalError(fmt::format("dynamics: the {} of the body is {} at step {} (t = {:.4e} s)", name,
+                                       value, step, e.time));
+  }
+}
+
 /// dt = end / n, n = ceil(end / requested) (core/step_count.hpp).
 std::pair<double, int> equal_steps(double end_time, double requested) {
   const int n = step_count(end_time, requested, "dynamics");
@@ -121,9 +148,12 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   const bool energy = s.energy_every > 0;
   double work = 0.0;
   const auto record = [&](int step, double t) {
+    require_finite(d, v, node_positions, step, t);
     if (on_step) on_step({step, t, d, v});
-    if (energy && (step % s.energy_every == 0 || step == out.steps))
+    if (energy && (step % s.energy_every == 0 || step == out.steps)) {
       timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work, model.dissipated()}); });
+      require_finite(out.energy.back(), step);
+    }
   };
 
   // Newmark: the effective tangent K + 4 / dt^2 M on the one pattern, analysed once, at the

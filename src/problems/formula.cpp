@@ -85,6 +85,16 @@ Formula::Formula(const std::string& expression, const Constants& constants, std:
     if (name == "pi" || name == "e") throw InputError(fmt::format("{}: constant '{}' is predefined", impl->key, name));
     if (!std::isfinite(value)) throw InputError(fmt::format("{}: constant '{}' is not finite", impl->key, name));
   }
+  // A control character (a NUL ends the text muParser sees; a tab or newline is a typing
+  // slip in a one-line formula) is refused with its position, before the parser sees it.
+  const auto control = std::find_if(expression.begin(), expression.end(),
+                                    [](char c) { return std::iscntrl(static_cast<unsigned char>(c)) != 0; });
+  if (control != expression.end())
+    throw InputError(
+        fmt::format("{}: formula holds the control character {:#04x} at character {}; a formula is one "
+                    "line of printable text",
+                    impl->key, static_cast<unsigned>(static_cast<unsigned char>(*control)),
+                    control - expression.begin() + 1));
   impl->constants = constants;
   try {
     Evaluator& e = impl->mine();

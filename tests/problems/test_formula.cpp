@@ -41,6 +41,14 @@ TEST_CASE("formula: syntax errors, unknown names and non-finite values are error
              Catch::Contains("key 'p'") && Catch::Contains("inf at (x, y) = (0, 2), t = 0.5"));
   const Formula g("sqrt(y)", {}, "key 'q'");
   CHECK_THAT(message_of<InputError>([&] { (void)g(Vec2(0.0, -1.0)); }), Catch::Contains("nan"));
+  // A NUL byte would end the text muParser sees ("1 + x" would be evaluated silently), a tab
+  // or a newline is a slip: each is refused with its position.
+  const std::string with_nul("1 + x\0* 1e9", 11);
+  CHECK_THAT(message_of<InputError>([&] { Formula(with_nul, {}, "key 'n'"); }),
+             Catch::Contains("key 'n'") && Catch::Contains("control character 0x00 at character 6"));
+  CHECK_THAT(message_of<InputError>([] { Formula("x\t+ 1", {}, "key 'n'"); }),
+             Catch::Contains("control character 0x09 at character 2"));
+  CHECK(Formula("x + 1", {}, "key 'n'")(Vec2(2.0, 0.0)) == 3.0);
 }
 
 TEST_CASE("formula: evaluation from many threads gives the serial values", "[problems]") {
