@@ -62,6 +62,32 @@ BoundarySelection read_selection(const SceneTable& t, const Domain& domain, std:
   }
 }
 
+/// A region meant for an edge but placed beside it clips slivers of the edges it crosses: a
+/// displacement or slip condition there holds the body by almost nothing, and the run solves
+/// a problem with a near-free rigid mode without a word. Refused when the selected length is
+/// below 1% of the region's longer side inside the domain's bounding box, unless the table
+/// sets allow_small_selection = true.
+void check_sliver(const SceneTable& t, BoundaryCondition::Type type, const std::string& what, double length,
+                  const std::optional<Box>& region, const Box& domain_box) {
+  constexpr double sliver = 0.01;
+  if (!region || (type != ConditionType::displacement && type != ConditionType::slip)) {
+    if (t.has("allow_small_selection"))
+      t.error("allow_small_selection", "applies to displacement and slip conditions selected by a region");
+    return;
+  }
+  if (t.boolean_or("allow_small_selection", false)) return;
+  const Vec2 lo = region->lo.cwiseMax(domain_box.lo), hi = region->hi.cwiseMin(domain_box.hi);
+  const double extent = (hi - lo).cwiseMax(0.0).maxCoeff();
+  if (length >= sliver * extent) return;
+  t.error("region",
+          fmt::format("{} selects a boundary length of {:.3g}, {:.2g}% of the region's extent {:.6g} inside "
+                      "the domain's bounding box [[{}, {}], [{}, {}]]: it clips slivers of the edges it "
+                      "crosses, and a {} condition on them holds the body by almost nothing; move the region "
+                      "onto the edge it is meant for, or set allow_small_selection = true",
+                      what, length, 100.0 * length / extent, extent, domain_box.lo.x(), domain_box.lo.y(),
+                      domain_box.hi.x(), domain_box.hi.y(), condition_table.name(type)));
+}
+
 /// No formula of a static run may use t: it would be evaluated at t = 0 only.
 void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics) {
   if (f.depends_on_time() && !dynamics)
@@ -231,6 +257,8 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       t.error(key, fmt::format("{} selects no part of the boundary (the domain's bounding box is [[{}, {}], [{}, {}]])",
                                what, out.domain.bounding_box().lo.x(), out.domain.bounding_box().lo.y(),
                                out.domain.bounding_box().hi.x(), out.domain.bounding_box().hi.y()));
+    check_sliver(t, c.type, what, length, key == "region" ? read_box(t, "region") : std::optional<Box>(),
+                 out.domain.bounding_box());
     for (std::size_t k = 0; k < s.problem.conditions.size(); ++k) {
       const double shared = overlap_length(out.domain, c.where, s.problem.conditions[k].where);
       if (shared > 1e-12 * length)

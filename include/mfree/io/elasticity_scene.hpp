@@ -19,16 +19,18 @@
 //                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
 //   [exact]       solution = a built-in one (problems/builtin_solutions.hpp: timoshenko_beam:
 //                 load; linear: offset, gradient; quadratic: offset, gradient, hessian_x,
-//                 hessian_y (symmetric, of u_x and u_y); vibration (dynamics): amplitude), or the formulas displacement = [ux, uy] with
-//                 stress = [sxx, syy, sxy] or gradient = [dux/dx, dux/dy, duy/dx, duy/dy]
-//                 (statics; the body force is [loads]')   optional
+//                 hessian_y (symmetric, of u_x and u_y); vibration (dynamics): amplitude), or the formulas
+//                 displacement = [ux, uy] with stress = [sxx, syy, sxy] or gradient = [dux/dx, dux/dy,
+//                 duy/dx, duy/dy] (statics; the body force is [loads]')   optional
 //   [[boundary]]  name, type (displacement | slip | traction | pressure), one selector:
 //                 part = "name" (a named part: gmsh physical curve, rectangle bottom | right |
 //                 top | left), ring = k (0 outer, k hole k), edges = [i, ...] (of ring, default
 //                 0; numbered as written), region = [[x0, y0], [x1, y1]] (clips segments);
 //                 value = "exact", [vx, vy] (numbers or formulas in X, Y, t), or for pressure
 //                 p (a number or formula, positive into the body). A selector that selects
-//                 nothing, and two conditions on one part of the boundary, are errors.
+//                 nothing, and two conditions on one part of the boundary, are errors; so is
+//                 a displacement or slip region selecting below 1% of its extent in the
+//                 domain's bounding box (slivers), unless allow_small_selection = true.
 //   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus)
 //   [solver]      every linear solve (linalg/linear_solver.hpp): kind (auto | cholmod |
 //                 umfpack | cg | gmres; auto: direct up to direct_limit unknowns, default
