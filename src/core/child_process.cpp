@@ -10,10 +10,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <csignal>
-#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <system_error>
 
 #include "mfree/core/error.hpp"
 
@@ -35,15 +36,22 @@ std::size_t anonymous_resident(const char* statm) {
   const int fd = ::open(statm, O_RDONLY | O_CLOEXEC);
   if (fd < 0) return unknown;
   char text[128];
-  const ssize_t n = ::read(fd, text, sizeof text - 1);
+  const ssize_t n = ::read(fd, text, sizeof text);
   ::close(fd);
   if (n <= 0) return unknown;
-  text[n] = '\0';
-  unsigned long long size = 0, resident = 0, shared = 0;
-  if (std::sscanf(text, "%llu %llu %llu", &size, &resident, &shared) != 3) return unknown;
+  // std::from_chars, not sscanf: the child must not wait for a lock (of the C library, or of a
+  // sanitizer's interceptor) that another thread of this process held at the fork.
+  std::size_t fields[3] = {0, 0, 0};  // size, resident, shared
+  const char* at = text;
+  for (std::size_t& field : fields) {
+    while (at < text + n && *at == ' ') ++at;
+    const std::from_chars_result r = std::from_chars(at, text + n, field);
+    if (r.ec != std::errc()) return unknown;
+    at = r.ptr;
+  }
+  const std::size_t resident = fields[1], shared = fields[2];
   const long page = ::sysconf(_SC_PAGESIZE);
-  return resident >= shared ? static_cast<std::size_t>(resident - shared) * static_cast<std::size_t>(page)
-                            : 0;
+  return resident >= shared ? (resident - shared) * static_cast<std::size_t>(page) : 0;
 }
 
 /// Writes all of `bytes` to fd; false on an error.
