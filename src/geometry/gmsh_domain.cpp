@@ -2,24 +2,25 @@
 
 #include <fmt/format.h>
 #include <gmsh.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstddef>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <new>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "mfree/core/child_process.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
 
 namespace mfree {
@@ -263,65 +264,74 @@ BoundaryMesh deserialise(const std::string& bytes, const std::string& file) {
   return mesh;
 }
 
-/// read_boundary in a child process: libgmsh crashes on some malformed files
-/// (tests/fuzz/known_crashes), and such a crash must end as an InputError naming the file,
-/// not take the program down; gmsh's global state also stays out of this process, so reads
-/// from several threads need no lock. The child reports through a pipe and ends with _exit.
-BoundaryMesh read_isolated(const std::string& file) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw Error(fmt::format("{}: cannot start the gmsh reader: {}", file, std::strerror(errno)));
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw Error(fmt::format("{}: cannot start the gmsh reader: {}", file, std::strerror(errno)));
-  }
-  if (pid == 0) {  // the child: read, send, end without running the parent's exit handlers
-    ::close(fds[0]);
-    // A crash in libgmsh ends the child by its signal, which the parent reports; handlers the
-    // parent installed (sanitizers, fuzzers) would report it as the parent's own.
-    for (const int signal : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) std::signal(signal, SIG_DFL);
-    std::string out;
+/// What the child process sends: the serialised mesh, or 'E' and an error message.
+std::string read_boundary_message(const std::string& file) {
+  try {
+    const GmshSession session;
     try {
-      const GmshSession session;
-      try {
-        out = serialise(read_boundary(file));
-      } catch (const std::string& thrown) {
-        out = "E" + fmt::format("{}: gmsh cannot read it: {}", file, GmshSession::errors(thrown));
-      }
-    } catch (const std::exception& e) {
-      out = std::string("E") + e.what();
-    } catch (...) {
-      out = "E" + fmt::format("{}: gmsh cannot read it", file);
+      return serialise(read_boundary(file));
+    } catch (const std::string& thrown) {
+      return "E" + fmt::format("{}: gmsh cannot read it: {}", file, GmshSession::errors(thrown));
     }
-    for (std::size_t done = 0; done < out.size();) {
-      const ssize_t n = ::write(fds[1], out.data() + done, out.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) ::_exit(2);
-      done += static_cast<std::size_t>(n);
-    }
-    ::_exit(0);
+  } catch (const std::bad_alloc&) {
+    return "E" + fmt::format(
+                     "{}: gmsh ran out of memory reading it: element sizes too small for the domain "
+                     "(point sizes, Mesh.MeshSizeMax) are the usual cause; coarsen them",
+                     file);
+  } catch (const std::exception& e) {
+    return std::string("E") + e.what();
+  } catch (...) {
+    return "E" + fmt::format("{}: gmsh cannot read it", file);
   }
-  ::close(fds[1]);
-  std::string bytes;
-  char buffer[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    bytes.append(buffer, static_cast<std::size_t>(n));
+}
+
+/// Whether a signal is one a crash raises (rather than one sent from outside).
+bool is_crash_signal(int signal) {
+  for (const int crash : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGSYS, SIGTRAP})
+    if (signal == crash) return true;
+  return false;
+}
+
+/// read_boundary in a child process (mfree/core/child_process.hpp) under the limits: libgmsh
+/// crashes on some malformed files (tests/fuzz/known_crashes), loops forever on others and
+/// may exhaust the memory; each must end as an error naming the file, not take the program
+/// down. gmsh's global state also stays out of this process, so reads from several threads
+/// need no lock.
+BoundaryMesh read_isolated(const std::string& file, const GmshReaderLimits& limits) {
+  const ChildOutcome out = run_in_child([&file] { return read_boundary_message(file); },
+                                        ChildLimits{limits.wall_time, limits.memory_bytes},
+                                        fmt::format("{}: the gmsh reader", file));
+  switch (out.end) {
+    case ChildOutcome::End::out_of_time:
+      throw InputError(fmt::format(
+          "{}: gmsh did not finish reading it within {:g} s (the limit of the gmsh reader; see README): an "
+          "endless loop in a .geo script, an Include of a file that never ends (such as a device) or element "
+          "sizes far too small for the domain",
+          file, std::chrono::duration<double>(limits.wall_time).count()));
+    case ChildOutcome::End::out_of_memory:
+      throw InputError(fmt::format(
+          "{}: gmsh used more than {:g} MiB of memory reading it (the limit of the gmsh reader; see README): "
+          "element sizes too small for the domain (point sizes, Mesh.MeshSizeMax) are the usual cause; "
+          "coarsen them",
+          file, static_cast<double>(limits.memory_bytes) / (1024.0 * 1024.0)));
+    case ChildOutcome::End::signalled:
+      if (is_crash_signal(out.code))
+        throw InputError(fmt::format("{}: gmsh crashed reading it ({}): the file is malformed", file,
+                                     ::strsignal(out.code)));
+      throw Error(
+          fmt::format("{}: the gmsh reader process was ended from outside by signal {} ({}) while "
+                      "reading it{}",
+                      file, out.code, ::strsignal(out.code),
+                      out.code == SIGKILL ? ", most likely by the system for lack of memory (element "
+                                            "sizes too small for the domain?)"
+                                          : ""));
+    case ChildOutcome::End::exited:
+      break;
   }
-  ::close(fds[0]);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFSIGNALED(status))
-    throw InputError(fmt::format("{}: gmsh crashed reading it ({}): the file is malformed", file,
-                                 ::strsignal(WTERMSIG(status))));
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty())
-    throw Error(fmt::format("{}: the gmsh reader process failed (exit status {})", file, WEXITSTATUS(status)));
-  if (bytes[0] == 'E') throw InputError(bytes.substr(1));
-  return deserialise(bytes, file);
+  if (out.code != 0 || out.output.empty())
+    throw Error(fmt::format("{}: the gmsh reader process failed (exit status {})", file, out.code));
+  if (out.output[0] == 'E') throw InputError(out.output.substr(1));
+  return deserialise(out.output, file);
 }
 
 /// Closed rings from the boundary edges: every node must end exactly two edges. Returns the
@@ -419,7 +429,13 @@ bool is_gmsh_file(const std::filesystem::path& file) {
   return std::find(gmsh_extensions.begin(), gmsh_extensions.end(), ext) != gmsh_extensions.end();
 }
 
-Domain read_gmsh_domain(const std::filesystem::path& file) {
+GmshReaderLimits default_gmsh_reader_limits() {
+  constexpr double cap = 2.0 * 1024 * 1024 * 1024;  // bytes
+  return GmshReaderLimits{std::chrono::seconds(60),
+                          static_cast<std::size_t>(std::min(cap, 0.5 * available_memory()))};
+}
+
+Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimits& limits) {
   const std::string source = file.string();
   if (!is_gmsh_file(file)) {
     throw InputError(fmt::format("{}: unknown extension '{}' for a gmsh file; gmsh files end in {}", source,
@@ -432,7 +448,7 @@ Domain read_gmsh_domain(const std::filesystem::path& file) {
   }
   if (!std::ifstream(file)) throw InputError(fmt::format("cannot read mesh file '{}'", source));
 
-  BoundaryMesh mesh = read_isolated(source);
+  BoundaryMesh mesh = read_isolated(source, limits);
   auto [rings, parts] = chain_rings(mesh, source);
   outer_ring_first(rings, parts, source);
   return Domain::from_rings(std::move(rings), std::move(parts), std::move(mesh.part_names), source);

@@ -1,15 +1,19 @@
+#include <signal.h>
+
 #include <catch2/catch.hpp>
-
-#include "../test_support.hpp"
-
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/geometry/gmsh_domain.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
@@ -322,4 +326,99 @@ $Elements
 $EndElements
 )");
   CHECK_THAT(input_error_message(open), Contains(open) && Contains("does not close") && Contains("(0, 1)"));
+}
+
+namespace {
+
+/// A unit square whose point sizes are `size`: gmsh meshes its sides into 4 / size elements.
+std::string square_geo(const std::string& size) {
+  return "lc = " + size + R"(;
+    Point(1) = {0, 0, 0, lc}; Point(2) = {1, 0, 0, lc}; Point(3) = {1, 1, 0, lc}; Point(4) = {0, 1, 0, lc};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+    Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+  )";
+}
+
+/// The InputError message of reading `path` under `limits`, and the seconds it took.
+std::pair<std::string, double> timed_refusal(const std::string& path, const mfree::GmshReaderLimits& limits) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message =
+      mfree::testing::message_of<mfree::InputError>([&] { (void)mfree::read_gmsh_domain(path, limits); });
+  return {message, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+}  // namespace
+
+TEST_CASE("gmsh domains: the reader's limits by default", "[geometry]") {
+  const mfree::GmshReaderLimits limits = mfree::default_gmsh_reader_limits();
+  CHECK(limits.wall_time == std::chrono::seconds(60));
+  CHECK(limits.memory_bytes <= std::size_t{2} << 30);
+  CHECK(static_cast<double>(limits.memory_bytes) <= 0.5 * mfree::available_memory());
+  // Either figure is far above what gmsh needs for a usual file (below 100 MiB).
+  CHECK(limits.memory_bytes > std::size_t{100} << 20);
+}
+
+TEST_CASE("gmsh domains: a usual file reads under small limits", "[geometry]") {
+  // The quarter annulus takes gmsh 15 ms (a square of 40 000 boundary elements: 50 ms and
+  // 11 MiB beyond what the reader inherits).
+  const Domain d =
+      mfree::read_gmsh_domain(mesh_path("quarter_annulus.geo"), {std::chrono::seconds(1), 64u << 20});
+  CHECK(d.area() == Approx(mesh("quarter_annulus.geo").area()).epsilon(1e-15));
+}
+
+TEST_CASE("gmsh domains: a file that never ends is refused at the wall-time limit", "[geometry]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_time");
+  const mfree::GmshReaderLimits limits{std::chrono::milliseconds(1000), std::size_t{1} << 30};
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"loop.geo", "For i In {1:1e12}\nEndFor\n"},  // 10^12 empty iterations
+           {"zero.geo", "Include \"/dev/zero\";\n"},     // a file without end
+       }) {
+    const std::string path = write_file(folder, name, text);
+    const auto [message, seconds] = timed_refusal(path, limits);
+    INFO(message);
+    CHECK_THAT(message, Contains(path) && Contains("gmsh did not finish reading it within 1 s") &&
+                            Contains("the limit of the gmsh reader; see README"));
+    CHECK(seconds >= 1.0);
+    CHECK(seconds < 1.5);
+  }
+}
+
+TEST_CASE("gmsh domains: a file whose mesh outgrows the memory limit is refused", "[geometry]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_memory");
+  // Element size 1e-7: 4e7 line elements, about 15 GiB in gmsh (400 000 take 150 MiB); the
+  // limit is passed after 0.1 s.
+  const std::string path = write_file(folder, "fine.geo", square_geo("1e-7"));
+  const auto [message, seconds] = timed_refusal(path, {std::chrono::seconds(20), 64u << 20});
+  INFO(message);
+  CHECK_THAT(message, Contains(path) && Contains("gmsh used more than 64 MiB of memory reading it") &&
+                          Contains("the limit of the gmsh reader; see README") && Contains("coarsen"));
+  CHECK(seconds < 3.0);
+}
+
+TEST_CASE("gmsh domains: a reader killed from outside is not called a malformed file", "[geometry]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_killed");
+  const std::string path = write_file(folder, "loop.geo", "For i In {1:1e12}\nEndFor\n");
+  // After 300 ms, SIGKILL to every child of this process (the reader, as the system's
+  // out-of-memory killer would).
+  std::thread killer([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+      std::ifstream children(task.path() / "children");
+      for (pid_t pid = 0; children >> pid;) ::kill(pid, SIGKILL);
+    }
+  });
+  std::string message;
+  try {
+    (void)mfree::read_gmsh_domain(path, {std::chrono::seconds(10), std::size_t{1} << 30});
+  } catch (const mfree::InputError& e) {
+    message = std::string("InputError: ") + e.what();
+  } catch (const mfree::Error& e) {
+    message = e.what();
+  }
+  killer.join();
+  CHECK_THAT(message, Contains(path) && Contains("ended from outside by signal 9") &&
+                          Contains("lack of memory") && !Contains("malformed") && !Contains("InputError"));
 }

@@ -27,8 +27,19 @@
 // safe), and a file that crashes libgmsh (tests/fuzz/known_crashes) ends as an InputError
 // naming the file and the signal instead of a crash. gmsh prints nothing; OpenCASCADE's STEP
 // parser may still print its own syntax errors to standard output.
+//
+// The child runs under limits (mfree/core/child_process.hpp): wall time, 60 s by default, and
+// memory (resident memory beyond what it inherits from this process), by default the lesser
+// of 2 GiB and half the machine's available memory. A boundary of 400 000 line elements takes
+// gmsh 0.4 s and 150 MiB (a unit square meshed at size 1e-5), so the limits refuse only files
+// that would not end (an endless For loop, Include "/dev/zero";) or element sizes far too small
+// for the domain, which would otherwise hang the program or exhaust the machine. A reader
+// killed from outside (SIGKILL, as by the system's out-of-memory killer) is an Error, not a
+// malformed file.
 
 #include <array>
+#include <chrono>
+#include <cstddef>
 #include <filesystem>
 #include <string_view>
 
@@ -43,12 +54,24 @@ inline constexpr std::array<std::string_view, 7> gmsh_extensions = {".geo",  ".m
 /// Whether the path's extension is one of gmsh_extensions (without regard to case).
 [[nodiscard]] bool is_gmsh_file(const std::filesystem::path& file);
 
+/// Limits of the gmsh reader's child process (see above).
+struct GmshReaderLimits {
+  std::chrono::milliseconds wall_time;
+  std::size_t memory_bytes;  // resident memory beyond what the child inherits
+};
+
+/// 60 s, and the lesser of 2 GiB and half of available_memory() (mfree/core/memory.hpp) now.
+[[nodiscard]] GmshReaderLimits default_gmsh_reader_limits();
+
 /// Reads the domain of a gmsh file (see above). Throws InputError naming the file when the
 /// extension is not one of gmsh_extensions, the file is missing or unreadable, gmsh reports an
 /// error (its messages are quoted), the model has no surface or has volumes, a node lies off the
 /// plane z = 0, a boundary curve has no 1D elements, a curve belongs to two physical groups,
 /// the boundary does not close into rings (or meets itself), the surfaces form more than one
-/// connected region, the rings fail Domain::from_rings's checks, or gmsh crashes on the file.
-[[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file);
+/// connected region, the rings fail Domain::from_rings's checks, gmsh crashes on the file, or
+/// gmsh exceeds a limit (naming it). Throws Error when the reader process is killed from
+/// outside (as by the system's out-of-memory killer) or fails.
+[[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file,
+                                      const GmshReaderLimits& limits = default_gmsh_reader_limits());
 
 }  // namespace mfree
