@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <poll.h>
 #include <pthread.h>
+#include <seccomp.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -66,10 +67,23 @@ bool write_all(int fd, const void* bytes, std::size_t size) {
   return true;
 }
 
+/// No program can be started from the child or from any process it forks: execve and
+/// execveat fail with EPERM (a seccomp filter, which also sets no_new_privs). libgmsh runs a
+/// .geo file's SystemCall through the shell; a file a scene names must not run commands.
+void forbid_programs() {
+  const scmp_filter_ctx filter = ::seccomp_init(SCMP_ACT_ALLOW);
+  const bool ok = filter != nullptr &&
+                  ::seccomp_rule_add(filter, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(execve), 0) == 0 &&
+                  ::seccomp_rule_add(filter, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(execveat), 0) == 0 &&
+                  ::seccomp_load(filter) == 0;
+  if (filter != nullptr) ::seccomp_release(filter);
+  if (!ok) ::_exit(3);
+}
+
 /// The child's settings before it works: killed with the thread that forked it (or at once if
 /// that already ended, `parent` no longer being its parent), default dispositions of every
 /// signal (sanitizer and fuzzer handlers of this process would report a crash as their own),
-/// an empty signal mask, and no file descriptors but 0, 1, 2 and `keep`.
+/// an empty signal mask, no file descriptors but 0, 1, 2 and `keep`, and no programs.
 void prepare_child(pid_t parent, int keep) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(1);
@@ -85,6 +99,7 @@ void prepare_child(pid_t parent, int keep) {
   ::pthread_sigmask(SIG_SETMASK, &none, nullptr);
   if (keep > 3) ::close_range(3, static_cast<unsigned>(keep - 1), 0);
   ::close_range(static_cast<unsigned>(keep + 1), ~0U, 0);
+  forbid_programs();
 }
 
 /// The child: its starting memory (the baseline of the limit), then the work's bytes.

@@ -432,7 +432,7 @@ bool is_gmsh_file(const std::filesystem::path& file) {
 GmshReaderLimits default_gmsh_reader_limits() {
   constexpr double cap = 2.0 * 1024 * 1024 * 1024;  // bytes
   return GmshReaderLimits{std::chrono::seconds(60),
-                          static_cast<std::size_t>(std::min(cap, 0.5 * available_memory()))};
+                          static_cast<std::size_t>(std::min(cap, 0.5 * available_memory().bytes))};
 }
 
 Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimits& limits) {

@@ -5,7 +5,9 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -57,6 +59,24 @@ TEST_CASE("child process: its output and exit status", "[core]") {
   CHECK(thrown.end == ChildOutcome::End::exited);
   CHECK(thrown.code == 2);
   CHECK(thrown.output.empty());
+}
+
+TEST_CASE("child process: it cannot start programs", "[core]") {
+  // execve fails with EPERM in the child and in what it forks: std::system runs no shell.
+  const mfree::testing::ScratchFolder folder("child_exec");
+  const std::string touched = (folder.path / "touched").string();
+  const ChildOutcome out = run_in_child(
+      [&] {
+        const int status = std::system(("touch " + touched).c_str());
+        return std::to_string(status);
+      },
+      {5s, 64 * mib}, "test");
+  CHECK(out.end == ChildOutcome::End::exited);
+  CHECK(out.output != "0");
+  CHECK_FALSE(std::filesystem::exists(touched));
+  // Here, outside the child, the same command runs.
+  CHECK(std::system(("touch " + touched).c_str()) == 0);
+  CHECK(std::filesystem::exists(touched));
 }
 
 TEST_CASE("child process: killed at the wall-time limit", "[core]") {

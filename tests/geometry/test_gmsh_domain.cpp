@@ -353,7 +353,7 @@ TEST_CASE("gmsh domains: the reader's limits by default", "[geometry]") {
   const mfree::GmshReaderLimits limits = mfree::default_gmsh_reader_limits();
   CHECK(limits.wall_time == std::chrono::seconds(60));
   CHECK(limits.memory_bytes <= std::size_t{2} << 30);
-  CHECK(static_cast<double>(limits.memory_bytes) <= 0.5 * mfree::available_memory());
+  CHECK(static_cast<double>(limits.memory_bytes) <= 0.5 * mfree::available_memory().bytes);
   // Either figure is far above what gmsh needs for a usual file (below 100 MiB).
   CHECK(limits.memory_bytes > std::size_t{100} << 20);
 }
@@ -382,6 +382,22 @@ TEST_CASE("gmsh domains: a file that never ends is refused at the wall-time limi
     CHECK(seconds >= 1.0);
     CHECK(seconds < 1.5);
   }
+}
+
+TEST_CASE("gmsh domains: a .geo file's SystemCall runs no command", "[geometry]") {
+  // gmsh runs SystemCall through the shell; the reader's child may start no program, so gmsh
+  // finds no shell, the file is refused as unreadable, and the command has no effect.
+  const mfree::testing::ScratchFolder folder("gmsh_system_call");
+  const std::string touched = (folder.path / "touched").string();
+  std::string text = "SystemCall \"touch " + touched + "\";\n";
+  std::ifstream annulus(mesh_path("quarter_annulus.geo"));
+  text += std::string((std::istreambuf_iterator<char>(annulus)), std::istreambuf_iterator<char>());
+  const std::string path = write_file(folder, "call.geo", text);
+  CHECK_THAT(mfree::testing::message_of<mfree::InputError>([&] {
+               (void)mfree::read_gmsh_domain(path, {std::chrono::seconds(5), 256u << 20});
+             }),
+             Catch::Contains(path) && Catch::Contains("system call"));
+  CHECK_FALSE(std::filesystem::exists(touched));
 }
 
 TEST_CASE("gmsh domains: a file whose mesh outgrows the memory limit is refused", "[geometry]") {
