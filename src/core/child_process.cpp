@@ -67,15 +67,32 @@ bool write_all(int fd, const void* bytes, std::size_t size) {
   return true;
 }
 
-/// No program can be started from the child or from any process it forks: execve and
-/// execveat fail with EPERM (a seccomp filter, which also sets no_new_privs). libgmsh runs a
-/// .geo file's SystemCall through the shell; a file a scene names must not run commands.
-void forbid_programs() {
+/// The child reads and computes, nothing else (a seccomp filter, which also sets
+/// no_new_privs; the calls below fail with EPERM there and in whatever it forks): it starts no
+/// program (execve, execveat) and changes no file: it opens none for writing, creates,
+/// truncates, renames, links or removes none, and makes no folder. libgmsh runs a .geo file's
+/// SystemCall through the shell and carries out its Printf > "file", Save, CreateDir,
+/// RenameFile and DeleteFile: a file a scene names must do none of that. The pipe and the
+/// standard streams, open before, stay writable.
+void confine() {
   const scmp_filter_ctx filter = ::seccomp_init(SCMP_ACT_ALLOW);
-  const bool ok = filter != nullptr &&
-                  ::seccomp_rule_add(filter, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(execve), 0) == 0 &&
-                  ::seccomp_rule_add(filter, SCMP_ACT_ERRNO(EPERM), SCMP_SYS(execveat), 0) == 0 &&
-                  ::seccomp_load(filter) == 0;
+  bool ok = filter != nullptr;
+  const auto deny = [&](int call, auto... comparisons) {
+    ok = ok &&
+         ::seccomp_rule_add(filter, SCMP_ACT_ERRNO(EPERM), call, sizeof...(comparisons), comparisons...) == 0;
+  };
+  for (const int call :
+       {SCMP_SYS(execve), SCMP_SYS(execveat), SCMP_SYS(creat), SCMP_SYS(openat2), SCMP_SYS(truncate),
+        SCMP_SYS(rename), SCMP_SYS(renameat), SCMP_SYS(renameat2), SCMP_SYS(link), SCMP_SYS(linkat),
+        SCMP_SYS(symlink), SCMP_SYS(symlinkat), SCMP_SYS(unlink), SCMP_SYS(unlinkat), SCMP_SYS(rmdir),
+        SCMP_SYS(mkdir), SCMP_SYS(mkdirat), SCMP_SYS(mknod), SCMP_SYS(mknodat)})
+    deny(call);
+  // open(path, flags) and openat(folder, path, flags) with any flag that writes.
+  for (const scmp_datum_t flag : {O_WRONLY, O_RDWR, O_CREAT, O_TRUNC, O_APPEND}) {
+    deny(SCMP_SYS(open), SCMP_A1(SCMP_CMP_MASKED_EQ, flag, flag));
+    deny(SCMP_SYS(openat), SCMP_A2(SCMP_CMP_MASKED_EQ, flag, flag));
+  }
+  ok = ok && ::seccomp_load(filter) == 0;
   if (filter != nullptr) ::seccomp_release(filter);
   if (!ok) ::_exit(3);
 }
@@ -83,7 +100,7 @@ void forbid_programs() {
 /// The child's settings before it works: killed with the thread that forked it (or at once if
 /// that already ended, `parent` no longer being its parent), default dispositions of every
 /// signal (sanitizer and fuzzer handlers of this process would report a crash as their own),
-/// an empty signal mask, no file descriptors but 0, 1, 2 and `keep`, and no programs.
+/// an empty signal mask, no file descriptors but 0, 1, 2 and `keep`, and confine() above.
 void prepare_child(pid_t parent, int keep) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(1);
@@ -99,7 +116,7 @@ void prepare_child(pid_t parent, int keep) {
   ::pthread_sigmask(SIG_SETMASK, &none, nullptr);
   if (keep > 3) ::close_range(3, static_cast<unsigned>(keep - 1), 0);
   ::close_range(static_cast<unsigned>(keep + 1), ~0U, 0);
-  forbid_programs();
+  confine();
 }
 
 /// The child: its starting memory (the baseline of the limit), then the work's bytes.

@@ -1,3 +1,4 @@
+#include <poll.h>
 #include <pthread.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -61,21 +62,36 @@ TEST_CASE("child process: its output and exit status", "[core]") {
   CHECK(thrown.output.empty());
 }
 
-TEST_CASE("child process: it cannot start programs", "[core]") {
-  // execve fails with EPERM in the child and in what it forks: std::system runs no shell.
-  const mfree::testing::ScratchFolder folder("child_exec");
-  const std::string touched = (folder.path / "touched").string();
+TEST_CASE("child process: it starts no program and changes no file", "[core]") {
+  // In the child, std::system runs no shell, and a file cannot be created, opened for
+  // writing, renamed or removed, nor a folder made; it still reads, and writes its pipe.
+  const mfree::testing::ScratchFolder folder("child_confined");
+  const std::filesystem::path touched = folder.path / "touched", existing = folder.path / "existing";
+  std::ofstream(existing) << "kept";
   const ChildOutcome out = run_in_child(
       [&] {
-        const int status = std::system(("touch " + touched).c_str());
-        return std::to_string(status);
+        std::string seen;
+        seen += std::system(("touch " + touched.string()).c_str()) == 0 ? "ran " : "";
+        seen += std::ofstream(touched) ? "created " : "";
+        seen += std::ofstream(existing, std::ios::app) ? "appended " : "";
+        std::error_code ec;
+        std::filesystem::rename(existing, touched, ec);
+        seen += ec ? "" : "renamed ";
+        std::filesystem::remove(existing, ec);
+        seen += ec ? "" : "removed ";
+        std::filesystem::create_directory(folder.path / "made", ec);
+        seen += ec ? "" : "made ";
+        std::ifstream in(existing);
+        std::string text;
+        in >> text;
+        return seen + "read " + text;
       },
       {5s, 64 * mib}, "test");
   CHECK(out.end == ChildOutcome::End::exited);
-  CHECK(out.output != "0");
-  CHECK_FALSE(std::filesystem::exists(touched));
+  CHECK(out.output == "read kept");
+  CHECK(folder.entries() == std::vector<std::string>{"existing"});
   // Here, outside the child, the same command runs.
-  CHECK(std::system(("touch " + touched).c_str()) == 0);
+  CHECK(std::system(("touch " + touched.string()).c_str()) == 0);
   CHECK(std::filesystem::exists(touched));
 }
 
@@ -162,25 +178,33 @@ TEST_CASE("child process: default signal dispositions and an empty mask; a signa
 }
 
 TEST_CASE("child process: it does not outlive the process that started it", "[core]") {
-  // An intermediate process starts a child that writes its process id and sleeps 30 s; the
-  // intermediate is killed, and the child must die with it.
-  const mfree::testing::ScratchFolder folder("child_process_orphan");
-  const std::string pid_file = (folder.path / "child.pid").string();
+  // An intermediate process starts a child that writes its process id to its standard output
+  // (a pipe to this process: the child may write no file) and sleeps 30 s; the intermediate
+  // is killed, and the child must die with it.
+  int ids[2];
+  REQUIRE(pipe(ids) == 0);
   const pid_t intermediate = fork();
   REQUIRE(intermediate >= 0);
   if (intermediate == 0) {
+    dup2(ids[1], 1);
+    close(ids[0]);
+    close(ids[1]);
     (void)run_in_child(
-        [&pid_file] {
-          std::ofstream(pid_file + ".tmp") << getpid();
-          std::rename((pid_file + ".tmp").c_str(), pid_file.c_str());
+        [] {
+          const std::string id = std::to_string(getpid()) + "\n";
+          (void)!write(1, id.data(), id.size());
           std::this_thread::sleep_for(30s);
           return std::string();
         },
         {60s, 64 * mib}, "test");
     _exit(0);
   }
-  pid_t child = 0;
-  for (int i = 0; i < 200 && !(std::ifstream(pid_file) >> child); ++i) std::this_thread::sleep_for(10ms);
+  close(ids[1]);
+  pollfd ready{ids[0], POLLIN, 0};
+  char text[32] = {};
+  const bool sent = poll(&ready, 1, 2000) == 1 && read(ids[0], text, sizeof text - 1) > 0;
+  close(ids[0]);
+  const pid_t child = sent ? static_cast<pid_t>(std::atol(text)) : 0;
   REQUIRE(child > 0);
   CHECK_FALSE(is_dead(child));
   kill(intermediate, SIGKILL);

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -384,20 +385,33 @@ TEST_CASE("gmsh domains: a file that never ends is refused at the wall-time limi
   }
 }
 
-TEST_CASE("gmsh domains: a .geo file's SystemCall runs no command", "[geometry]") {
-  // gmsh runs SystemCall through the shell; the reader's child may start no program, so gmsh
-  // finds no shell, the file is refused as unreadable, and the command has no effect.
-  const mfree::testing::ScratchFolder folder("gmsh_system_call");
-  const std::string touched = (folder.path / "touched").string();
-  std::string text = "SystemCall \"touch " + touched + "\";\n";
-  std::ifstream annulus(mesh_path("quarter_annulus.geo"));
-  text += std::string((std::istreambuf_iterator<char>(annulus)), std::istreambuf_iterator<char>());
-  const std::string path = write_file(folder, "call.geo", text);
-  CHECK_THAT(mfree::testing::message_of<mfree::InputError>([&] {
-               (void)mfree::read_gmsh_domain(path, {std::chrono::seconds(5), 256u << 20});
-             }),
-             Catch::Contains(path) && Catch::Contains("system call"));
-  CHECK_FALSE(std::filesystem::exists(touched));
+TEST_CASE("gmsh domains: a .geo file runs no command and writes no file", "[geometry]") {
+  // gmsh runs SystemCall through the shell and carries out Printf > "file", Save and
+  // CreateDir; the reader's child may start no program and change no file, so each file
+  // below is refused (gmsh finds no shell, or cannot open its output) or reads without the
+  // folder appearing, and nothing appears in the scratch folder.
+  const mfree::testing::ScratchFolder folder("gmsh_confined");
+  std::ifstream annulus_file(mesh_path("quarter_annulus.geo"));
+  const std::string annulus((std::istreambuf_iterator<char>(annulus_file)), std::istreambuf_iterator<char>());
+  const std::string out = (folder.path / "made").string();
+  for (const auto& [name, command, refusal] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"call.geo", "SystemCall \"touch " + out + "\";", "system call"},
+           {"printf.geo", "Printf(\"x\") > \"" + out + "\";", "Unable to open file"},
+           {"save.geo", "Save \"" + out + ".msh\";", "Unable to open file"},
+           {"folder.geo", "CreateDir \"" + out + "\";", ""}}) {
+    const std::string path = write_file(folder, name, command + "\n" + annulus);
+    const auto read = [&] { return mfree::read_gmsh_domain(path, {std::chrono::seconds(5), 256u << 20}); };
+    INFO(name);
+    if (refusal.empty()) {
+      CHECK(read().area() == Approx(mesh("quarter_annulus.geo").area()).epsilon(1e-15));
+    } else {
+      CHECK_THAT(mfree::testing::message_of<mfree::InputError>(read),
+                 Catch::Contains(path) && Catch::Contains(refusal));
+    }
+    std::error_code ec;
+    CHECK_FALSE(std::filesystem::exists(out, ec));
+    CHECK_FALSE(std::filesystem::exists(out + ".msh", ec));
+  }
 }
 
 TEST_CASE("gmsh domains: a file whose mesh outgrows the memory limit is refused", "[geometry]") {

@@ -7,8 +7,10 @@
 // through a pipe and ends with _exit (no exit handlers of this process run there). It starts
 // with default signal dispositions and an empty signal mask, whatever this process set, holds
 // no file descriptor of this process but 0, 1 and 2, is killed (SIGKILL) when the thread
-// that started it ends, so it never outlives this process, and can start no program (a
-// seccomp filter makes execve fail with EPERM there and in whatever it forks).
+// that started it ends, so it never outlives this process, and only reads and computes: a
+// seccomp filter makes starting a program and changing a file (opening one for writing,
+// creating, truncating, renaming, linking, removing, making a folder) fail with EPERM there
+// and in whatever it forks.
 //
 // This process polls the pipe until the child closes it, and meanwhile watches the clock and,
 // every 20 ms, the child's memory: its resident anonymous memory (/proc/PID/statm: resident
