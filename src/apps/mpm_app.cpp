@@ -27,14 +27,18 @@ std::vector<int> error_steps(const MPMScene& scene, int steps) {
   return out;
 }
 
-/// A NaN or infinite particle velocity is a NumericalError naming the particle, never output.
+/// Before anything is written: a particle state that is not finite is a NumericalError
+/// naming the particle, never output. (The solver stops at the first such value where it
+/// arises; this is the last guard of what the output reads.)
 void check_finite(const MPMSolver& solver) {
   const Particles& P = solver.particles();
   for (Index p = 0; p < P.size(); ++p)
-    if (!P.velocity[p].allFinite() || !P.position[p].allFinite())
-      throw NumericalError(fmt::format("MPM: particle {} (started at ({:.6g}, {:.6g})) has a non-finite velocity or "
-                                       "position at t = {:.6g} s: the run is unstable; use a smaller time step",
-                                       p, P.reference[p].x(), P.reference[p].y(), solver.time()));
+    if (!P.velocity[p].allFinite() || !P.position[p].allFinite() || !P.deformation[p].allFinite() ||
+        !P.stress[p].allFinite())
+      throw NumericalError(
+          fmt::format("MPM: {} has a velocity, position, F or stress that is not finite at t = {:.6g} "
+                      "s: the run is unstable; use a smaller time step",
+                      particle_name(P, p), solver.time()));
 }
 
 /// max_t |E(t) - E(0)| / max_t (kinetic + strain), E = kinetic + strain - work of the body
@@ -286,7 +290,16 @@ void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::
 MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool verbose, const Checkpoints* checkpoints) {
   const auto t0 = std::chrono::steady_clock::now();
   MPMRun run;
-  MPMSolver solver(scene.problem, settings);
+  // The solver's own input errors ("MPM: ...": settings, time step, particles) get the scene
+  // file; those about a key already name it.
+  MPMSolver solver = [&] {
+    try {
+      return MPMSolver(scene.problem, settings);
+    } catch (const InputError& e) {
+      if (!std::string_view(e.what()).starts_with("MPM: ")) throw;
+      throw InputError(fmt::format("{}: {}", scene.file.string(), e.what()));
+    }
+  }();
   run.particles = solver.particles().size();
   run.steps = solver.steps();
   run.time_step = solver.time_step();

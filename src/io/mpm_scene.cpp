@@ -1,8 +1,10 @@
 #include "mfree/io/mpm_scene.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
+#include <limits>
 #include <memory>
 
 #include "mfree/core/error.hpp"
@@ -116,6 +118,7 @@ MPMBody read_body(const SceneTable& t, const std::vector<MPMMaterial>& materials
     const VectorFormula v = read_vector_formula(t, "velocity", constants);
     if (v.depends_on_time()) t.error("velocity", "an initial velocity is a field in X and Y, not t");
     b.initial_velocity = vector_field<>(v);
+    b.velocity_where = t.where("velocity");
   }
   if (t.has("particles_per_cell"))
     b.particles_per_side = per_side(t, "particles_per_cell", t.integer("particles_per_cell", 1, 25));
@@ -178,7 +181,9 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     const ExactMotion m = c.solution().motion(c.values, on);
     out.exact = m;
     pr.body_force = m.body_force;
+    pr.body_force_where = t.where("solution");
     pr.bodies.front().initial_velocity = [v = m.velocity](const Vec2& X) { return v(X, 0.0); };
+    pr.bodies.front().velocity_where = t.where("solution");
     t.finish();
   }
   {
@@ -206,8 +211,16 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     if (t.has("gravity")) {
       if (out.exact) t.error("gravity", "the [exact] solution sets the body force");
       pr.body_force = vector_field<double>(read_vector_formula(t, "gravity", constants));
+      pr.body_force_where = t.where("gravity");
     }
     const double h = pr.box.size().x() / s.cells;
+    // Particle volumes (h / n)^2, n = 1 to 5 per side, must be doubles of their own.
+    if (!(std::isfinite(h * h) && (h / 5.0) * (h / 5.0) >= std::numeric_limits<double>::min()))
+      t.error(
+          "box",
+          fmt::format("a grid box {:.4g} x {:.4g} m of cells h = {:.4g} m gives particle volumes (h / n)^2 "
+                      "outside what a double holds; give the box in units that make its size of order one",
+                      pr.box.size().x(), pr.box.size().y(), h));
     const double rows = pr.box.size().y() / h;
     if (std::abs(rows - std::round(rows)) > 1e-9 * rows)
       t.error("cells", fmt::format("the grid box height {} is not a whole number of cells of size {}", pr.box.size().y(), h));

@@ -19,7 +19,7 @@ int rows_for(const Box& d, int cells_x) {
                                  d.size().x(), d.size().y(), h));
   // Node arrays (mass, momentum, velocity, force, wall mask): about 96 bytes a node.
   check_memory((cells_x + 5.0) * (std::round(rows) + 5.0) * 96.0,
-               fmt::format("the MPM grid of {} x {} cells", cells_x, std::round(rows)));
+               fmt::format("MPM: the grid of {} x {} cells ([mpm] cells)", cells_x, std::round(rows)));
   return static_cast<int>(std::round(rows));
 }
 

@@ -1,7 +1,10 @@
 #include "mfree/mpm/mpm_solver.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <string_view>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -131,24 +134,168 @@ Mat2 velocity_gradient(const WeightTable& weights, Index p, const Vec2& vp, cons
   return L;
 }
 
+/// The grid of a problem and its settings (its constructor checks the memory of its nodes).
+Grid grid_for(const MPMProblem& p, const MPMSettings& s) {
+  return {p.box, s.cells, is_bspline(s.method) ? s.degree : 1, grid_padding(s.method)};
+}
+
+/// Refuses sizes that overflow or vanish in double precision: the cell size h, the particle
+/// volumes (h / n)^2 and masses rho0 (h / n)^2 for n = 1 to 5 particles per side, and the
+/// materials' wave speeds.
+void check_scales(const MPMProblem& p, double h) {
+  const double smallest = (h / 5.0) * (h / 5.0), largest = h * h;
+  if (!(std::isfinite(largest) && smallest >= std::numeric_limits<double>::min()))
+    throw InputError(fmt::format(
+        "MPM: the grid box {:.4g} x {:.4g} m with cells of h = {:.4g} m gives particle volumes (h / n)^2 of "
+        "{:.4g} to {:.4g} m^2, outside what a double holds; give the box in units that make its size of "
+        "order one",
+        p.box.size().x(), p.box.size().y(), h, smallest, largest));
+  for (const MPMMaterial& m : p.materials) {
+    const double c = wave_speed(m.law, m.density);
+    if (!(std::isfinite(m.density * largest) && m.density * smallest >= std::numeric_limits<double>::min()))
+      throw InputError(
+          fmt::format("MPM: material '{}': density {:.4g} kg/m^3 gives particle masses of {:.4g} to "
+                      "{:.4g} kg, outside what a double holds; check its units",
+                      m.name, m.density, m.density * smallest, m.density * largest));
+    if (!(std::isfinite(c) && c > 0.0 && std::isfinite(h / c) && h / c > 0.0))
+      throw InputError(
+          fmt::format("MPM: material '{}': its wave speed {:.4g} m/s (density {:.4g} kg/m^3) gives no "
+                      "time step h / c with h = {:.4g} m; check its modulus and density",
+                      m.name, c, m.density, h));
+  }
+}
+
+/// The time step of a run (seed 002, "Theory: MPM Time Step"): dt = C h / c with C < 1, or a
+/// fixed step, whichever is smaller; c the fastest of the materials' wave speeds; then
+/// shortened so that a whole number of steps reaches end_time. InputError for a Courant
+/// number above 1 (unless allowed) and for more steps than a run may take.
+struct TimeStepPlan {
+  double h_over_c = 0.0;  ///< the Courant limit [s] (the consistent mass's fraction of h / c with it)
+  double dt = 0.0;        ///< [s]
+  int steps = 0;
+};
+
+TimeStepPlan plan_time_step(const MPMProblem& p, const MPMSettings& s, double h) {
+  check_scales(p, h);
+  double c = 0.0;
+  for (const MPMMaterial& m : p.materials) c = std::max(c, wave_speed(m.law, m.density));
+  TimeStepPlan plan;
+  plan.h_over_c = h / c;
+  std::string limit = "h / c";
+  if (s.mapping == GridMapping::pseudo_inverse) {
+    const double factor = consistent_mass_courant(s.method, s.degree);
+    plan.h_over_c *= factor;
+    limit = fmt::format("{} h / c (the pseudo-inverse mapping's consistent mass)", factor);
+  }
+  const bool allowed = s.allow_unstable_time_step;
+  if (s.courant > 1.0 && !allowed)
+    throw InputError(
+        fmt::format("MPM: Courant factor {} is above 1: the explicit step would exceed {} = {:.4g} s (h = "
+                    "{:.4g}, c = {:.4g} m/s); use courant <= 1 or set allow_unstable_time_step = true",
+                    s.courant, limit, plan.h_over_c, h, c));
+  if (s.time_step && *s.time_step > plan.h_over_c && !allowed)
+    throw InputError(
+        fmt::format("MPM: time_step {:.4g} s is above the Courant limit {} = {:.4g} s (h = {:.4g}, c = "
+                    "{:.4g} m/s, Courant number {:.3g}); use a smaller time_step or set "
+                    "allow_unstable_time_step = true",
+                    *s.time_step, limit, plan.h_over_c, h, c, *s.time_step / plan.h_over_c));
+  double dt = s.courant * plan.h_over_c;
+  if (s.time_step) dt = std::min(dt, *s.time_step);
+  plan.steps = step_count(s.end_time, dt, "MPM");
+  plan.dt = s.end_time / plan.steps;
+  return plan;
+}
+
+/// What to change for a particle of initial velocity v [m/s] that crosses |v| dt / h > 1 cells
+/// per step: a step that keeps it within one, or (when such steps could not reach end_time in
+/// max_time_steps) a lower velocity.
+std::string crossing_advice(double speed, double h, double end_time) {
+  const double step = h / speed;
+  if (!(end_time / step <= max_time_steps))
+    return fmt::format(
+        "a step short enough, h / |v| = {:.3g} s, would take {:.3g} steps to end_time {:.4g} s: lower the "
+        "velocity",
+        step, end_time / step, end_time);
+  return fmt::format("use time_step <= h / |v| = {:.3g} s or lower the velocity", step);
+}
+
+/// InputError (at `where`) for an initial velocity v at X whose kinetic energy overflows or
+/// that crosses more than a cell per step, |v| dt > h (the Courant condition of the velocity:
+/// the grid transfers assume a particle stays near the nodes it weighs); `allowed` (stability
+/// studies) lets the crossing through.
+void check_initial_velocity(const std::string& where, const Vec2& X, const Vec2& v, double dt, double h,
+                            double end_time, bool allowed) {
+  const double speed = v.stableNorm();  // no overflow of |v|^2 on the way
+  if (speed * dt > h && !allowed)
+    throw InputError(fmt::format(
+        "{}: the initial velocity at X = ({:.6g}, {:.6g}) is ({:.4g}, {:.4g}) m/s: a particle would cross "
+        "|v| dt / h = {:.3g} cells in one step (dt = {:.4g} s, h = {:.4g} m), more than the one cell the "
+        "grid transfers follow; {}",
+        where, X.x(), X.y(), v.x(), v.y(), speed * dt / h, dt, h, crossing_advice(speed, h, end_time)));
+  if (!std::isfinite(v.squaredNorm()))
+    throw InputError(
+        fmt::format("{}: the initial velocity at X = ({:.6g}, {:.6g}) is ({:.4g}, {:.4g}) m/s: its "
+                    "kinetic energy 1/2 m |v|^2 overflows; lower the velocity",
+                    where, X.x(), X.y(), v.x(), v.y()));
+}
+
+/// The particles of the problem's bodies, after every check that costs no particle: the
+/// settings, the grid's memory, the time step (Courant number, step count, sizes, wave
+/// speeds), the particles' count and memory (seed_bodies); each initial velocity as it is
+/// seeded.
+Particles seeded_particles(const MPMProblem& p, const MPMSettings& s) {
+  checked(s, p);
+  const double h = grid_for(p, s).spacing();
+  const TimeStepPlan plan = plan_time_step(p, s, h);
+  return seed_bodies(p.bodies, p.materials, p.box, h, s.particles_per_side, uses_domains(s.method),
+                     [&](const MPMBody& body, const Vec2& X, const Vec2& v) {
+                       check_initial_velocity(fmt::format("{}: body '{}'", body.velocity_key(), body.name), X,
+                                              v, plan.dt, h, s.end_time, s.allow_unstable_time_step);
+                     });
+}
+
+/// Runs f for particle p; a NumericalError from it (a grid function or a domain that fails
+/// there) gets the particle's index and reference position.
+template <class F>
+void for_particle(const Particles& P, Index p, F&& f) {
+  try {
+    f();
+  } catch (const NumericalError& e) {
+    std::string_view what = e.what();
+    if (what.starts_with("MPM: ")) what.remove_prefix(5);
+    throw NumericalError(fmt::format("MPM: {}: {}", particle_name(P, p), what));
+  }
+}
+
+/// A number as messages print it: "not finite" for an infinity or a NaN.
+std::string finite_text(double x) {
+  return std::isfinite(x) ? fmt::format("{:.4g}", x) : std::string("not finite");
+}
+
+/// "(x, y)" of a finite vector, "not finite" otherwise (messages never print a NaN).
+std::string vector_text(const Vec2& v) {
+  return v.allFinite() ? fmt::format("({:.4g}, {:.4g})", v.x(), v.y()) : std::string("not finite");
+}
+
 }  // namespace
 
 MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings)
-    : MPMSolver(problem, settings,
-                seed_bodies(problem.bodies, problem.materials, problem.box,
-                            problem.box.size().x() / std::max(settings.cells, 1), settings.particles_per_side,
-                            uses_domains(settings.method))) {}
+    : MPMSolver(problem, settings, seeded_particles(problem, settings)) {}
 
 MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particles)
     : problem_(std::move(problem)),
       settings_(checked(settings, problem_)),
-      grid_(problem_.box, settings_.cells, is_bspline(settings_.method) ? settings_.degree : 1,
-            grid_padding(settings_.method)),
+      grid_(grid_for(problem_, settings_)),
       basis_(settings_.method, grid_),
       particles_(std::move(particles)) {
+  const TimeStepPlan plan = plan_time_step(problem_, settings_, grid_.spacing());
+  h_over_c_ = plan.h_over_c;
+  dt_ = plan.dt;
+  steps_ = plan.steps;
   if (uses_domains(settings_.method) && particles_.half_size.size() != particles_.mass.size())
     throw InputError(fmt::format("MPM: method {} needs the particle domains", to_string(settings_.method)));
   if (particles_.size() == 0) throw InputError("MPM: the problem has no particles");
+  check_initial_state();
   if (settings_.method == MPMMethod::cpdi2 && particles_.corners.empty()) {
     particles_.corners.resize(particles_.mass.size());
     for (Index p = 0; p < particles_.size(); ++p)
@@ -168,6 +315,11 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
     const MaterialUpdate u = update(law, particles_.deformation[p], particles_.state[p], false);
     particles_.stress[p] = cauchy_stress(law, u.stress, particles_.deformation[p]);
     particles_.stress_zz[p] = u.stress_zz;
+    if (!particles_.stress[p].allFinite())
+      throw InputError(
+          fmt::format("MPM: {} starts with a stress that is not finite (J = det F = {:.4g}): the "
+                      "initial state is out of the material's range",
+                      particle_name(particles_, p), particles_.deformation[p].determinant()));
   }
   external_work_.assign(static_cast<std::size_t>(bodies_), 0.0);
   walls_ = grid_.wall_mask(settings_.walls);
@@ -175,36 +327,37 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
   body_.assign(particles_.mass.size(), Vec2::Zero());
   if (settings_.method == MPMMethod::bspline_mls)
     mls_ = std::make_unique<MLSReconstruction>(grid_, basis_, settings_.mls_basis, settings_.mls_support);
-
-  // Time step (seed 002, "Theory: MPM Time Step"): dt = C h / c with C < 1, or a fixed step,
-  // whichever is smaller; c the fastest of the materials' wave speeds.
-  double c = 0.0;
-  for (const MPMMaterial& m : problem_.materials) c = std::max(c, wave_speed(m.law, m.density));
-  h_over_c_ = grid_.spacing() / c;
-  const double wave = c;
-  std::string limit = "h / c";
-  if (settings_.mapping == GridMapping::pseudo_inverse) {
-    const double factor = consistent_mass_courant(settings_.method, settings_.degree);
-    h_over_c_ *= factor;
-    limit = fmt::format("{} h / c (the pseudo-inverse mapping's consistent mass)", factor);
+  if (settings_.mapping == GridMapping::pseudo_inverse)
     mass_matrix_ = std::make_unique<GridMassMatrix>(
         grid_, mass_matrix_radius(settings_.method, settings_.degree), settings_.mass_filter);
+}
+
+void MPMSolver::check_initial_state() const {
+  const Particles& P = particles_;
+  const std::size_t n = P.mass.size();
+  for (const std::size_t size : {P.volume0.size(), P.volume.size(), P.reference.size(), P.position.size(),
+                                 P.velocity.size(), P.deformation.size(), P.stress.size()})
+    if (size != n)
+      throw InputError(fmt::format("MPM: particle arrays of unequal length ({} and {})", n, size));
+  for (Index p = 0; p < P.size(); ++p) {
+    if (!P.reference[p].allFinite())
+      throw InputError(fmt::format("MPM: particle {} has a reference position that is not finite", p));
+    const auto refuse = [&](const std::string& what) {
+      throw InputError(fmt::format("MPM: {} starts with {}: the initial state is not a valid one",
+                                   particle_name(P, p), what));
+    };
+    if (!(P.mass[p] > 0.0 && std::isfinite(P.mass[p]))) refuse(fmt::format("mass {:.4g} kg", P.mass[p]));
+    if (!(P.volume0[p] > 0.0 && std::isfinite(P.volume0[p])))
+      refuse(fmt::format("volume {:.4g} m^2", P.volume0[p]));
+    if (!P.position[p].allFinite()) refuse("a position that is not finite");
+    const Mat2& F = P.deformation[p];
+    if (!F.allFinite() || !(F.determinant() > 0.0))
+      refuse(F.allFinite() ? fmt::format("J = det F = {:.4g} <= 0", F.determinant())
+                           : std::string("a non-finite F"));
+    if (!P.velocity[p].allFinite()) refuse("a velocity that is not finite");
+    check_initial_velocity(fmt::format("MPM: {}", particle_name(P, p)), P.reference[p], P.velocity[p], dt_,
+                           grid_.spacing(), settings_.end_time, settings_.allow_unstable_time_step);
   }
-  const bool allowed = settings_.allow_unstable_time_step;
-  if (settings_.courant > 1.0 && !allowed)
-    throw InputError(fmt::format(
-        "MPM: Courant factor {} is above 1: the explicit step would exceed {} = {:.4g} s (h = {:.4g}, c = {:.4g} m/s); "
-        "use courant <= 1 or set allow_unstable_time_step = true",
-        settings_.courant, limit, h_over_c_, grid_.spacing(), wave));
-  if (settings_.time_step && *settings_.time_step > h_over_c_ && !allowed)
-    throw InputError(fmt::format(
-        "MPM: time_step {:.4g} s is above the Courant limit {} = {:.4g} s (h = {:.4g}, c = {:.4g} m/s, Courant number "
-        "{:.3g}); use a smaller time_step or set allow_unstable_time_step = true",
-        *settings_.time_step, limit, h_over_c_, grid_.spacing(), wave, *settings_.time_step / h_over_c_));
-  double dt = settings_.courant * h_over_c_;
-  if (settings_.time_step) dt = std::min(dt, *settings_.time_step);
-  steps_ = step_count(settings_.end_time, dt, "MPM");
-  dt_ = settings_.end_time / steps_;
 }
 
 MPMSolver::~MPMSolver() = default;
@@ -290,7 +443,7 @@ void MPMSolver::compute_weights() {
   basis_.resize(weights_, P.size());
   at_time(time_, [&] {
     parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
-      for (Index p = begin; p < end; ++p) basis_.evaluate(P, p, weights_, p);
+      for (Index p = begin; p < end; ++p) for_particle(P, p, [&] { basis_.evaluate(P, p, weights_, p); });
     });
   });
 }
@@ -433,6 +586,8 @@ void MPMSolver::update_stress(double dt) {
   const Vec2* velocity = velocity_.data();
   const MPMMaterial* materials = problem_.materials.data();
   const int* material = P.material.data();
+  // Each block stops at its first failing particle, and parallel_blocks reports the lowest
+  // block's: the failure named is that of the lowest index, in every run.
   parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p) {
       const Mat2 L = velocity_gradient(weights_, p, P.velocity[p], mass, velocity, floor);
@@ -440,17 +595,9 @@ void MPMSolver::update_stress(double dt) {
       const Mat2 dF = exp_series(L, dt, kmax);
       const Vec2 f0 = dF * P.deformation[p].col(0), f1 = dF * P.deformation[p].col(1);
       const double J = f0.x() * f1.y() - f0.y() * f1.x();
-      if (!std::isfinite(J))  // the grid velocities it comes from are not finite: the step before blew up
-        throw NumericalError(fmt::format(
-            "MPM: particle {} (started at ({:.6g}, {:.6g})) has a non-finite velocity gradient at t = {:.6g} s: the "
-            "motion blew up (velocities without bound after an unstable step or a nearly inverted neighbour); use a "
-            "smaller time step, a finer grid or another method",
-            p, P.reference[p].x(), P.reference[p].y(), time_));
-      if (!(J > 0.0))
-        throw NumericalError(fmt::format(
-            "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has J = det F = {:.4g} <= 0 at t = {:.6g} s: "
-            "the material is inverted; use a smaller time step, a finer grid or another method",
-            p, P.position[p].x(), P.position[p].y(), P.reference[p].x(), P.reference[p].y(), J, time_));
+      // A finite J means finite columns (an infinite or NaN entry makes it NaN or infinite).
+      if (!(J > 0.0 && J < std::numeric_limits<double>::infinity()))
+        throw NumericalError(deformation_failure(p, L, dF, J, dt));
       Mat2& F = P.deformation[p];
       F.col(0) = f0;
       F.col(1) = f1;
@@ -462,14 +609,59 @@ void MPMSolver::update_stress(double dt) {
       P.state[p] = u.state;
       P.stress[p] = cauchy_stress(law, u.stress, F);
       P.stress_zz[p] = u.stress_zz;
-      if (!P.stress[p].allFinite())
-        throw NumericalError(fmt::format(
-            "MPM: particle {} at ({:.6g}, {:.6g}) (started at ({:.6g}, {:.6g})) has a non-finite stress at J = det F = "
-            "{:.4g}, t = {:.6g} s: the material is (nearly) inverted; use a smaller time step, a finer grid or another "
-            "method",
-            p, P.position[p].x(), P.position[p].y(), P.reference[p].x(), P.reference[p].y(), J, time_));
+      if (!P.stress[p].allFinite() || !std::isfinite(u.stress_zz))
+        throw NumericalError(
+            fmt::format("MPM: {} has a stress that is not finite at t = {:.6g} s, at J = det F = {:.4g} (F = "
+                        "[[{:.4g}, {:.4g}], [{:.4g}, {:.4g}]]): the material law overflowed on a nearly "
+                        "inverted or extremely stretched particle; use a smaller time step, a finer grid or "
+                        "another method",
+                        particle_name(P, p), time_, J, F(0, 0), F(0, 1), F(1, 0), F(1, 1)));
     }
   });
+}
+
+std::string MPMSolver::deformation_failure(Index p, const Mat2& L, const Mat2& dF, double J,
+                                           double dt) const {
+  const Particles& P = particles_;
+  const std::string who = particle_name(P, p);
+  if (!L.allFinite()) {
+    // The grid velocities it reads are not finite (an overflow in the grid sums or solve): name
+    // the first such node.
+    std::string node;
+    weights_.for_each(p, [&](Index i, double, const Vec2&) {
+      if (node.empty() && !velocity_[i].allFinite())
+        node = fmt::format(" (node {} at ({:.6g}, {:.6g}))", i, grid_.node(i).x(), grid_.node(i).y());
+    });
+    return fmt::format(
+        "MPM: {} has a velocity gradient that is not finite at t = {:.6g} s: the grid velocities it reads "
+        "are not finite{}, the motion blew up; use a smaller time step",
+        who, time_, node);
+  }
+  // det F was positive: the step's own increment dF = exp(dt L) inverted (or overflowed), so
+  // dt |L| is of order one: the nodes around the particle approach each other by about a cell
+  // per step. Whether the particle itself moves that far says which speed to lower.
+  const double h = grid_.spacing(), rate = L.norm(), speed = P.velocity[p].stableNorm();
+  const std::string what =
+      std::isfinite(J) ? fmt::format("J = det F = {:.4g} <= 0", J) : std::string("F overflowed");
+  std::string advice;
+  if (!std::isfinite(rate * dt))
+    advice = "its velocity gradient overflows: the motion blew up; use a smaller time step";
+  else if (speed * dt > h)
+    advice = fmt::format(
+        "it moves |v| dt / h = {:.3g} cells per step (|v| = {:.4g} m/s, dt = {:.4g} s, h = {:.4g} m): the "
+        "time step is too long for its velocity; {}",
+        speed * dt / h, speed, dt, h, crossing_advice(speed, h, settings_.end_time));
+  else
+    advice = fmt::format(
+        "dt |L| = {:.3g} (|L| = {:.4g} 1/s, dt = {:.4g} s): the grid velocities around it close a cell of h "
+        "= {:.4g} m in about {:.3g} steps; the time step is too long for this rate of deformation: use "
+        "time_step <= 0.5 / |L| = {:.3g} s or lower velocities",
+        dt * rate, rate, dt, h, 1.0 / (dt * rate), 0.5 / rate);
+  const double det = dF.determinant();
+  return fmt::format(
+      "MPM: {} has {} at t = {:.6g} s: the material inverted within one step (det dF = {} for the step's "
+      "increment dF = exp(dt L)); {}",
+      who, what, time_, std::isfinite(det) ? fmt::format("{:.4g}", det) : "not finite", advice);
 }
 
 void MPMSolver::compute_grid_forces() {
@@ -484,7 +676,7 @@ void MPMSolver::compute_grid_forces() {
   if (mls_) {  // eqs. (20), (21), (24), (25), reconstructing rho b (SPEC section 7)
     if (body_force)
       parallel_blocks(P.size(), 1024, [&](Index begin, Index end) {
-        for (Index p = begin; p < end; ++p) body_[p] = body_force(P.reference[p], tb);
+        for (Index p = begin; p < end; ++p) body_[p] = checked_body_force(p, tb);
       });
     // Both fields in one pass over the MLS functions.
     mls_->reconstruct<Eigen::Matrix<double, 2, 3>>(gauss_forces_, [&](Index p) {
@@ -510,12 +702,26 @@ void MPMSolver::compute_grid_forces() {
   } else {
     scatter<Vec2>(weights_, grid_.size(), force_, partial2_, [&](Index p) {
       // b_p by the thread that scatters p, at the particle's reference position.
-      if (body_force) body_[p] = body_force(P.reference[p], tb);
+      if (body_force) body_[p] = checked_body_force(p, tb);
       const Vec2 mb = P.mass[p] * body_[p];
       const Mat2 sv = P.volume[p] * P.stress[p];
       return [mb, sv](double S, const Vec2& G) { return Vec2(S * mb - sv * G); };  // eq. (26): f_b + f_int
     });
   }
+}
+
+Vec2 MPMSolver::checked_body_force(Index p, double t) const {
+  const Vec2 b = problem_.body_force(particles_.reference[p], t);
+  if (!b.allFinite()) [[unlikely]]
+    refuse_body_force(p, t);
+  return b;
+}
+
+void MPMSolver::refuse_body_force(Index p, double t) const {
+  throw InputError(
+      fmt::format("{}: the body force at {} is not finite at t = {:.6g} s; it must be finite wherever a "
+                  "body is, at every time of the run",
+                  problem_.body_force_where, particle_name(particles_, p), t));
 }
 
 void MPMSolver::update_grid_momentum() {
@@ -570,25 +776,28 @@ void MPMSolver::midpoint_weights() {
   basis_.resize(midpoint_weights_, P.size());
   at_time(time_, [&] {
     parallel_blocks(P.size(), 512, [&](Index begin, Index end) {
-      for (Index p = begin; p < end; ++p) {
-        Vec2 v = Vec2::Zero();
-        weights_.for_each(p, [&](Index i, double S, const Vec2&) { v += S * velocity[i]; });
-        const Vec2 x = P.position[p] + 0.5 * dt_ * v;
-        midpoint_positions_[p] = x;
-        if (corners) {
-          for (int k = 0; k < 4; ++k)
-            midpoint_corners_[p][k] = P.corners[p][k] + 0.5 * dt_ * basis_.hat_interpolate(P.corners[p][k], velocity_);
-          basis_.evaluate_quadrilateral(midpoint_corners_[p], x, midpoint_weights_, p);
-          continue;
-        }
-        const Vec2 half = P.half_size.empty() ? Vec2::Zero() : P.half_size[p];
-        if (!deforms) {
-          basis_.evaluate(x, P.deformation[p], half, midpoint_weights_, p);
-          continue;
-        }
-        const Mat2 L = velocity_gradient(weights_, p, P.velocity[p], mass, velocity, floor);
-        basis_.evaluate(x, Mat2(exp_series(L, 0.5 * dt_, kmax) * P.deformation[p]), half, midpoint_weights_, p);
-      }
+      for (Index p = begin; p < end; ++p)
+        for_particle(P, p, [&] {
+          Vec2 v = Vec2::Zero();
+          weights_.for_each(p, [&](Index i, double S, const Vec2&) { v += S * velocity[i]; });
+          const Vec2 x = P.position[p] + 0.5 * dt_ * v;
+          midpoint_positions_[p] = x;
+          if (corners) {
+            for (int k = 0; k < 4; ++k)
+              midpoint_corners_[p][k] =
+                  P.corners[p][k] + 0.5 * dt_ * basis_.hat_interpolate(P.corners[p][k], velocity_);
+            basis_.evaluate_quadrilateral(midpoint_corners_[p], x, midpoint_weights_, p);
+            return;
+          }
+          const Vec2 half = P.half_size.empty() ? Vec2::Zero() : P.half_size[p];
+          if (!deforms) {
+            basis_.evaluate(x, P.deformation[p], half, midpoint_weights_, p);
+            return;
+          }
+          const Mat2 L = velocity_gradient(weights_, p, P.velocity[p], mass, velocity, floor);
+          basis_.evaluate(x, Mat2(exp_series(L, 0.5 * dt_, kmax) * P.deformation[p]), half, midpoint_weights_,
+                          p);
+        });
     });
   });
   std::swap(weights_, midpoint_weights_);
@@ -604,7 +813,9 @@ void MPMSolver::half_kick_particles() {
     for (Index p = begin; p < end; ++p) {
       Vec2 a = Vec2::Zero();
       weights_.for_each(p, [&](Index i, double S, const Vec2&) { a += S * acceleration[i]; });
-      P.velocity[p] += kick * a;
+      const Vec2 v = P.velocity[p] + kick * a;
+      if (!v.allFinite()) throw NumericalError(motion_failure(p, a, Vec2::Zero(), v, P.position[p]));
+      P.velocity[p] = v;
     }
   });
 }
@@ -630,6 +841,9 @@ void MPMSolver::move_particles() {
   const Vec2* velocity = velocity_.data();
   const bool corners = settings_.method == MPMMethod::cpdi2;
   const bool midpoint = settings_.update == UpdateScheme::verlet;
+  const Box extent = grid_.extent();
+  // Each range stops at its first failing particle, and parallel_ranges reports the lowest
+  // range's: the failure named is that of the lowest index, in every run.
   parallel_ranges(P.size(), [&](int t, Index begin, Index end) {
     double* w = work.row(t);
     for (Index p = begin; p < end; ++p) {
@@ -638,24 +852,89 @@ void MPMSolver::move_particles() {
         if constexpr (kick) a += S * acceleration[i];
         v += S * velocity[i];
       });
-      if constexpr (kick) P.velocity[p] += dt_ * a;  // eq. (29)
+      const Vec2 vp = kick ? Vec2(P.velocity[p] + dt_ * a) : P.velocity[p];  // eq. (29)
       const Vec2 dx = dt_ * v;   // eq. (30)
-      P.position[p] += dx;
+      const Vec2 x = P.position[p] + dx;
+      // Checked before they are stored: a particle's state stays finite, and one that would
+      // leave the grid is named here, with its step, not by the next step's weights.
+      if (!vp.allFinite() || !x.allFinite()) throw NumericalError(motion_failure(p, a, v, vp, x));
+      // CPDI2: the corners move with the updated grid velocity at them (Sadeghirad et al.
+      // 2013), x_c += dt sum_i N_i(x_c) v_i; they lay on the grid for this step's weights.
+      // Verlet reads the velocity at the midpoint corners. A corner leaves the grid before
+      // its particle does: they are checked first.
+      DomainCorners moved;
+      if (corners)
+        for (int k = 0; k < 4; ++k) {
+          const Vec2& c = P.corners[p][k];
+          moved[k] = c + dt_ * basis_.hat_interpolate(midpoint ? midpoint_corners_[p][k] : c, velocity_);
+          if (!moved[k].allFinite() || !extent.contains(moved[k]))
+            throw NumericalError(motion_failure(p, a, v, vp, moved[k], k));
+        }
+      if (!extent.contains(x)) throw NumericalError(motion_failure(p, a, v, vp, x));
+      if (corners) P.corners[p] = moved;
+      P.velocity[p] = vp;
+      P.position[p] = x;
       if constexpr (kick) {
         w[P.body[p]] += P.mass[p] * body_[p].dot(dx - 0.5 * dt_ * dt_ * a);
       } else if (drift_work) {
         w[P.body[p]] += 0.5 * P.mass[p] * body_[p].dot(dx);
         drift_[p] = dx;
       }
-      // CPDI2: the corners move with the updated grid velocity at them (Sadeghirad et al.
-      // 2013), x_c += dt sum_i N_i(x_c) v_i; they lay on the grid for this step's weights.
-      // Verlet reads the velocity at the midpoint corners.
-      if (corners)
-        for (int k = 0; k < 4; ++k)
-          P.corners[p][k] += dt_ * basis_.hat_interpolate(midpoint ? midpoint_corners_[p][k] : P.corners[p][k], velocity_);
     }
   });
   work.add_to(external_work_);
+}
+
+std::string MPMSolver::motion_failure(Index p, const Vec2& a, const Vec2& v, const Vec2& vp, const Vec2& x,
+                                      int corner) const {
+  const Particles& P = particles_;
+  const std::string who = particle_name(P, p);
+  const double to = time_ + dt_;
+  // A grid value at the particle that is not finite: name the first node that holds one.
+  const auto grid_value = [&](const char* quantity, const std::vector<Vec2>& nodal) {
+    std::string node;
+    weights_.for_each(p, [&](Index i, double, const Vec2&) {
+      if (node.empty() && !nodal[i].allFinite())
+        node =
+            fmt::format("; node {} at ({:.6g}, {:.6g}) holds one", i, grid_.node(i).x(), grid_.node(i).y());
+    });
+    return fmt::format(
+        "MPM: {}: the grid {} at it is not finite in the step to t = {:.6g} s{}: the grid momenta or forces "
+        "overflowed, the motion blew up; use a smaller time step",
+        who, quantity, to, node);
+  };
+  if (!a.allFinite()) return grid_value("acceleration", acceleration_);
+  if (!v.allFinite()) return grid_value("velocity", velocity_);
+  const std::string moving = corner < 0 ? who : fmt::format("{}: its CPDI2 domain corner {}", who, corner);
+  if (!vp.allFinite() || !x.allFinite())
+    return fmt::format(
+        "MPM: {}: the velocity or position overflowed in the step to t = {:.6g} s (velocity {}, grid "
+        "acceleration {}): the motion blew up; use a smaller time step",
+        moving, to, vector_text(vp), vector_text(a));
+  // It left the grid: by more than a cell in one step (the step is too long for its speed),
+  // in an unstable run, or at the edge of the grid box.
+  const Box e = grid_.extent();
+  const Vec2& from = corner < 0 ? P.position[p] : P.corners[p][corner];
+  const double h = grid_.spacing(), moved = (x - from).stableNorm();
+  std::string cause;
+  if (moved > h)
+    cause = fmt::format(
+        "it moved {:.3g} cells in one step (|v| = {:.4g} m/s, dt = {:.4g} s, h = {:.4g} m): the time step is "
+        "too long for its velocity; {}",
+        moved / h, moved / dt_, dt_, h, crossing_advice(moved / dt_, h, settings_.end_time));
+  else if (dt_ > h_over_c_)
+    cause = fmt::format(
+        "the time step {:.4g} s is {:.3g} times the Courant limit {:.4g} s: the motion is unstable; use a "
+        "smaller time step",
+        dt_, dt_ / h_over_c_, h_over_c_);
+  else
+    cause =
+        "the body reached the edge of the grid: enlarge the grid box ([mpm] box) or hold that side with a "
+        "wall ([mpm] walls)";
+  return fmt::format(
+      "MPM: {} left the grid [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] in the step to t = {:.6g} s, from ({:.6g}, "
+      "{:.6g}) to ({:.6g}, {:.6g}); {}",
+      moving, e.lo.x(), e.hi.x(), e.lo.y(), e.hi.y(), to, from.x(), from.y(), x.x(), x.y(), cause);
 }
 
 void MPMSolver::complete_drift_work() {
@@ -699,6 +978,12 @@ MPMEnergy MPMSolver::energy() const {
     const double kinetic = 0.5 * P.mass[p] * P.velocity[p].squaredNorm();
     const double strain = P.volume0[p] * mfree::energy(problem_.materials[P.material[p]].law, P.deformation[p], P.state[p]);
     const double dissipated = P.volume0[p] * P.state[p].dissipation;
+    if (!std::isfinite(kinetic) || !std::isfinite(strain) || !std::isfinite(dissipated))
+      throw NumericalError(fmt::format(
+          "MPM: {} has an energy that is not finite at t = {:.6g} s (kinetic {}, strain {}, dissipated {}; "
+          "|v| = {}, J = det F = {}): the motion blew up; use a smaller time step",
+          particle_name(P, p), time_, finite_text(kinetic), finite_text(strain), finite_text(dissipated),
+          finite_text(P.velocity[p].norm()), finite_text(P.deformation[p].determinant())));
     b.kinetic += kinetic;
     b.strain += strain;
     b.dissipated += dissipated;
@@ -711,9 +996,23 @@ MPMEnergy MPMSolver::energy() const {
     e.sum.momentum += P.mass[p] * P.velocity[p];
   }
   for (int b = 0; b < bodies_; ++b) {
+    if (!std::isfinite(external_work_[b]))
+      throw NumericalError(
+          fmt::format("MPM: the work of the body forces on body {} is not finite at t = {:.6g} s: the "
+                      "motion blew up; use a smaller time step",
+                      b, time_));
     e.bodies[b].external = external_work_[b];
     e.sum.external += external_work_[b];
   }
+  // Each particle's figures are finite: a sum that is not overflowed.
+  const BodyEnergy& sum = e.sum;
+  if (!std::isfinite(sum.kinetic) || !std::isfinite(sum.strain) || !std::isfinite(sum.dissipated) ||
+      !std::isfinite(sum.external) || !sum.momentum.allFinite())
+    throw NumericalError(
+        fmt::format("MPM: the energies summed over the particles overflow at t = {:.6g} s (kinetic {}, "
+                    "strain {}, work of the body forces {}): the motion blew up; use a smaller time step or "
+                    "lower velocities",
+                    time_, finite_text(sum.kinetic), finite_text(sum.strain), finite_text(sum.external)));
   return e;
 }
 

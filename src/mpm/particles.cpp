@@ -7,6 +7,10 @@
 
 namespace mfree {
 
+std::string particle_name(const Particles& P, Index p) {
+  return fmt::format("particle {} (started at ({:.6g}, {:.6g}))", p, P.reference[p].x(), P.reference[p].y());
+}
+
 Particles fill_box(const Box& box, double h, int per_side, double density, bool with_domains) {
   if (per_side < 1 || per_side > 5)
     throw InputError(fmt::format("particles: 1 to 5 particles per cell side (1 to 25 per cell), got {}", per_side));

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
@@ -85,6 +86,52 @@ TEST_CASE("bodies that cannot be seeded are refused naming the body", "[mpm]") {
   MPMBody dense = circle("dense", Vec2(0.5, 0.5), 0.2);
   dense.particles_per_side = 6;
   CHECK_THAT(error({dense}), Catch::Contains("key 'dense'") && Catch::Contains("1 to 5 particles per cell side"));
+}
+
+TEST_CASE("every body is checked before any is seeded; a non-finite initial velocity is refused at its key",
+          "[mpm]") {
+  // The second body reaches outside the box: refused before the first one's shape is asked
+  // about a single point (no particle seeded).
+  long long asked = 0;
+  MPMBody first = circle("first", Vec2(0.3, 0.3), 0.2);
+  first.contains = [&asked](const Vec2& x) {
+    ++asked;
+    return (x - Vec2(0.3, 0.3)).squaredNorm() <= 0.04;
+  };
+  const MPMBody outside = circle("outside", Vec2(0.9, 0.9), 0.2);
+  CHECK_THAT(testing::message_of<InputError>([&] {
+               (void)seed_bodies({first, outside}, rubber, unit, 0.1, 2, false);
+             }),
+             Catch::Contains("key 'outside'") && Catch::Contains("reaches outside the grid box"));
+  CHECK(asked == 0);
+  // So are more particles than an Index holds (h = 1e-5: 1e10 sub-cells x 4 in the first).
+  CHECK_THAT(
+      testing::message_of<InputError>([&] { (void)seed_bodies({first}, rubber, unit, 1e-5, 2, false); }),
+      Catch::Contains("key 'first'") && Catch::Contains("more than the 2147483647 a problem may have"));
+  CHECK(asked == 0);
+  // An initial velocity that is not finite names the velocity's key, the body and X.
+  MPMBody fast = circle("fast", Vec2(0.5, 0.5), 0.2);
+  fast.velocity_where = "scene.toml:9:1: key 'body[0].velocity'";
+  fast.initial_velocity = [](const Vec2& X) {
+    return Vec2(X.x() > 0.6 ? std::numeric_limits<double>::infinity() : 1.0, 0.0);
+  };
+  const std::string what =
+      testing::message_of<InputError>([&] { (void)seed_bodies({fast}, rubber, unit, 0.1, 2, false); });
+  CHECK_THAT(what, Catch::Contains(
+                       "scene.toml:9:1: key 'body[0].velocity': body 'fast': the initial velocity at X = "
+                       "(0.625, 0.375)") &&
+                       Catch::Contains("not a finite number"));
+  // The solver's check sees every particle as it is seeded, in order.
+  std::vector<Vec2> seen;
+  fast.initial_velocity = [](const Vec2&) { return Vec2(1.0, 2.0); };
+  const Particles P =
+      seed_bodies({fast}, rubber, unit, 0.1, 2, false, [&](const MPMBody& b, const Vec2& X, const Vec2& v) {
+        CHECK(b.name == "fast");
+        CHECK(v == Vec2(1.0, 2.0));
+        seen.push_back(X);
+      });
+  REQUIRE(seen.size() == static_cast<std::size_t>(P.size()));
+  for (Index p = 0; p < P.size(); ++p) CHECK(seen[p] == P.reference[p]);
 }
 
 TEST_CASE("each particle's own material sets its stress, its strain energy and the time step", "[mpm]") {

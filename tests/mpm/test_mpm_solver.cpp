@@ -1,15 +1,17 @@
 // The MPM stepper: exact rigid translation, uniform-strain motion under every update scheme,
 // convergence on the vibration problem, and the Courant limit.
 
+#include <fmt/format.h>
+#include <omp.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fmt/format.h>
 #include <iostream>
 
 #include "../test_support.hpp"
-#include "mfree/problems/axis_aligned_vibration.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/mpm/particle_errors.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 
 using namespace mfree;
 
@@ -399,29 +401,142 @@ TEST_CASE("a time step over the Courant limit is refused unless allowed", "[mpm]
   CHECK(MPMSolver(block_problem(), s).courant_limit() == Approx(0.35 * limit).epsilon(1e-12));
 }
 
-TEST_CASE("a blown-up motion and an inverted particle stop the run with what happened, never a NaN position", "[mpm]") {
+TEST_CASE("a non-finite initial state is refused as an input, never stepped", "[mpm]") {
   const double h = 0.125;
   const Box block{Vec2(0.25, 0.25), Vec2(0.75, 0.75)};
   const Method bspline{MPMMethod::bspline, 2};
-  // One particle's velocity is infinite (as after an unstable step): the grid velocities it
-  // reaches are not finite, and the stress update names the blow-up, not a NaN J.
+  // One particle's velocity is infinite: refused at once, naming it by its index and
+  // reference position.
   Particles particles = fill_box(block, h, 2, 1000.0, false);
   particles.velocity[5] = Vec2(std::numeric_limits<double>::infinity(), 0.0);
-  MPMSolver blown(block_problem(), settings_for(bspline, UpdateScheme::usf, 8), std::move(particles));
-  CHECK_THROWS_WITH(blown.step(), Catch::Contains("has a non-finite velocity gradient") && !Catch::Contains("nan"));
-  // The two halves of the block rushing into each other, with the one-term update
-  // dF = I + dt L: dt L_xx < -1 between them inverts the material, and J <= 0 is named with a
-  // finite position.
-  particles = fill_box(block, h, 2, 1000.0, false);
-  for (Index p = 0; p < particles.size(); ++p)
-    particles.velocity[p] = Vec2(particles.position[p].x() < 0.5 ? 3e3 : -3e3, 0.0);
-  MPMSettings fast = settings_for(bspline, UpdateScheme::usf, 8);
-  fast.deformation_terms = 1;
-  fast.allow_unstable_time_step = true;
-  fast.time_step = 1e-4;
-  MPMSolver inverted(block_problem(), fast, std::move(particles));
-  CHECK_THROWS_WITH(inverted.step(), Catch::Contains("<= 0 at t = ") && Catch::Contains("the material is inverted") &&
-                                         !Catch::Contains("nan"));
+  const std::string what = testing::message_of<InputError>(
+      [&] { MPMSolver(block_problem(), settings_for(bspline, UpdateScheme::usf, 8), particles); });
+  CHECK_THAT(what, Catch::Contains(
+                       "MPM: particle 5 (started at (0.59375, 0.28125)) starts with a velocity that is not "
+                       "finite") &&
+                       !Catch::Contains("nan") && !Catch::Contains("inf"));
+  // So is a finite one that crosses more than a cell per step (|v| dt / h = 2.4 at dt = 1e-4
+  // s), unless the settings allow unstable steps.
+  particles.velocity[5] = Vec2(3e3, 0.0);
+  MPMSettings s = settings_for(bspline, UpdateScheme::usf, 8);
+  s.time_step = 1e-4;
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(block_problem(), s, particles); }),
+             Catch::Contains("particle 5 (started at (0.59375, 0.28125))") &&
+                 Catch::Contains("|v| dt / h = 2.4 cells") &&
+                 Catch::Contains("use time_step <= h / |v| = 4.17e-05 s"));
+  s.allow_unstable_time_step = true;
+  CHECK(MPMSolver(block_problem(), s, particles).time_step() == 1e-4);
+}
+
+TEST_CASE("a seeded body's initial velocity that no step can follow is refused at its key before the run",
+          "[mpm]") {
+  MPMProblem problem = block_problem();
+  MPMBody& body = problem.bodies.front();
+  body.bounds = {Vec2(0.25, 0.25), Vec2(0.75, 0.75)};
+  body.contains = [b = body.bounds](const Vec2& x) { return b.contains(x); };
+  body.velocity_where = "scene.toml:12:1: key 'body[0].velocity'";
+  MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 8);
+  s.particles_per_side = 2;
+  s.time_step = 1e-4;
+  s.end_time = 0.005;
+  // 1e200 m/s: h / |v| = 1.25e-201 s would take 4e198 steps: the advice is to lower it, not
+  // to shorten the step.
+  body.initial_velocity = [](const Vec2&) { return Vec2(1e200, 0.0); };
+  std::string what = testing::message_of<InputError>([&] { MPMSolver(problem, s); });
+  CHECK_THAT(what, Catch::Contains(
+                       "scene.toml:12:1: key 'body[0].velocity': body 'block': the initial velocity at X = "
+                       "(0.28125, 0.28125) is (1e+200, 0) m/s") &&
+                       Catch::Contains("|v| dt / h = 8e+196 cells") && Catch::Contains("4e+198 steps") &&
+                       Catch::EndsWith("lower the velocity") && !Catch::Contains("time_step <="));
+  // Allowed unstable steps still refuse an overflowing kinetic energy.
+  s.allow_unstable_time_step = true;
+  what = testing::message_of<InputError>([&] { MPMSolver(problem, s); });
+  CHECK_THAT(what, Catch::Contains("key 'body[0].velocity'") &&
+                       Catch::Contains("kinetic energy 1/2 m |v|^2 overflows"));
+}
+
+TEST_CASE("the Courant number and the particle count are checked before a particle is seeded", "[mpm]") {
+  // 1491 x 1491 cells of 9 particles: 2.0e7 particles, and time_step 5e-5 s is 8.6 times the
+  // Courant limit h / c = 5.8e-6 s. The body's shape is never asked about a point: no
+  // particle is seeded (nor, before that, any array of them allocated).
+  MPMProblem problem = block_problem();
+  long long asked = 0;
+  problem.bodies.front().contains = [&asked](const Vec2&) {
+    ++asked;
+    return true;
+  };
+  MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 1491);
+  s.particles_per_side = 3;
+  s.time_step = 5e-5;
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(problem, s); }),
+             Catch::Contains("time_step 5e-05 s is above the Courant limit h / c = 5.781e-06 s"));
+  CHECK(asked == 0);
+  // A step count past the limit, and more particles than an Index holds: refused alike.
+  s.time_step.reset();
+  s.end_time = 1e6;
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(problem, s); }),
+             Catch::Contains("more than the 1e+09"));
+  s.end_time = 1.0;
+  s.cells = 10000;  // 2.5e9 particles (or, on a small machine, a grid beyond its memory)
+  s.particles_per_side = 5;
+  CHECK_THAT(testing::message_of<InputError>([&] { MPMSolver(problem, s); }),
+             Catch::Contains("a problem may have") || Catch::Contains("GiB of memory"));
+  CHECK(asked == 0);
+}
+
+TEST_CASE("an inverted particle stops the run with its index, reference position, the time and the cause",
+          "[mpm]") {
+  // Two halves of a block rushing into each other with the one-term update dF = I + dt L
+  // (dt = 1e-4 s, within the Courant limit h / c = 1.08e-3 s): at 1200 m/s each (|v| dt =
+  // 0.96 h, within a cell per step) dt |L| = 1.06 > 1 at the interface inverts the particles
+  // next to it in the first step. The first of them in index order is named, with every
+  // thread count: the particle left of the interface in the bottom row.
+  const Box left{Vec2(0.25, 0.25), Vec2(0.5, 0.75)}, right{Vec2(0.5, 0.25), Vec2(0.75, 0.75)};
+  MPMProblem problem = block_problem();
+  problem.bodies = {rectangle_body("left", left), rectangle_body("right", right)};
+  const auto rushing = [&](double speed, double dt) {
+    problem.bodies[0].initial_velocity = [speed](const Vec2&) { return Vec2(speed, 0.0); };
+    problem.bodies[1].initial_velocity = [speed](const Vec2&) { return Vec2(-speed, 0.0); };
+    MPMSettings s = settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 8);
+    s.particles_per_side = 2;
+    s.deformation_terms = 1;
+    s.time_step = dt;
+    s.allow_unstable_time_step = true;  // lets |v| dt > h through, for the second case
+    MPMSolver solver(problem, s);
+    return testing::message_of<NumericalError>([&] {
+      for (int n = 0; n < 10; ++n) solver.step();
+    });
+  };
+  const int threads = omp_get_max_threads();
+  for (int t : {1, std::max(2, threads)}) {
+    omp_set_num_threads(t);
+    const std::string what = rushing(1200.0, 1e-4);
+    INFO(t << " threads: " << what);
+    CHECK_THAT(what, Catch::StartsWith("MPM: particle 3 (started at (0.46875, 0.28125)) has J = det F = ") &&
+                         Catch::Contains("<= 0 at t = 0 s") && Catch::Contains("dt |L| = 1.0") &&
+                         Catch::Contains("the time step is too long for this rate of deformation") &&
+                         !Catch::Contains("nan"));
+  }
+  omp_set_num_threads(threads);
+  // At 3000 m/s (2.4 cells per step, allowed) the particle's own speed is named as the cause.
+  CHECK_THAT(rushing(3e3, 1e-4), Catch::Contains("(started at (") &&
+                                     Catch::Contains("it moves |v| dt / h = 2.4 cells per step") &&
+                                     Catch::Contains("too long for its velocity") && !Catch::Contains("nan"));
+}
+
+TEST_CASE("a body force that is not finite stops the run at its key, naming the particle", "[mpm]") {
+  MPMProblem problem = block_problem();  // 3 x 3 particles per cell of the unit box, 8 x 8 cells
+  problem.body_force = [](const Vec2& X, double t) {
+    return t > 0.0 && X.y() > 0.5 ? Vec2(std::nan(""), 0.0) : Vec2(0.0, -9.81);
+  };
+  problem.body_force_where = "scene.toml:20:1: key 'mpm.gravity'";
+  MPMSolver solver(problem, settings_for({MPMMethod::bspline, 2}, UpdateScheme::usf, 8));
+  const std::string what = testing::message_of<InputError>([&] { solver.step(); });
+  // 3 x 3 particles per cell, 24 per row, row by row: the first above y = 0.5 starts row 12.
+  CHECK_THAT(what, Catch::StartsWith(
+                       "scene.toml:20:1: key 'mpm.gravity': the body force at particle 288 (started at "
+                       "(0.0208333, 0.520833)) is not finite at t = ") &&
+                       !Catch::Contains("nan"));
 }
 
 TEST_CASE("a J2 block carries each particle's history: every method and scheme updates it where the stress is",
@@ -504,6 +619,8 @@ TEST_CASE("CPDI2's corners: seeded from the domains, required on resume, a corne
   } catch (const NumericalError& e) {
     what = e.what();
   }
-  CHECK_THAT(what, Catch::Contains("MPM: a CPDI2 particle corner at (1.1") && Catch::Contains("(of the particle at (1.") &&
-                       Catch::Contains("left the grid [-0.125, 1.125]") && Catch::Contains("at t = "));
+  CHECK_THAT(what,
+             Catch::StartsWith("MPM: particle ") && Catch::Contains("): its CPDI2 domain corner ") &&
+                 Catch::Contains("left the grid [-0.125, 1.125] x [-0.125, 1.125] in the step to t = ") &&
+                 Catch::Contains("to (1.1") && Catch::Contains("the body reached the edge of the grid"));
 }

@@ -45,4 +45,14 @@ TEST_CASE("built-in solutions: each entry is static or a motion, and builds what
   linear_law.neo_hookean = false;
   CHECK_THROWS_WITH(builtin_solutions().value("vibration").motion(amplitude, linear_law),
                     Catch::Contains("neo_hookean"));
+  // At |A| >= L / (2 pi) the motion itself inverts the material (F_xx = 1 - 2 pi A / L at its
+  // extreme), and its body force is not a number: refused; just below, a finite one.
+  amplitude.numbers["amplitude"] = -0.16;
+  CHECK_THROWS_WITH(builtin_solutions().value("vibration").motion(amplitude, square),
+                    Catch::Contains("amplitude of L / (2 pi) = 0.159155 m or more") &&
+                        Catch::Contains("amplitude -0.16 m is not below it"));
+  amplitude.numbers["amplitude"] = 0.159;
+  const ExactMotion near = builtin_solutions().value("vibration").motion(amplitude, square);
+  CHECK(near.body_force(Vec2(0.5, 0.5), 0.005).allFinite());
+  CHECK(near.body_force(Vec2(0.0, 0.0), 0.005).allFinite());
 }

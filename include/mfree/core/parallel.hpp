@@ -4,8 +4,10 @@
 // Per-point kernels stay free of threading: a caller hands a range body to
 // parallel_blocks(), which splits [0, n) into blocks and runs each block on one thread.
 // A body may allocate its scratch once per block. An exception thrown inside a block is
-// carried out of the parallel region and rethrown on the calling thread (the first one
-// wins), so a NumericalError in a kernel reaches the user as it would serially.
+// carried out of the parallel region and rethrown on the calling thread: that of the lowest
+// block (parallel_blocks) or range (parallel_ranges), whatever the threads' timing. A body
+// that throws at the first failing point of its block thus reports the lowest failing index
+// of all, as a serial loop would, the same in every run.
 
 #include <atomic>
 #include <exception>
@@ -25,18 +27,22 @@ void parallel_blocks(Index n, Index block, Body&& body) {
   if (n <= 0) return;
   const Index nblocks = (n + block - 1) / block;
   std::exception_ptr error;
-  std::atomic<bool> failed{false};
+  // The lowest block that failed so far (nblocks: none); blocks above it are skipped, those
+  // below still run, as one of them may fail at a lower index.
+  std::atomic<Index> failed{nblocks};
 #pragma omp parallel for schedule(dynamic, 1)
   for (Index b = 0; b < nblocks; ++b) {
-    if (failed.load(std::memory_order_relaxed)) continue;
+    if (b > failed.load(std::memory_order_relaxed)) continue;
     try {
       const Index begin = b * block;
       const Index end = begin + block < n ? begin + block : n;
       body(begin, end);
     } catch (...) {
 #pragma omp critical(mfree_parallel_error)
-      if (!error) error = std::current_exception();
-      failed.store(true, std::memory_order_relaxed);
+      if (b < failed.load(std::memory_order_relaxed)) {
+        error = std::current_exception();
+        failed.store(b, std::memory_order_relaxed);
+      }
     }
   }
   if (error) std::rethrow_exception(error);
@@ -48,6 +54,7 @@ void parallel_blocks(Index n, Index block, Body&& body) {
 template <class Body>
 void parallel_ranges(Index n, Body&& body) {
   std::exception_ptr error;
+  int failed = -1;  // the lowest thread (range) that failed
 #pragma omp parallel
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
@@ -57,7 +64,10 @@ void parallel_ranges(Index n, Body&& body) {
       body(t, begin, end);
     } catch (...) {
 #pragma omp critical(mfree_parallel_error)
-      if (!error) error = std::current_exception();
+      if (failed < 0 || t < failed) {
+        error = std::current_exception();
+        failed = t;
+      }
     }
   }
   if (error) std::rethrow_exception(error);

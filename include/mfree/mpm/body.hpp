@@ -11,8 +11,12 @@
 // about perimeter x h / (2n) at most).
 //
 // Nothing is silently dropped or shared: a body without particles, a body reaching outside
-// the grid box, and a sub-cell centre inside two bodies (overlapping bodies) are input
-// errors naming the body's scene key.
+// the grid box, a sub-cell centre inside two bodies (overlapping bodies) and an initial
+// velocity that is not finite are input errors naming the body's scene key.
+//
+// Cheap checks first: every body's place in the box, its particles per cell, and the count
+// and memory of all the particles (an upper bound, the sub-cells of the cells their bounding
+// boxes meet) are checked before the first particle is seeded.
 
 #include <functional>
 #include <string>
@@ -47,7 +51,19 @@ struct MPMBody {
   std::function<Vec2(const Vec2& X)> initial_velocity;  ///< [m/s]; empty: at rest
   /// Where the body is defined, for messages ("scene.toml:20:1: key 'body[1].shape'").
   std::string where;
+  /// Where its initial velocity is given ("scene.toml:22:1: key 'body[1].velocity'"); empty:
+  /// `where`.
+  std::string velocity_where;
+  /// velocity_where, or where when that is empty.
+  [[nodiscard]] const std::string& velocity_key() const {
+    return velocity_where.empty() ? where : velocity_where;
+  }
 };
+
+/// Called for every particle as it is seeded, with its body, reference position X and
+/// initial velocity v (finite): throws to refuse it (the solver's check of v against the
+/// time step and the grid).
+using VelocityCheck = std::function<void(const MPMBody& body, const Vec2& X, const Vec2& v)>;
 
 /// The body that is the rectangle `box`: material 0, the settings' particles per cell, at rest.
 MPMBody rectangle_body(std::string name, const Box& box);
@@ -56,8 +72,11 @@ MPMBody rectangle_body(std::string name, const Box& box);
 /// seeded in the cells of size h of `box` as above; default_per_side where a body states
 /// none; with_domains fills half_size = (h / (2n), h / (2n)) (uses_domains() methods). Throws InputError
 /// (naming the body's `where`) for a body outside the box, one without particles, overlapping
-/// bodies, or a per-side count outside [1, 5].
-Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMMaterial>& materials, const Box& box,
-                      double h, int default_per_side, bool with_domains);
+/// bodies, a per-side count outside [1, 5], more particles than an Index holds or than the
+/// memory takes (before any is seeded), and (naming velocity_key()) a non-finite initial
+/// velocity; check_velocity (if given) sees every particle's initial velocity.
+Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMMaterial>& materials,
+                      const Box& box, double h, int default_per_side, bool with_domains,
+                      const VelocityCheck& check_velocity = {});
 
 }  // namespace mfree

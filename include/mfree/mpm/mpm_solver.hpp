@@ -46,8 +46,18 @@
 // The stress update (eqs. 34-37): L_p = sum_i (v_i - v_p) G_ip^T (the same as sum v_i G_ip^T,
 // since sum_i G_ip = 0, but exactly zero for a uniform velocity), the incremental deformation
 // gradient dF = sum_{k=0..kmax} (dt L_p)^k / k! (seed 002), F_p <- dF F_p, V_p = J V_p0 and
-// sigma_p from the particle's material (materials/, the laws the Galerkin solver uses). J <= 0
-// stops the run with a NumericalError naming the particle, where it is and the time.
+// sigma_p from the particle's material (materials/, the laws the Galerkin solver uses).
+//
+// Failures are caught where they arise, before a NaN can spread: the stress update stops at
+// J <= 0 (det F was positive, so the step's own dF inverted: dt |L| of order one), a
+// non-finite F or stress; moving the particles, at a velocity or position that is not finite
+// or that leaves the grid (CPDI2: a corner); the grid forces, at a body force that is not
+// finite; energy(), at an energy that is not. Each names the particle by its index and its
+// reference position X_p, the time, the quantity and its value, and the cause it points to
+// (a step too long for the particle's speed, for its rate of deformation, an unstable step,
+// a body at the edge of the grid). Each loop stops at its first failing particle and the
+// parallel loops keep the lowest block's (core/parallel.hpp): the particle named is the
+// lowest failing index, in every run.
 // V_p = J V_p0 for every method, CPDI2 too: it is the volume of the F the stress comes from
 // (the area of CPDI2's quadrilateral equals it for affine motions and drifts from it by
 // the corners' own time integration otherwise; the area only normalises CPDI2's weights).
@@ -59,7 +69,12 @@
 // materials in the reference state (each with its own density), then shortened so that a
 // whole number of steps reaches end_time. A
 // Courant number above 1 (a time_step or courant beyond h / c) is refused unless the settings
-// allow it (stability studies).
+// allow it (stability studies), and so is an initial velocity that crosses more than a cell
+// per step, |v| dt > h (the Courant condition of the velocity). Sizes that overflow or vanish
+// in double precision (cell, particle volume and mass, wave speed), a non-finite initial
+// state and an initial kinetic energy that overflows are refused always. Every check that
+// costs no particle (settings, grid memory, time step, particle count and memory) runs before
+// the first particle is seeded, and each initial velocity as its particle is.
 
 #include <functional>
 #include <memory>
@@ -108,6 +123,8 @@ struct MPMProblem {
   std::vector<MPMBody> bodies;           ///< inside the box, not overlapping
   /// Body force per unit mass [m/s^2], at reference positions X_p and time t; may be empty.
   std::function<Vec2(const Vec2& X, double t)> body_force;
+  /// Where the body force is given, for messages ("scene.toml:30:1: key 'mpm.gravity'").
+  std::string body_force_where = "the problem's body force";
 };
 
 /// Energies [J per unit thickness] and momentum [kg m/s per unit thickness] of a set of
@@ -131,7 +148,9 @@ struct MPMEnergy {
 class MPMSolver {
  public:
   /// Builds grid, particles (seeded in the bodies) and weights; throws InputError for bad
-  /// settings, among them a time step over the Courant limit, and bad bodies (body.hpp).
+  /// settings, among them a time step over the Courant limit, bad bodies (body.hpp) and
+  /// initial velocities (at the body's velocity key), all but the last before any particle
+  /// is seeded.
   MPMSolver(MPMProblem problem, MPMSettings settings);
   /// Tests: start from the given particles (their body and material indices into the
   /// problem's lists; problem.bodies may be empty) instead of seeding the bodies. CPDI2
@@ -176,6 +195,10 @@ class MPMSolver {
   [[nodiscard]] StageTimer& timer() { return timer_; }
 
  private:
+  /// InputError for a particle whose initial state is not valid: mass, volume, position, F or
+  /// velocity not finite, J <= 0, or (unless allow_unstable_time_step) a velocity that crosses
+  /// more than a cell per step, |v| dt > h.
+  void check_initial_state() const;
   /// InputError unless P has corners for every particle with cpdi2 and none otherwise.
   void check_corners(const Particles& P) const;
   void compute_weights();
@@ -184,7 +207,16 @@ class MPMSolver {
   void update_mls_functions(const std::vector<Vec2>& positions);
   void particles_to_grid();
   void update_stress(double dt);
+  /// The message for particle p whose stress update over dt failed (velocity gradient L,
+  /// increment dF, new J): which quantity, its value, and the cause (a step too long for the
+  /// particle's velocity, or for its rate of deformation, or a blown-up grid).
+  [[nodiscard]] std::string deformation_failure(Index p, const Mat2& L, const Mat2& dF, double J,
+                                                double dt) const;
   void compute_grid_forces();
+  /// b(X_p, t) of particle p; InputError (at body_force_where) when it is not finite.
+  [[nodiscard]] Vec2 checked_body_force(Index p, double t) const;
+  /// Throws that InputError (out of line: the loops that call the above stay small).
+  [[noreturn, gnu::noinline, gnu::cold]] void refuse_body_force(Index p, double t) const;
   void update_grid_momentum();
   void grid_to_particles();
   void extrapolate_updated_momenta();
@@ -221,6 +253,12 @@ class MPMSolver {
   /// S_ip a_i (eq. 29).
   template <bool kick>
   void move_particles();
+  /// The message for particle p whose move failed: the grid acceleration a and velocity v at
+  /// it, its new velocity vp and the new position x of it (corner < 0) or of its CPDI2 domain
+  /// corner `corner` (a non-finite one, or one off the grid), and the cause (the grid blew up,
+  /// a step too long for its velocity, an unstable step, or a body at the edge of the grid).
+  [[nodiscard]] std::string motion_failure(Index p, const Vec2& a, const Vec2& v, const Vec2& vp,
+                                           const Vec2& x, int corner = -1) const;
   /// verlet: the second half of the body forces' work over the drift, m_p b(t + dt) . dx_p / 2
   /// (move_particles adds the first, with b(t)).
   void complete_drift_work();

@@ -7,6 +7,7 @@
 // belongs to one body and is made of one material (indices into the problem's lists).
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "mfree/core/types.hpp"
@@ -43,6 +44,10 @@ struct Particles {
 
   [[nodiscard]] Index size() const { return static_cast<Index>(mass.size()); }
 };
+
+/// "particle p (started at (X, Y))": a particle as messages name it, by its index and its
+/// reference position X_p (finite whatever became of its current state).
+std::string particle_name(const Particles& P, Index p);
 
 /// per_side^2 particles in every cell of size h of the box, at the centres of a regular
 /// per_side x per_side subdivision of the cell; mass density * volume, F = I, zero velocity
