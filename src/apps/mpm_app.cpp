@@ -5,14 +5,15 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include "mfree/apps/probe_study.hpp"
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
-#include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/mpm/particle_probe.hpp"
 
@@ -164,15 +165,22 @@ void save_energy(CheckpointState& state, const std::vector<MPMEnergy>& energy) {
   state.put("energy", std::move(flat));
 }
 
-std::vector<MPMEnergy> restore_energy(const CheckpointState& state, std::size_t bodies) {
-  const std::vector<double>& flat = state.get("energy");
+/// The energy records of a checkpoint: `count` records (1 + 6 (bodies + 1) numbers each) at
+/// times in [0, time], with kinetic energies of 0 or more.
+std::vector<MPMEnergy> restore_energy(const CheckpointState& state, std::size_t bodies, std::size_t count,
+                                      double time) {
   const std::size_t record = 1 + 6 * (bodies + 1);
-  if (flat.size() % record != 0) throw InputError(fmt::format("checkpoint {}: energy records of another problem", state.source.string()));
+  const std::vector<double>& flat = state.get("energy", count * record);
   std::vector<MPMEnergy> out;
   for (std::size_t at = 0; at < flat.size();) {
     MPMEnergy e;
+    if (!(flat[at] >= 0.0 && flat[at] <= time))
+      state.refuse("energy", fmt::format("value {} is {}, not a time of the run so far (0 to {} s)", at,
+                                         flat[at], time));
     e.time = flat[at++];
     const auto next = [&] {
+      if (!(flat[at] >= 0.0))
+        state.refuse("energy", fmt::format("value {} is {}, not a kinetic energy (0 or more)", at, flat[at]));
       BodyEnergy b;
       b.kinetic = flat[at];
       b.strain = flat[at + 1];
@@ -239,50 +247,116 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   return s;
 }
 
-void restore_run(const CheckpointState& s, MPMSolver& solver, MPMRun& run, std::optional<MPMFrames>& frames) {
+// Restoring a checkpoint: every array is checked against this run before it is used
+// (io/checkpoint.hpp), so that a checkpoint that is whole but wrong is refused, naming the
+// array and the value, instead of indexing past the scene's lists or running past its end.
+
+constexpr double unbounded = std::numeric_limits<double>::infinity();
+constexpr double smallest_positive = std::numeric_limits<double>::denorm_min();
+
+/// The particles of checkpoint `s`: every array of the scene's particle count n (half sizes
+/// for the methods with domains, corners for CPDI2, none otherwise); mass, volumes, half sizes
+/// and det F positive; alpha 0 or more; body and material indices of the scene's lists.
+Particles restore_particles(const CheckpointState& s, const MPMSolver& solver, std::size_t materials) {
+  const auto n = static_cast<std::size_t>(solver.particles().size());
+  const MPMMethod method = solver.settings().method;
   Particles P;
-  P.mass = s.get("particles.mass");
-  P.volume0 = s.get("particles.volume0");
-  P.volume = s.get("particles.volume");
-  P.reference = s.values<Vec2>("particles.reference");
-  P.position = s.values<Vec2>("particles.position");
-  P.velocity = s.values<Vec2>("particles.velocity");
-  P.deformation = s.values<Mat2>("particles.deformation");
-  P.stress = s.values<Mat2>("particles.stress");
-  P.stress_zz = s.get("particles.stress_zz");
-  const std::vector<Mat2> plastic = s.values<Mat2>("particles.plastic_strain");
-  const std::vector<double>& plastic_zz = s.get("particles.plastic_strain_zz", plastic.size());
-  const std::vector<double>& alpha = s.get("particles.alpha", plastic.size());
-  const std::vector<double>& dissipation = s.get("particles.dissipation", plastic.size());
-  for (std::size_t k = 0; k < plastic.size(); ++k) P.state.push_back({plastic[k], plastic_zz[k], alpha[k], dissipation[k]});
+  P.mass = s.within("particles.mass", smallest_positive, unbounded, "positive", n);
+  P.volume0 = s.within("particles.volume0", smallest_positive, unbounded, "positive", n);
+  P.volume = s.within("particles.volume", smallest_positive, unbounded, "positive", n);
+  P.reference = s.values<Vec2>("particles.reference", n);
+  P.position = s.values<Vec2>("particles.position", n);
+  P.velocity = s.values<Vec2>("particles.velocity", n);
+  P.deformation = s.values<Mat2>("particles.deformation", n);
+  for (std::size_t p = 0; p < n; ++p)
+    if (const double J = P.deformation[p].determinant(); !(J > 0.0))
+      s.refuse("particles.deformation", fmt::format("particle {} has det F = {}, not positive", p, J));
+  P.stress = s.values<Mat2>("particles.stress", n);
+  P.stress_zz = s.get("particles.stress_zz", n);
+  const std::vector<Mat2> plastic = s.values<Mat2>("particles.plastic_strain", n);
+  const std::vector<double>& plastic_zz = s.get("particles.plastic_strain_zz", n);
+  const std::vector<double>& alpha =
+      s.within("particles.alpha", 0.0, unbounded, "an equivalent plastic strain (0 or more)", n);
+  const std::vector<double>& dissipation = s.get("particles.dissipation", n);
+  for (std::size_t k = 0; k < n; ++k)
+    P.state.push_back({plastic[k], plastic_zz[k], alpha[k], dissipation[k]});
+  (void)s.within("particles.half_size", smallest_positive, unbounded, "positive",
+                 uses_domains(method) ? 2 * n : 0);
   P.half_size = s.values<Vec2>("particles.half_size");
-  if (s.has("particles.corners")) {  // checkpoints from before CPDI2 have none
-    const std::vector<double>& corners = s.get("particles.corners");
-    if (corners.size() % 8 != 0)
-      throw InputError(fmt::format("checkpoint {}: particles.corners is not 8 numbers per particle", s.source.string()));
+  if (s.has("particles.corners") || method == MPMMethod::cpdi2) {  // checkpoints from before CPDI2 have none
+    const std::vector<double>& corners = s.get("particles.corners", method == MPMMethod::cpdi2 ? 8 * n : 0);
     P.corners.resize(corners.size() / 8);
     for (std::size_t k = 0; k < corners.size(); k += 2) P.corners[k / 8][(k % 8) / 2] = Vec2(corners[k], corners[k + 1]);
   }
-  P.body = s.ints("particles.body");
-  P.material = s.ints("particles.material");
-  const std::size_t n = P.mass.size();
-  for (const std::size_t size : {P.volume0.size(), P.volume.size(), P.reference.size(), P.position.size(),
-                                 P.velocity.size(), P.deformation.size(), P.stress.size(), P.stress_zz.size(),
-                                 P.state.size(), P.body.size(), P.material.size()})
-    if (size != n) throw InputError(fmt::format("checkpoint {}: particle arrays of unequal length", s.source.string()));
-  solver.resume(std::move(P), s.scalar("time"), s.get("external_work"));
-  run.energy = restore_energy(s, static_cast<std::size_t>(solver.bodies()));
-  const std::vector<double>& errors = s.get("errors");
-  for (std::size_t at = 0; at + 5 <= errors.size(); at += 5)
+  const auto indices = [&](const std::string& name, std::size_t count, const char* of) {
+    const std::vector<long long> v =
+        s.integers(name, 0, static_cast<long long>(count) - 1,
+                   fmt::format("one of this scene's {} {} (0 to {})", count, of, count - 1), n);
+    return std::vector<int>(v.begin(), v.end());
+  };
+  P.body = indices("particles.body", static_cast<std::size_t>(solver.bodies()), "bodies");
+  P.material = indices("particles.material", materials, "materials");
+  return P;
+}
+
+/// The records of the run up to `step` (at `time`), each as many as the run wrote by then.
+void restore_records(const CheckpointState& s, long long step, double time, const MPMScene& scene,
+                     std::size_t bodies, const std::vector<int>& error_at, int energy_every, MPMRun& run) {
+  const std::size_t records = energy_every > 0 ? static_cast<std::size_t>(step / energy_every) + 1 : 0;
+  run.energy = restore_energy(s, bodies, records, time);
+  std::size_t errors_due = 0;
+  if (scene.exact)
+    for (const int at : error_at) errors_due += at >= 1 && at <= step ? 1 : 0;
+  const std::vector<double>& errors =
+      s.within("errors", 0.0, unbounded, "a time or an error (0 or more)", 5 * errors_due);
+  for (std::size_t at = 0; at < errors.size(); at += 5) {
+    if (errors[at] > time)
+      s.refuse("errors", fmt::format("value {} is {}, after the run's time {} s", at, errors[at], time));
     run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3], errors[at + 4]});
-  run.max_mass_defect = s.scalar("max_mass_defect");
-  run.max_reconstruction_defect = s.scalar("max_reconstruction_defect");
-  const std::vector<double>& demoted = s.get("demoted", 2);
+  }
+  run.max_mass_defect = s.within("max_mass_defect", 0.0, unbounded, "a defect (0 or more)", 1)[0];
+  run.max_reconstruction_defect =
+      s.within("max_reconstruction_defect", 0.0, unbounded, "a defect (0 or more)", 1)[0];
+  const std::vector<long long> demoted =
+      s.integers("demoted", 0, std::numeric_limits<int>::max(), "a count", 2);
+  if (demoted[1] > step)
+    s.refuse("demoted", fmt::format("value 1 is {}, more steps than the run's {} so far", demoted[1], step));
   run.max_demoted_cells = static_cast<Index>(demoted[0]);
   run.demoted_steps = static_cast<int>(demoted[1]);
-  const std::vector<double>& probe = s.get("probe");
-  for (std::size_t at = 0; at + 3 <= probe.size(); at += 3) run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
-  if (frames) frames->restore(s);
+  // One probe record at t = 0 and one after every step.
+  const std::vector<double>& probe = s.get("probe", scene.probe ? 3 * static_cast<std::size_t>(step + 1) : 0);
+  for (std::size_t at = 0; at < probe.size(); at += 3) {
+    if (!(probe[at] >= 0.0 && probe[at] <= time))
+      s.refuse("probe",
+               fmt::format("value {} is {}, not a time of the run so far (0 to {} s)", at, probe[at], time));
+    run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
+  }
+}
+
+/// Continues `solver` and `run` from checkpoint `s` of step `step` (see above): the step one
+/// of the run's, the time that of the step, then the particles and the records.
+void restore_run(const CheckpointState& s, long long step, const MPMScene& scene,
+                 const std::vector<int>& error_at, int energy_every, MPMSolver& solver, MPMRun& run,
+                 std::optional<MPMFrames>& frames) {
+  if (step < 0 || step >= run.steps)
+    throw InputError(
+        fmt::format("checkpoint {}: step {} is not one of this run's steps (0 to {}): the checkpoint is "
+                    "damaged; restart from an earlier checkpoint or without --restart",
+                    s.source.string(), step, run.steps - 1));
+  // time_ += dt at every step: within half a step of step dt, plus the round-off of the sum.
+  const double end = solver.settings().end_time, dt = solver.time_step();
+  const double time =
+      s.within("time", 0.0, end, fmt::format("a time of this run (0 to end_time {} s)", end), 1)[0];
+  const double slack = 0.5 * dt + static_cast<double>(step) * std::numeric_limits<double>::epsilon() * end;
+  if (std::abs(time - static_cast<double>(step) * dt) > slack)
+    s.refuse("time", fmt::format("value 0 is {} s, not the time of step {} ({} s, dt = {} s)", time, step,
+                                 static_cast<double>(step) * dt, dt));
+  const std::vector<double>& work = s.get("external_work", static_cast<std::size_t>(solver.bodies()));
+  Particles P = restore_particles(s, solver, scene.problem.materials.size());
+  restore_records(s, step, time, scene, static_cast<std::size_t>(solver.bodies()), error_at, energy_every,
+                  run);
+  if (frames) frames->restore(s, time, static_cast<std::size_t>(step) + 1);
+  solver.resume(std::move(P), time, work);
 }
 
 }  // namespace
@@ -333,11 +407,9 @@ MPMRun simulate_mpm(const MPMScene& scene, const MPMSettings& settings, bool ver
   }
   int first = 1;
   if (resume) {
-    restore_run(*resume, solver, run, frames);
-    first = static_cast<int>(checkpoints->resume_step()) + 1;
+    restore_run(*resume, checkpoints->resume_step(), scene, at, energy_every, solver, run, frames);
+    first = static_cast<int>(checkpoints->resume_step()) + 1;  // checked: a step of the run
     run.resumed_at = first - 1;
-    if (first > run.steps) throw InputError(fmt::format("checkpoint {}: step {} is past this run's {} steps",
-                                                        resume->source.string(), first - 1, run.steps));
     if (verbose) std::cout << fmt::format("  continuing from step {} (t = {:.6g} s) of {}\n", first - 1, solver.time(),
                                           resume->source.parent_path().string());
   }

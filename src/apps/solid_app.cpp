@@ -9,12 +9,13 @@
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/core/step_count.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
-#include "mfree/io/csv.hpp"
 #include "mfree/io/atomic_file.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_output.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
@@ -142,6 +143,8 @@ int run_static(const ElasticityScene& scene) {
 
 namespace {
 
+constexpr double unbounded = std::numeric_limits<double>::infinity();
+
 // Checkpoints of a dynamic run: the integrator's state (DynamicsProgress) and the run's
 // records so far (errors, probe history, frames, the next error and frame times).
 
@@ -164,12 +167,17 @@ void put_history(CheckpointState& s, const std::string& name, const std::vector<
   s.put(name, std::move(v));
 }
 
+/// The states put_history() wrote: whole records, alpha (the equivalent plastic strain) 0 or
+/// more. Their number is checked against the model by integrate_dynamics.
 std::vector<MaterialState> get_history(const CheckpointState& s, const std::string& name) {
   const std::vector<double>& v = s.get(name);
-  if (v.size() % 7 != 0) throw InputError(fmt::format("checkpoint: '{}' holds {} numbers, not 7 per point", name, v.size()));
+  if (v.size() % 7 != 0) s.refuse(name, fmt::format("it holds {} numbers, not 7 per point", v.size()));
   std::vector<MaterialState> states(v.size() / 7);
   for (std::size_t k = 0; k < states.size(); ++k) {
     const double* x = v.data() + 7 * k;
+    if (!(x[5] >= 0.0))
+      s.refuse(name,
+               fmt::format("value {} is {}, not an equivalent plastic strain (0 or more)", 7 * k + 5, x[5]));
     states[k].plastic_strain << x[0], x[2], x[1], x[3];
     states[k].plastic_strain_zz = x[4];
     states[k].alpha = x[5];
@@ -197,9 +205,18 @@ void save_progress(CheckpointState& s, const DynamicsProgress& p) {
   put_vector(s, "tangent", p.tangent);
 }
 
-DynamicsProgress restore_progress(const CheckpointState& s) {
+/// The integrator's state of checkpoint `s` of step `step`, as save_progress() wrote it: its
+/// "step" that of the checkpoint, whole energy records, counts of 0 or more. The rest is
+/// checked against the run by integrate_dynamics (DynamicsCheckpoints::refuse).
+DynamicsProgress restore_progress(const CheckpointState& s, long long step) {
+  if (step > static_cast<long long>(max_time_steps))
+    throw InputError(
+        fmt::format("checkpoint {}: step {} is past the most steps a run may take ({:g}): the checkpoint "
+                    "is damaged; restart from an earlier checkpoint or without --restart",
+                    s.source.string(), step, max_time_steps));
   DynamicsProgress p;
-  p.step = static_cast<int>(s.scalar("step"));
+  p.step =
+      static_cast<int>(s.integers("step", step, step, fmt::format("the checkpoint's step {}", step), 1)[0]);
   p.d = get_vector(s, "d");
   p.v = get_vector(s, "v");
   p.a = get_vector(s, "a");
@@ -207,13 +224,47 @@ DynamicsProgress restore_progress(const CheckpointState& s) {
   p.g = get_vector(s, "g");
   p.work = s.scalar("work");
   const std::vector<double>& e = s.get("energy");
-  for (std::size_t at = 0; at + 5 <= e.size(); at += 5)
+  if (e.size() % 5 != 0) s.refuse("energy", fmt::format("it holds {} numbers, not 5 per record", e.size()));
+  for (std::size_t at = 0; at < e.size(); at += 5)
     p.energy.push_back({e[at], e[at + 1], e[at + 2], e[at + 3], e[at + 4]});
   p.history = {get_history(s, "history.domain"), get_history(s, "history.boundary")};
-  p.newton_iterations = static_cast<long>(s.scalar("newton_iterations"));
-  p.factorisations = static_cast<long>(s.scalar("factorisations"));
+  constexpr long long most = 1LL << 53;  // doubles hold every whole number up to here
+  p.newton_iterations =
+      static_cast<long>(s.integers("newton_iterations", 0, most, "a count (0 or more)", 1)[0]);
+  p.factorisations = static_cast<long>(s.integers("factorisations", 0, most, "a count (0 or more)", 1)[0]);
   p.tangent = get_vector(s, "tangent");
   return p;
+}
+
+/// The run's own records of checkpoint `s` of step `step`, at `time` (step dt) of a run to
+/// `end` (end_time): error records
+/// (4 numbers: a time of the run so far, errors of 0 or more) at most one per error time, one
+/// probe record at t = 0 and after every step when the scene has a probe, the next frame time
+/// within a frame interval past end_time.
+void restore_records(const CheckpointState& s, long long step, double time, double end,
+                     const ElasticityScene& scene, bool sampled, DynamicRun& run, double& next_frame) {
+  const DynamicsScene& dyn = *scene.dynamics;
+  const std::vector<double>& errors = s.within("errors", 0.0, unbounded, "a time or an error (0 or more)");
+  if (errors.size() % 4 != 0 || errors.size() / 4 > (sampled ? dyn.error_times.size() : 0))
+    s.refuse("errors", fmt::format("it holds {} numbers, not 4 for each of at most {} error times",
+                                   errors.size(), sampled ? dyn.error_times.size() : 0));
+  for (std::size_t at = 0; at < errors.size(); at += 4) {
+    if (errors[at] > time)
+      s.refuse("errors", fmt::format("value {} is {}, after the run's time {} s at step {}", at, errors[at],
+                                     time, step));
+    run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3]});
+  }
+  const double interval = dyn.frames > 0 ? end / dyn.frames : 0.0;
+  next_frame = s.within("next_frame", 0.0, (end + interval) * (1 + 1e-9),
+                        fmt::format("a time within a frame interval past end_time ({} s)", end), 1)[0];
+  const std::vector<double>& probe =
+      s.get("probe", scene.output.probe ? 3 * static_cast<std::size_t>(step + 1) : 0);
+  for (std::size_t at = 0; at < probe.size(); at += 3) {
+    if (!(probe[at] >= 0.0 && probe[at] <= time))
+      s.refuse("probe",
+               fmt::format("value {} is {}, not a time of the run so far (0 to {} s)", at, probe[at], time));
+    run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
+  }
 }
 
 }  // namespace
@@ -276,16 +327,16 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   std::optional<DynamicsProgress> resume;
   if (checkpoints && checkpoints->resume()) {
     const CheckpointState& s = *checkpoints->resume();
-    resume = restore_progress(s);
-    const std::vector<double>& errors = s.get("errors");
-    for (std::size_t at = 0; at + 4 <= errors.size(); at += 4)
-      run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3]});
-    next_error = run.errors.size();
-    next_frame = s.scalar("next_frame");
-    const std::vector<double>& probe = s.get("probe");
-    for (std::size_t at = 0; at + 3 <= probe.size(); at += 3) run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
-    if (frames) frames->restore(s);
+    const long long step = checkpoints->resume_step();
+    resume = restore_progress(s, step);
     dc.resume = &*resume;
+    dc.refuse = [&s](const std::string& name, const std::string& what) { s.refuse(name, what); };
+    dc.resumed = [&, step](int, double dt) {
+      const double time = static_cast<double>(step) * dt;  // as the integrator's t = n dt
+      restore_records(s, step, time, end, scene, sampler.has_value(), run, next_frame);
+      next_error = run.errors.size();
+      if (frames) frames->restore(s, time, static_cast<std::size_t>(step) + 1);
+    };
     if (verbose)
       std::cout << fmt::format("  continuing from step {} of {}\n", resume->step, s.source.parent_path().string());
   }

@@ -93,6 +93,67 @@ std::pair<double, int> equal_steps(double end_time, double requested) {
   return {end_time / n, n};
 }
 
+/// What a resumed state must fit (integrate_dynamics).
+struct ResumeLimits {
+  int steps = 0;
+  double dt = 0.0;
+  bool explicit_scheme = false;
+  int energy_every = 0;       ///< 0: no energy recorded
+  Eigen::Index nonzeros = 0;  ///< of the effective tangent (Newmark)
+};
+
+/// Refuses (through `refuse`) the first part of `p` that does not fit `model` and `limits`
+/// (the checks integrate_dynamics lists).
+void check_resume(const DynamicsProgress& p, const TotalLagrangian& model, const ResumeLimits& limits,
+                  const std::function<void(const std::string&, const std::string&)>& refuse) {
+  if (p.step < 0 || p.step >= limits.steps)
+    refuse("step",
+           fmt::format("value 0 is {}, not one of this run's steps (0 to {})", p.step, limits.steps - 1));
+  const Eigen::Index n = model.dofs();
+  const auto sized = [&](const char* name, const Eigen::VectorXd& x, Eigen::Index size, const char* of) {
+    if (x.size() != size)
+      refuse(name, fmt::format("it holds {} values, and this run needs {} ({})", x.size(), size, of));
+  };
+  sized("d", p.d, n, "its DOFs");
+  sized("v", p.v, n, "its DOFs");
+  sized("a", p.a, n, "its DOFs");
+  sized("v_half", p.v_half, n, "its DOFs");
+  sized("g", p.g, limits.energy_every > 0 ? n : 0,
+        limits.energy_every > 0 ? "its DOFs" : "none: no energy is recorded");
+  if (limits.explicit_scheme)
+    sized("tangent", p.tangent, 0, "none: central differences keep no tangent");
+  else if (p.tangent.size() > 0)
+    sized("tangent", p.tangent, limits.nonzeros, "the nonzeros of its tangent, or none");
+  const PointHistory& h = model.history();
+  if (p.history.domain.size() != h.domain.size())
+    refuse("history.domain",
+           fmt::format("it holds {} points, and this run has {}", p.history.domain.size(), h.domain.size()));
+  if (p.history.boundary.size() != h.boundary.size())
+    refuse("history.boundary", fmt::format("it holds {} points, and this run has {}",
+                                           p.history.boundary.size(), h.boundary.size()));
+  // Records at step 0 and every energy_every-th step up to p.step, at t = n dt.
+  const std::size_t records =
+      limits.energy_every > 0 ? static_cast<std::size_t>(p.step / limits.energy_every) + 1 : 0;
+  if (p.energy.size() != records)
+    refuse("energy", fmt::format("it holds {} records, and the run wrote {} by step {}", p.energy.size(),
+                                 records, p.step));
+  const double time = p.step * limits.dt;
+  for (std::size_t k = 0; k < p.energy.size(); ++k) {
+    const EnergyRecord& e = p.energy[k];
+    if (!(e.time >= 0.0 && e.time <= time))
+      refuse("energy", fmt::format("record {} is at t = {} s, not a time of the run so far (0 to {} s)", k,
+                                   e.time, time));
+    if (!(e.kinetic >= 0.0))
+      refuse("energy", fmt::format("record {} has kinetic energy {}, not 0 or more", k, e.kinetic));
+  }
+  if (p.newton_iterations < 0 || p.factorisations < 0)
+    refuse("newton_iterations", "the counts of Newton iterations and factorisations must be 0 or more");
+  for (Index k = 0; k < model.quadrature().size(); ++k)
+    if (const double J = model.deformation_gradient(k, p.d).determinant(); !(J > 0.0))
+      refuse("d", fmt::format("det F = {} at quadrature point {} ({:.6g}, {:.6g}), not positive", J, k,
+                              model.quadrature().points[k].x(), model.quadrature().points[k].y()));
+}
+
 }  // namespace
 
 DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
@@ -176,10 +237,13 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   Eigen::VectorXd v_half = v + 0.5 * dt * a;
   int first = 1;
   if (const DynamicsProgress* p = checkpoints.resume) {
-    const Eigen::Index n = model.dofs();
-    if (p->d.size() != n || p->v.size() != n || p->a.size() != n || p->step < 0 || p->step >= out.steps)
-      throw InputError(fmt::format("dynamics: a saved state of {} DOFs at step {} does not fit this run ({} DOFs, {} steps)",
-                                   p->d.size(), p->step, n, out.steps));
+    const auto refuse = [&](const std::string& name, const std::string& what) {
+      if (checkpoints.refuse) checkpoints.refuse(name, what);
+      throw InputError(fmt::format("dynamics: the saved state to resume from: '{}': {}", name, what));
+    };
+    check_resume(*p, model, {out.steps, dt, explicit_scheme, energy ? s.energy_every : 0, k.nonZeros()},
+                 refuse);
+    if (checkpoints.resumed) checkpoints.resumed(out.steps, dt);
     d = p->d;
     v = p->v;
     a = p->a;
@@ -190,8 +254,6 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
     out.newton_iterations = p->newton_iterations;
     out.factorisations = p->factorisations;
     if (!explicit_scheme && p->tangent.size() > 0) {
-      if (p->tangent.size() != k.nonZeros())
-        throw InputError("dynamics: the saved tangent does not fit this run's pattern");
       Eigen::Map<Eigen::VectorXd>(k.valuePtr(), k.nonZeros()) = p->tangent;
       timer.time("factorisation", [&] { solver->factorize(k); });
     }

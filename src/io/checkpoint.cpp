@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "mfree/core/error.hpp"
@@ -55,6 +57,13 @@ class Reader {
   std::size_t at_ = 0;
 };
 
+/// The index of the first value that is not finite (NaN, inf); none when all are.
+std::optional<std::size_t> first_non_finite(const std::vector<double>& values) {
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k])) return k;
+  return std::nullopt;
+}
+
 fs::path step_folder(const fs::path& folder, long long step) { return folder / fmt::format("{}{:010d}", prefix, step); }
 
 /// The complete checkpoints in `folder` (step_N folders with a state.bin), by step.
@@ -84,8 +93,7 @@ std::vector<std::pair<long long, fs::path>> checkpoints_in(const fs::path& folde
 }
 
 std::string serialise(std::uint64_t fingerprint, long long step, const CheckpointState& state) {
-  std::string out(magic, sizeof magic);
-  append(out, fingerprint);
+  std::string out;
   append(out, static_cast<std::int64_t>(step));
   append(out, static_cast<std::uint64_t>(state.arrays().size()));
   for (const auto& [name, values] : state.arrays()) {
@@ -94,8 +102,7 @@ std::string serialise(std::uint64_t fingerprint, long long step, const Checkpoin
     append(out, static_cast<std::uint64_t>(values.size()));
     if (!values.empty()) out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
   }
-  append(out, fnv1a(out));
-  return out;
+  return checkpoint_file(fingerprint, out);
 }
 
 CheckpointState deserialise(const fs::path& file, std::uint64_t fingerprint, long long& step) {
@@ -127,6 +134,8 @@ CheckpointState deserialise(const fs::path& file, std::uint64_t fingerprint, lon
     std::vector<double> values(n);
     const std::string_view raw = r.take(n * sizeof(double));
     if (n > 0) std::memcpy(values.data(), raw.data(), raw.size());  // an empty vector's data() may be null
+    if (const auto k = first_non_finite(values))
+      state.refuse(name, fmt::format("value {} is {}, not a finite number", *k, values[*k]));
     state.put(name, std::move(values));
   }
   return state;
@@ -154,6 +163,14 @@ void link_tree(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
+std::string checkpoint_file(std::uint64_t fingerprint, std::string_view body) {
+  std::string out(magic, sizeof magic);
+  append(out, fingerprint);
+  out += body;
+  append(out, fnv1a(out));
+  return out;
+}
+
 void CheckpointState::put(const std::string& name, std::vector<double> values) { arrays_[name] = std::move(values); }
 
 void CheckpointState::put_ints(const std::string& name, const std::vector<int>& values) {
@@ -162,19 +179,58 @@ void CheckpointState::put_ints(const std::string& name, const std::vector<int>& 
 
 const std::vector<double>& CheckpointState::get(const std::string& name, std::optional<std::size_t> size) const {
   const auto it = arrays_.find(name);
-  if (it == arrays_.end()) fail(name, "it is missing");
-  if (size && it->second.size() != *size) fail(name, fmt::format("it holds {} values, not {}", it->second.size(), *size));
+  if (it == arrays_.end()) refuse(name, "it is missing");
+  if (size && it->second.size() != *size)
+    refuse(name, fmt::format("it holds {} values, and this run needs {}", it->second.size(), *size));
   return it->second;
 }
 
-std::vector<int> CheckpointState::ints(const std::string& name) const {
-  const std::vector<double>& v = get(name);
+const std::vector<double>& CheckpointState::within(const std::string& name, double lo, double hi,
+                                                   const std::string& range,
+                                                   std::optional<std::size_t> size) const {
+  const std::vector<double>& v = get(name, size);
+  for (std::size_t k = 0; k < v.size(); ++k)
+    if (!(v[k] >= lo && v[k] <= hi)) refuse(name, fmt::format("value {} is {}, not {}", k, v[k], range));
+  return v;
+}
+
+const std::vector<double>& CheckpointState::times(const std::string& name, double end,
+                                                  std::size_t most) const {
+  const std::vector<double>& t =
+      within(name, 0.0, end, fmt::format("a time of the run so far (0 to {} s)", end));
+  if (t.size() > most)
+    refuse(name, fmt::format("it holds {} times, more than the {} the run can have so far", t.size(), most));
+  for (std::size_t k = 1; k < t.size(); ++k)
+    if (t[k] < t[k - 1])
+      refuse(name, fmt::format("value {} is {}, before the one before it ({})", k, t[k], t[k - 1]));
+  return t;
+}
+
+std::vector<long long> CheckpointState::integers(const std::string& name, long long lo, long long hi,
+                                                 const std::string& range,
+                                                 std::optional<std::size_t> size) const {
+  const std::vector<double>& v = get(name, size);
+  std::vector<long long> out(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    // Compared as doubles first: a cast of a value outside long long's range is undefined.
+    if (!(v[k] >= static_cast<double>(lo) && v[k] <= static_cast<double>(hi) && v[k] == std::trunc(v[k])))
+      refuse(name, fmt::format("value {} is {}, not {}", k, v[k], range));
+    out[k] = static_cast<long long>(v[k]);
+  }
+  return out;
+}
+
+std::vector<int> CheckpointState::ints(const std::string& name, std::optional<std::size_t> size) const {
+  const std::vector<long long> v =
+      integers(name, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), "an int", size);
   return {v.begin(), v.end()};
 }
 
-void CheckpointState::fail(const std::string& name, const std::string& what) const {
-  throw InputError(fmt::format("checkpoint {}: array '{}': {} (written by another version of mfree?)", source.string(),
-                               name, what));
+void CheckpointState::refuse(const std::string& name, const std::string& what) const {
+  throw InputError(
+      fmt::format("checkpoint {}: array '{}': {}; the checkpoint does not fit this run (another version "
+                  "of mfree?) or is damaged: restart from an earlier checkpoint or without --restart",
+                  source.string(), name, what));
 }
 
 std::uint64_t scene_fingerprint(const fs::path& scene, const std::vector<std::string>& overrides) {
@@ -204,7 +260,13 @@ Checkpoints::Checkpoints(fs::path output_folder, int every, std::uint64_t finger
   if (found.empty())
     throw InputError(fmt::format("--restart {}: holds no checkpoint (step_N folders with a state.bin)", restart.string()));
   resume_folder_ = found.back().second;
-  resume_.emplace(deserialise(resume_folder_ / "state.bin", fingerprint_, resume_step_));
+  const fs::path state = resume_folder_ / "state.bin";
+  resume_.emplace(deserialise(state, fingerprint_, resume_step_));
+  if (resume_step_ != found.back().first)
+    throw InputError(
+        fmt::format("checkpoint {}: holds step {}, but its folder is named for step {}: the checkpoint "
+                    "is damaged; restart from an earlier checkpoint or without --restart",
+                    state.string(), resume_step_, found.back().first));
   if (!fs::is_directory(resume_folder_ / "output"))
     throw InputError(fmt::format("checkpoint {}: its output folder is missing", resume_folder_.string()));
 }
@@ -214,6 +276,12 @@ void Checkpoints::restore_output(const fs::path& staging) const {
 }
 
 void Checkpoints::write(long long step, const CheckpointState& state, const fs::path& staging) const {
+  for (const auto& [name, values] : state.arrays())
+    if (const auto k = first_non_finite(values))
+      throw NumericalError(
+          fmt::format("checkpoint of step {} in {}: array '{}': value {} is {}, not a finite number "
+                      "(the run is unstable; use a smaller time step)",
+                      step, folder_.string(), name, *k, values[*k]));
   std::error_code ec;
   fs::create_directories(folder_, ec);
   if (ec) throw Error(fmt::format("cannot create folder {}: {}", folder_.string(), ec.message()));

@@ -49,15 +49,15 @@ void MPMFrames::save(CheckpointState& state) const {
   state.put("frames.grid", std::move(grid));
 }
 
-void MPMFrames::restore(const CheckpointState& state) {
-  const std::vector<double>& times = state.get("frames.time");
-  const std::vector<double>& grid = state.get("frames.grid", times.size());
+void MPMFrames::restore(const CheckpointState& state, double time, std::size_t most) {
+  const std::vector<double>& times = state.times("frames.time", time, most);
+  const std::vector<long long> grid = state.integers("frames.grid", 0, 1, "0 or 1", times.size());
   steps_.clear();
   grid_steps_.clear();
   domain_steps_.clear();
   for (std::size_t k = 0; k < times.size(); ++k) {
     steps_.emplace_back(times[k], particle_file(static_cast<int>(k)));
-    if (grid[k] != 0.0) grid_steps_.emplace_back(times[k], grid_file(static_cast<int>(k)));
+    if (grid[k] != 0) grid_steps_.emplace_back(times[k], grid_file(static_cast<int>(k)));
     if (fields_.domains) domain_steps_.emplace_back(times[k], domain_file(static_cast<int>(k)));
   }
 }

@@ -22,10 +22,11 @@ void SolidFrames::save(CheckpointState& state) const {
   state.put("frames.time", std::move(times));
 }
 
-void SolidFrames::restore(const CheckpointState& state) {
+void SolidFrames::restore(const CheckpointState& state, double time, std::size_t most) {
+  const std::vector<double>& times = state.times("frames.time", time, most);
   steps_.clear();
   point_steps_.clear();
-  for (const double t : state.get("frames.time")) {
+  for (const double t : times) {
     steps_.emplace_back(t, frame_file(frames()));
     if (model_) point_steps_.emplace_back(t, point_file(frames() - 1));
   }

@@ -7,6 +7,10 @@
 #   @LOOP@              a symbolic link to itself (WORK/loop)
 #   @CHECKPOINT_LOOP@   a checkpoint folder (WORK/ck) whose step folder is a link to itself
 #   @CHECKPOINT_STEP@   a checkpoint folder whose step number has 25 digits
+#   @CHECKPOINT:EDIT@   a checkpoint folder (WORK/ck) holding the first checkpoint of the run
+#                       of the other arguments (without --restart; hostile_checkpoint.py runs
+#                       it in WORK/gen and kills it), with one edit and a hash that fits:
+#                       ARRAY:INDEX=VALUE sets a value, step=VALUE the step (and its folder)
 # A token that limits the run instead (anywhere among the arguments; it is taken out):
 #   @FILE_SIZE_LIMIT@   files of at most 64 KiB (ulimit -f 64): a larger write fails
 cmake_policy(SET CMP0054 NEW)
@@ -29,6 +33,20 @@ endif()
 if(ARGS MATCHES "@CHECKPOINT_STEP@")
   file(WRITE "${WORK}/ck/step_9999999999999999999999999/state.bin" "")
   list(TRANSFORM ARGS REPLACE "@CHECKPOINT_STEP@" "ck")
+  list(APPEND made ck)
+endif()
+if(ARGS MATCHES "@CHECKPOINT:([^@]+)@")
+  set(edit "${CMAKE_MATCH_1}")
+  set(run ${ARGS})
+  list(REMOVE_ITEM run "--restart" "@CHECKPOINT:${edit}@")
+  find_program(PYTHON3 python3 REQUIRED)
+  execute_process(COMMAND ${PYTHON3} "${CMAKE_CURRENT_LIST_DIR}/hostile_checkpoint.py" ${MFREE} "${WORK}/gen" "${WORK}/ck"
+                          "${edit}" -- ${run}
+                  RESULT_VARIABLE made_code ERROR_VARIABLE made_err)
+  if(NOT made_code EQUAL 0)
+    message(FATAL_ERROR "hostile_checkpoint.py failed (${made_code}): ${made_err}")
+  endif()
+  list(TRANSFORM ARGS REPLACE "@CHECKPOINT:[^@]+@" "ck")
   list(APPEND made ck)
 endif()
 set(limit "")

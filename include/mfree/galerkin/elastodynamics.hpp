@@ -27,6 +27,7 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -102,6 +103,13 @@ struct DynamicsCheckpoints {
   int every = 0;                                          ///< steps between saves (0: none)
   std::function<void(const DynamicsProgress&)> save;      ///< after every `every`-th step but the last
   const DynamicsProgress* resume = nullptr;               ///< continue from this state
+  /// Refuses a part of `resume` that does not fit the run, naming it as DynamicsProgress
+  /// does ("v_half", "energy", ...) and saying what is wrong; must throw (an InputError naming
+  /// where the state came from: CheckpointState::refuse). Empty: an InputError of its own.
+  std::function<void(const std::string& name, const std::string& what)> refuse;
+  /// Called once `resume` passed its checks, before the first step, with the run's step
+  /// count and dt: the caller restores (and checks) its own records of the run so far.
+  std::function<void(int steps, double dt)> resumed;
 };
 
 /// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0,
@@ -115,8 +123,14 @@ double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& l
 /// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0),
 /// the steps a resumed run takes only. Stages "residual", "assembly", "factorisation",
 /// "solve", "energy" are timed on timer. A resumed state must come from the same model,
-/// (d0, v0) and settings (the step and the masses are derived from them again). The model's
-/// history (laws with history) is committed at d0 and after every step.
+/// (d0, v0) and settings (the step and the masses are derived from them again); before any
+/// of it is used it is checked against the run (checkpoints.refuse when it does not fit): its
+/// step one of the run's, d, v, a, v_half of the model's DOFs, g too when the energy is
+/// recorded (empty otherwise), the tangent empty or on the pattern (Newmark; empty for
+/// central differences), the history of the model's points, as many energy records as the
+/// run wrote by the step, at times of the run so far with kinetic energies of 0 or more, and
+/// det F > 0 at every quadrature point of d. The model's history (laws with history) is
+/// committed at d0 and after every step.
 DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
                                   StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {},

@@ -22,16 +22,27 @@
 // "MFREECK1", the fingerprint, the step, the number of arrays, then per array its name, its
 // length and its values (little-endian, as the machine stores them), and last an FNV-1a hash
 // of everything before it.
+//
+// A checksum and a fingerprint that match say the file is the one a run of this scene wrote,
+// not that its content is sound (a program or a hand may have written it, checksum and all).
+// So nothing in it is used unchecked: the reader refuses a file whose step differs from its
+// folder's name and any value that is not finite (NaN, inf) in any array, and every restore
+// checks each array it takes (CheckpointState's within(), integers()) against the run it
+// continues: its length against the scene's particles, DOFs, bodies; indices against the
+// scene's lists; signs the physics needs; steps and times within the run. Every refusal is an
+// InputError naming the file, the array, and the index and value at fault. The writer
+// refuses a non-finite value (NumericalError), so a run never writes a checkpoint it would
+// refuse.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace mfree {
 
@@ -53,17 +64,35 @@ class CheckpointState {
 
   /// The array `name`; InputError when it is missing or (size given) not that long.
   [[nodiscard]] const std::vector<double>& get(const std::string& name, std::optional<std::size_t> size = {}) const;
+  /// get(name, size), each value in [lo, hi]; InputError naming the first that is not, its
+  /// index and value, and `range` (what [lo, hi] is: "positive", "a time of this run", ...).
+  [[nodiscard]] const std::vector<double>& within(const std::string& name, double lo, double hi,
+                                                  const std::string& range,
+                                                  std::optional<std::size_t> size = {}) const;
+  /// get(name, size), each value a whole number in [lo, hi] (indices, counts); InputError as
+  /// within().
+  [[nodiscard]] std::vector<long long> integers(const std::string& name, long long lo, long long hi,
+                                                const std::string& range,
+                                                std::optional<std::size_t> size = {}) const;
+  /// A series of times [s]: at most `most` values, each in [0, end] and none before the one
+  /// before it; InputError as within().
+  [[nodiscard]] const std::vector<double>& times(const std::string& name, double end, std::size_t most) const;
+  /// InputError: array `name` of this checkpoint is refused for `what` (see the top).
+  [[noreturn]] void refuse(const std::string& name, const std::string& what) const;
   [[nodiscard]] double scalar(const std::string& name) const { return get(name, 1)[0]; }
+  /// The array `name` as fixed-size Eigen values (`count` of them when given).
   template <class T>
-  [[nodiscard]] std::vector<T> values(const std::string& name) const {
+  [[nodiscard]] std::vector<T> values(const std::string& name, std::optional<std::size_t> count = {}) const {
     constexpr int n = T::SizeAtCompileTime;
-    const std::vector<double>& flat = get(name);
-    if (flat.size() % n != 0) fail(name, "its length is not a multiple of the value size");
+    const std::vector<double>& flat =
+        get(name, count ? std::optional<std::size_t>(*count * n) : std::nullopt);
+    if (flat.size() % n != 0) refuse(name, "its length is not a multiple of " + std::to_string(n));
     std::vector<T> out(flat.size() / n);
     for (std::size_t k = 0; k < out.size(); ++k) out[k] = Eigen::Map<const T>(flat.data() + k * n);
     return out;
   }
-  [[nodiscard]] std::vector<int> ints(const std::string& name) const;
+  /// The values of `name` as int: integers() over the range of int.
+  [[nodiscard]] std::vector<int> ints(const std::string& name, std::optional<std::size_t> size = {}) const;
   [[nodiscard]] bool has(const std::string& name) const { return arrays_.count(name) > 0; }
 
   [[nodiscard]] const std::map<std::string, std::vector<double>>& arrays() const { return arrays_; }
@@ -71,9 +100,12 @@ class CheckpointState {
   std::filesystem::path source;
 
  private:
-  [[noreturn]] void fail(const std::string& name, const std::string& what) const;
   std::map<std::string, std::vector<double>> arrays_;
 };
+
+/// The bytes of a state.bin around its body (the step, the number of arrays and the arrays, as
+/// above): the magic, the fingerprint, the body, and the hash of all of them.
+std::string checkpoint_file(std::uint64_t fingerprint, std::string_view body);
 
 /// FNV-1a hash of a scene's text and its overrides: what a restart must match.
 std::uint64_t scene_fingerprint(const std::filesystem::path& scene, const std::vector<std::string>& overrides);
@@ -83,7 +115,8 @@ class Checkpoints {
  public:
   /// every: steps between checkpoints (0: none). restart: a checkpoint folder to continue
   /// from (empty: start at step 0). InputError when restart names no folder of checkpoints,
-  /// none of them is readable, or the newest was written by another scene.
+  /// none of them is readable, the newest was written by another scene, holds another step
+  /// than its folder names or a value that is not finite.
   Checkpoints(std::filesystem::path output_folder, int every, std::uint64_t fingerprint,
               const std::filesystem::path& restart);
 
@@ -101,7 +134,8 @@ class Checkpoints {
   void restore_output(const std::filesystem::path& staging) const;
 
   /// Writes the checkpoint of `step`: `state` and the files of `staging` (see above); keeps
-  /// the last two. Error when the file system refuses.
+  /// the last two. Error when the file system refuses; NumericalError, naming the array and
+  /// the index, for a value that is not finite (nothing written).
   void write(long long step, const CheckpointState& state, const std::filesystem::path& staging) const;
   /// Removes the checkpoint folder (after the run succeeded).
   void remove() const;

@@ -78,9 +78,10 @@ class MPMFrames {
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
   /// Checkpoints: the series written so far ("frames.time", "frames.grid"; the domain
   /// series has a file at every frame), and continuing them (the files themselves come back
-  /// with the checkpoint's output folder).
+  /// with the checkpoint's output folder). restore() takes at most `most` frames at times in
+  /// [0, time], in order, and grid flags of 0 or 1 (InputError otherwise, io/checkpoint.hpp).
   void save(CheckpointState& state) const;
-  void restore(const CheckpointState& state);
+  void restore(const CheckpointState& state, double time, std::size_t most);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
   [[nodiscard]] std::filesystem::path grid_series() const { return folder_ / "grid.pvd"; }
   [[nodiscard]] std::filesystem::path domain_series() const { return folder_ / "domains.pvd"; }

@@ -39,9 +39,11 @@ class SolidFrames {
   /// Writes frame number frames() at `time`; v may be null (statics).
   void write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v);
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
-  /// Checkpoints: the series written so far ("frames.time"), and continuing it.
+  /// Checkpoints: the series written so far ("frames.time"), and continuing it. restore()
+  /// takes at most `most` frames at times in [0, time] (the run's so far), in order
+  /// (InputError otherwise, io/checkpoint.hpp).
   void save(CheckpointState& state) const;
-  void restore(const CheckpointState& state);
+  void restore(const CheckpointState& state, double time, std::size_t most);
   [[nodiscard]] std::filesystem::path series() const { return folder_ / "series.pvd"; }
   /// The series of the quadrature points (a law with history).
   [[nodiscard]] std::filesystem::path point_series() const { return folder_ / "points.pvd"; }
