@@ -69,7 +69,8 @@ bool write_all(int fd, const void* bytes, std::size_t size) {
 
 /// The child reads and computes, nothing else (a seccomp filter, which also sets
 /// no_new_privs; the calls below fail with EPERM there and in whatever it forks): it starts no
-/// program (execve, execveat) and changes no file: it opens none for writing, creates,
+/// program (execve, execveat) and changes no file: it opens none for writing (but shared
+/// memory, below), creates,
 /// truncates, renames, links or removes none, and makes no folder. libgmsh runs a .geo file's
 /// SystemCall through the shell and carries out its Printf > "file", Save, CreateDir,
 /// RenameFile and DeleteFile: a file a scene names must do none of that. The pipe and the
@@ -87,10 +88,14 @@ void confine() {
         SCMP_SYS(symlink), SCMP_SYS(symlinkat), SCMP_SYS(unlink), SCMP_SYS(unlinkat), SCMP_SYS(rmdir),
         SCMP_SYS(mkdir), SCMP_SYS(mkdirat), SCMP_SYS(mknod), SCMP_SYS(mknodat)})
     deny(call);
-  // open(path, flags) and openat(folder, path, flags) with any flag that writes.
+  // open(path, flags) and openat(folder, path, flags) with any flag that writes, unless with
+  // O_NOFOLLOW: shm_open's opening of a shared-memory object in /dev/shm, which LLVM's OpenMP
+  // runtime (clang builds; it serves libgmsh's GOMP calls there too) makes when it starts
+  // anew in the child (fopen and the C++ streams never set it).
   for (const scmp_datum_t flag : {O_WRONLY, O_RDWR, O_CREAT, O_TRUNC, O_APPEND}) {
-    deny(SCMP_SYS(open), SCMP_A1(SCMP_CMP_MASKED_EQ, flag, flag));
-    deny(SCMP_SYS(openat), SCMP_A2(SCMP_CMP_MASKED_EQ, flag, flag));
+    const scmp_datum_t mask = flag | O_NOFOLLOW;  // denied when flags & mask == flag
+    deny(SCMP_SYS(open), scmp_arg_cmp{1, SCMP_CMP_MASKED_EQ, mask, flag});
+    deny(SCMP_SYS(openat), scmp_arg_cmp{2, SCMP_CMP_MASKED_EQ, mask, flag});
   }
   ok = ok && ::seccomp_load(filter) == 0;
   if (filter != nullptr) ::seccomp_release(filter);
