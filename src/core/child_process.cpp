@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <omp.h>
 #include <poll.h>
 #include <pthread.h>
 #include <seccomp.h>
@@ -69,8 +70,7 @@ bool write_all(int fd, const void* bytes, std::size_t size) {
 
 /// The child reads and computes, nothing else (a seccomp filter, which also sets
 /// no_new_privs; the calls below fail with EPERM there and in whatever it forks): it starts no
-/// program (execve, execveat) and changes no file: it opens none for writing (but shared
-/// memory, below), creates,
+/// program (execve, execveat) and changes no file: it opens none for writing, creates,
 /// truncates, renames, links or removes none, and makes no folder. libgmsh runs a .geo file's
 /// SystemCall through the shell and carries out its Printf > "file", Save, CreateDir,
 /// RenameFile and DeleteFile: a file a scene names must do none of that. The pipe and the
@@ -88,14 +88,10 @@ void confine() {
         SCMP_SYS(symlink), SCMP_SYS(symlinkat), SCMP_SYS(unlink), SCMP_SYS(unlinkat), SCMP_SYS(rmdir),
         SCMP_SYS(mkdir), SCMP_SYS(mkdirat), SCMP_SYS(mknod), SCMP_SYS(mknodat)})
     deny(call);
-  // open(path, flags) and openat(folder, path, flags) with any flag that writes, unless with
-  // O_NOFOLLOW: shm_open's opening of a shared-memory object in /dev/shm, which LLVM's OpenMP
-  // runtime (clang builds; it serves libgmsh's GOMP calls there too) makes when it starts
-  // anew in the child (fopen and the C++ streams never set it).
+  // open(path, flags) and openat(folder, path, flags) with any flag that writes.
   for (const scmp_datum_t flag : {O_WRONLY, O_RDWR, O_CREAT, O_TRUNC, O_APPEND}) {
-    const scmp_datum_t mask = flag | O_NOFOLLOW;  // denied when flags & mask == flag
-    deny(SCMP_SYS(open), scmp_arg_cmp{1, SCMP_CMP_MASKED_EQ, mask, flag});
-    deny(SCMP_SYS(openat), scmp_arg_cmp{2, SCMP_CMP_MASKED_EQ, mask, flag});
+    deny(SCMP_SYS(open), scmp_arg_cmp{1, SCMP_CMP_MASKED_EQ, flag, flag});  // flags & flag == flag
+    deny(SCMP_SYS(openat), scmp_arg_cmp{2, SCMP_CMP_MASKED_EQ, flag, flag});
   }
   ok = ok && ::seccomp_load(filter) == 0;
   if (filter != nullptr) ::seccomp_release(filter);
@@ -121,6 +117,11 @@ void prepare_child(pid_t parent, int keep) {
   ::pthread_sigmask(SIG_SETMASK, &none, nullptr);
   if (keep > 3) ::close_range(3, static_cast<unsigned>(keep - 1), 0);
   ::close_range(static_cast<unsigned>(keep + 1), ~0U, 0);
+  // LLVM's OpenMP runtime (clang builds; it serves libgmsh's GOMP calls there too) starts
+  // anew in a forked child: it registers itself in a file of /dev/shm, removing a stale one
+  // of the same process id first. That happens here, before confine() forbids both (the
+  // child would abort, or retry for ever on a stale file).
+  (void)omp_get_max_threads();
   confine();
 }
 
