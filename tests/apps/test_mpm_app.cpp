@@ -2,8 +2,10 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <memory>
 
 #include "../test_support.hpp"
+#include "checkpoint_restarts.hpp"
 #include "mfree/apps/mpm_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/io/checkpoint.hpp"
@@ -18,51 +20,19 @@ namespace {
 constexpr std::uint64_t fingerprint = 11;
 
 /// A run of tests/apps/checkpoint_mpm_cpdi2_j2.toml (8 particles of two bodies and two
-/// materials, 8 steps) with checkpoints every 3 steps, its newest checkpoint (step 6), and
-/// runs restored from that checkpoint with one array changed.
-struct Restarts {
-  ScratchFolder scratch{"mpm_restore"};
-  MPMScene scene = read_mpm_scene(
-      fs::path(mfree::testing::source_dir()) / "tests/apps/checkpoint_mpm_cpdi2_j2.toml", false);
-  CheckpointState state;
-  long long step = 0;
-
-  Restarts() {
-    scene.folder = scratch.path / "run";
-    fs::create_directories(scene.folder);
-    {
-      const Checkpoints writer(scene.folder, 3, fingerprint, {});
-      (void)simulate_mpm(scene, scene.settings, false, &writer);
-    }
-    const Checkpoints reader(scene.folder, 0, fingerprint, scene.folder.string() + ".checkpoints");
-    state = *reader.resume();
-    step = reader.resume_step();
-  }
-  /// The state with array `name` replaced by `values`.
-  [[nodiscard]] CheckpointState with(const std::string& name, std::vector<double> values) const {
-    CheckpointState s = state;
-    s.put(name, std::move(values));
-    return s;
-  }
-  /// Restores a run of the scene from `s`, written (checksum and all) as the checkpoint of
-  /// step `at`: "restored" when it runs to its end, else the InputError's message.
-  [[nodiscard]] std::string restore(const CheckpointState& s, long long at) const {
-    const fs::path out = scratch.path / "broken";
-    fs::create_directories(out);
-    Checkpoints(out, 1, fingerprint, {}).write(at, s, out);
-    const Checkpoints reader(out, 0, fingerprint, out.string() + ".checkpoints");
-    try {
-      (void)simulate_mpm(scene, scene.settings, false, &reader);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "restored";
-  }
-  /// restore(with(name, values), step).
-  [[nodiscard]] std::string restore(const std::string& name, std::vector<double> values) const {
-    return restore(with(name, std::move(values)), step);
-  }
-  [[nodiscard]] std::vector<double> get(const std::string& name) const { return state.get(name); }
+/// materials, 8 steps) with checkpoints every 3 steps; its newest checkpoint is of step 6.
+struct Restarts : mfree::testing::CheckpointRestarts {
+  Restarts()
+      : Restarts(std::make_shared<MPMScene>(read_mpm_scene(
+            fs::path(mfree::testing::source_dir()) / "tests/apps/checkpoint_mpm_cpdi2_j2.toml", false))) {}
+  explicit Restarts(const std::shared_ptr<MPMScene>& scene)
+      : CheckpointRestarts("mpm_restore", fingerprint,
+                           [scene](const fs::path& folder, const Checkpoints* c) {
+                             scene->folder = folder;
+                             (void)simulate_mpm(*scene, scene->settings, false, c);
+                           }),
+        scene(*scene) {}
+  const MPMScene& scene;  ///< kept alive by the run
 };
 
 /// What a refusal of array `name` of the checkpoint of step 6 starts with.

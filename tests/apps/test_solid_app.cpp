@@ -2,8 +2,10 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <memory>
 
 #include "../test_support.hpp"
+#include "checkpoint_restarts.hpp"
 #include "mfree/apps/solid_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/stage_timer.hpp"
@@ -20,55 +22,21 @@ namespace {
 constexpr std::uint64_t fingerprint = 12;
 
 /// A dynamic run of tests/apps/checkpoint_NAME.toml (9 nodes, 18 DOFs, 10 steps) with
-/// checkpoints every 3 steps, its newest checkpoint (step 9), and runs restored from that
-/// checkpoint with one array changed.
-struct Restarts {
-  ScratchFolder scratch;
-  ElasticityScene scene;
-  CheckpointState state;
-  long long step = 0;
-
+/// checkpoints every 3 steps; its newest checkpoint is of step 9.
+struct Restarts : mfree::testing::CheckpointRestarts {
   explicit Restarts(const std::string& name)
-      : scratch("solid_restore_" + name),
-        scene(read_elasticity_scene(
-            fs::path(mfree::testing::source_dir()) / "tests/apps" / ("checkpoint_" + name + ".toml"),
-            false)) {
-    scene.output.folder = scratch.path / "run";
-    fs::create_directories(scene.output.folder);
-    {
-      const Checkpoints writer(scene.output.folder, 3, fingerprint, {});
-      (void)simulate(scene, scene.dynamics->settings, false, &writer);
-    }
-    const Checkpoints reader(scene.output.folder, 0, fingerprint,
-                             scene.output.folder.string() + ".checkpoints");
-    state = *reader.resume();
-    step = reader.resume_step();
-  }
-  /// The state with array `name` replaced by `values`.
-  [[nodiscard]] CheckpointState with(const std::string& name, std::vector<double> values) const {
-    CheckpointState s = state;
-    s.put(name, std::move(values));
-    return s;
-  }
-  /// Restores a run of the scene from `s`, written (checksum and all) as the checkpoint of
-  /// step `at`: "restored" when it runs to its end, else the InputError's message.
-  [[nodiscard]] std::string restore(const CheckpointState& s, long long at) const {
-    const fs::path out = scratch.path / "broken";
-    fs::create_directories(out);
-    Checkpoints(out, 1, fingerprint, {}).write(at, s, out);
-    const Checkpoints reader(out, 0, fingerprint, out.string() + ".checkpoints");
-    try {
-      (void)simulate(scene, scene.dynamics->settings, false, &reader);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "restored";
-  }
-  /// restore(with(name, values), step).
-  [[nodiscard]] std::string restore(const std::string& name, std::vector<double> values) const {
-    return restore(with(name, std::move(values)), step);
-  }
-  [[nodiscard]] std::vector<double> get(const std::string& name) const { return state.get(name); }
+      : Restarts(name,
+                 std::make_shared<ElasticityScene>(read_elasticity_scene(
+                     fs::path(mfree::testing::source_dir()) / "tests/apps" / ("checkpoint_" + name + ".toml"),
+                     false))) {}
+  Restarts(const std::string& name, const std::shared_ptr<ElasticityScene>& scene)
+      : CheckpointRestarts("solid_restore_" + name, fingerprint,
+                           [scene](const fs::path& folder, const Checkpoints* c) {
+                             scene->output.folder = folder;
+                             (void)simulate(*scene, scene->dynamics->settings, false, c);
+                           }),
+        scene(*scene) {}
+  const ElasticityScene& scene;  ///< kept alive by the run
 };
 
 /// What a refusal of array `name` of the checkpoint of step 9 starts with.
