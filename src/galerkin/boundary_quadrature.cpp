@@ -1,10 +1,12 @@
 #include "mfree/galerkin/boundary_quadrature.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 
 namespace mfree {
@@ -37,7 +39,7 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
       for (int p = 0; p < pieces; ++p)
         for (std::size_t k = 0; k < g.points.size(); ++k) {
           const double t = t0 + span * ((p + g.points[k]) / pieces);
-          bq.points.push_back(seg.a + t * (seg.b - seg.a));
+          bq.points.push_back(inside_face(seg, seg.a + t * (seg.b - seg.a), max_length));
           bq.normals.push_back(seg.normal);
           bq.tangents.push_back(tangent);
           bq.weights.push_back(g.weights[k] * piece);

@@ -1,13 +1,15 @@
 #include "mfree/galerkin/elasticity_solver.hpp"
 
-#include "mfree/galerkin/rigid_body_modes.hpp"
+#include <fmt/format.h>
 
 #include <cmath>
-#include <fmt/format.h>
 #include <numbers>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/memory.hpp"
+#include "mfree/galerkin/rigid_body_modes.hpp"
+#include "mfree/geometry/crack_faces.hpp"
+#include "mfree/geometry/support_obstacles.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/voronoi_weights.hpp"
 
@@ -41,14 +43,23 @@ namespace {
 /// RK settings for a cloud of nominal spacing h: uniform radius on lattices, node radii
 /// reaching across gaps on irregular clouds.
 RKSettings rk_settings(const std::vector<Vec2>& points, CloudKind kind, double h, RKOrder order,
-                       const ElasticitySettings& s, double factor) {
+                       const ElasticitySettings& s, double factor,
+                       std::shared_ptr<const SupportObstacles> obstacles) {
   RKSettings r;
   r.order = order;
   r.window = s.window;
   r.support = s.support;
   r.radius = factor * h;
   if (kind != CloudKind::lattice) r.node_radii = nodal_support_radii(points, h, factor * s.irregular_factor_scale);
+  r.rule = s.support_rule;
+  r.obstacles = std::move(obstacles);
   return r;
+}
+
+/// The largest support radius the clouds' RK functions can have: factor h, widened by the
+/// irregular clouds' scale and by their gaps (nodal_support_radii doubles at most twice).
+double largest_reach(const ElasticitySettings& s) {
+  return 4.0 * s.support_factor * s.irregular_factor_scale * s.nodes.spacing;
 }
 
 /// A lower bound of the bytes a discretisation takes, from the node count N = |Omega| / h^2
@@ -77,9 +88,17 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 
   check_memory(memory_lower_bound(domain, s), fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
                                                           domain.area() / (h * h)));
-  res.nodes = timer.time("clouds", [&] { return make_cloud(domain, s.nodes); });
+  if (!domain.cracks().empty() && s.scheme != QuadratureScheme::gauss_cells)
+    throw InputError(
+        fmt::format("the {} scheme does not integrate cracked domains yet: use scheme = \"gauss_cells\" "
+                    "(domain with crack '{}')",
+                    to_string(s.scheme), domain.cracks().front().name));
+  const auto obstacles =
+      std::make_shared<const SupportObstacles>(support_obstacles(domain, largest_reach(s)));
+  res.nodes = timer.time("clouds", [&] { return split_on_cracks(domain, make_cloud(domain, s.nodes), h); });
   res.trial = timer.time("shape functions", [&] {
-    return std::make_unique<RKShapeFunctions>(res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
+    return std::make_unique<RKShapeFunctions>(
+        res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor, obstacles));
   });
 
   // Quadrature: points, weights, and the gradients of the weak form.
@@ -90,7 +109,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
         const std::vector<Vec2> xq = make_quadrature_cloud(domain, qc, s.quadrature_ratio);
         const double hq = h / std::sqrt(s.quadrature_ratio);
-        const RKShapeFunctions quad(xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor));
+        const RKShapeFunctions quad(
+            xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor, obstacles));
         const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
         return projected_quadrature(*res.trial, quad, lattice);
       }

@@ -39,13 +39,56 @@ std::string ring_name(std::size_t k) {
   return k == 0 ? std::string("the outer ring") : fmt::format("hole {}", k);
 }
 
-/// Strict reader of one WKT POLYGON: POLYGON ((x y, x y, ...), (x y, ...), ...).
+/// What a WKT text holds: one polygon and the line strings beside it (cracks).
+struct WktGeometry {
+  std::vector<Ring> polygon;
+  std::vector<std::vector<Vec2>> lines;
+};
+
+/// Strict reader of one WKT POLYGON: POLYGON ((x y, x y, ...), (x y, ...), ...), or of a
+/// GEOMETRYCOLLECTION of one POLYGON and LINESTRINGs or MULTILINESTRINGs.
 /// Keywords are case-insensitive; anything else (Z/M coordinates, EMPTY, a second
-/// geometry, trailing text) is an error reported with its line and column.
+/// polygon, other geometries, trailing text) is an error reported with its line and column.
 class WktReader {
  public:
   WktReader(std::string_view text, const std::string& source) : text_(text), source_(source) {}
 
+  WktGeometry geometry() {
+    WktGeometry g;
+    skip_space();
+    if (at_keyword("GEOMETRYCOLLECTION")) {
+      pos_ += std::string_view("GEOMETRYCOLLECTION").size();
+      expect('(');
+      do {
+        skip_space();
+        if (at_keyword("POLYGON")) {
+          if (!g.polygon.empty()) fail("a second POLYGON (a domain is one polygon with holes)");
+          g.polygon = polygon();
+        } else if (at_keyword("LINESTRING")) {
+          pos_ += std::string_view("LINESTRING").size();
+          g.lines.push_back(ring());
+        } else if (at_keyword("MULTILINESTRING")) {
+          pos_ += std::string_view("MULTILINESTRING").size();
+          expect('(');
+          do {
+            g.lines.push_back(ring());
+          } while (accept(','));
+          expect(')');
+        } else {
+          fail("expected POLYGON, LINESTRING or MULTILINESTRING in the collection");
+        }
+      } while (accept(','));
+      expect(')');
+      if (g.polygon.empty()) fail("the collection has no POLYGON");
+    } else {
+      g.polygon = polygon();
+    }
+    skip_space();
+    if (pos_ != text_.size()) fail("unexpected text after the geometry");
+    return g;
+  }
+
+ private:
   std::vector<Ring> polygon() {
     skip_space();
     expect_keyword("POLYGON");
@@ -57,12 +100,9 @@ class WktReader {
       rings.push_back(ring());
     } while (accept(','));
     expect(')');
-    skip_space();
-    if (pos_ != text_.size()) fail("unexpected text after the polygon");
     return rings;
   }
 
- private:
   Ring ring() {
     expect('(');
     Ring r;
@@ -114,7 +154,11 @@ class WktReader {
   }
 
   void expect_keyword(std::string_view word) {
-    if (!at_keyword(word)) fail(fmt::format("expected {} (only a single WKT POLYGON is read)", word));
+    if (!at_keyword(word))
+      fail(fmt::format(
+          "expected {} (mfree reads one POLYGON, alone or in a GEOMETRYCOLLECTION with LINESTRING "
+          "cracks)",
+          word));
     pos_ += word.size();
   }
 
@@ -259,6 +303,7 @@ struct Domain::Impl {
   Vec2 first_moment = Vec2::Zero();
 
   std::vector<std::string> part_names;
+  std::vector<Crack> cracks;
 
   explicit Impl(std::vector<Ring> oriented, const std::vector<bool>& reversed,
                 const std::vector<std::vector<int>>& parts = {}, std::vector<std::string> names = {})
@@ -294,6 +339,114 @@ struct Domain::Impl {
     return out;
   }
 };
+
+namespace {
+
+using FastSegment = Epick::Segment_2;
+
+std::string crack_point(const std::string& name, std::size_t i, const Vec2& x) {
+  return fmt::format("crack '{}', point {} ({}, {})", name, i + 1, x.x(), x.y());
+}
+
+/// Whether x lies on the boundary of one of the rings.
+bool on_boundary(const std::vector<FastPolygon>& rings, const Vec2& x) {
+  return std::any_of(rings.begin(), rings.end(), [&](const FastPolygon& r) {
+    return r.bounded_side(fast_point(x)) == CGAL::ON_BOUNDARY;
+  });
+}
+
+/// Whether segments s and t share more than the one point `shared` (an end of both).
+bool overlap_beyond(const FastSegment& s, const FastSegment& t, const Epick::Point_2& shared) {
+  const Epick::Point_2 other = s.source() == shared ? s.target() : s.source();
+  const Epick::Point_2 far = t.source() == shared ? t.target() : t.source();
+  return CGAL::collinear(shared, other, far) && CGAL::angle(other, shared, far) == CGAL::ACUTE;
+}
+
+}  // namespace
+
+Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std::string> names,
+                           const std::string& source) const {
+  if (names.size() != lines.size())
+    throw Error(fmt::format("{}: {} cracks but {} names", source, lines.size(), names.size()));
+  auto impl = std::make_unique<Impl>(*impl_);
+  std::vector<FastSegment> all;    // every crack segment so far
+  std::vector<std::size_t> owner;  // its crack
+  for (std::size_t c = 0; c < lines.size(); ++c) {
+    std::vector<Vec2>& line = lines[c];
+    const std::string& name = names[c];
+    const bool taken =
+        std::find(impl->part_names.begin(), impl->part_names.end(), name) != impl->part_names.end();
+    if (name.empty() || taken)
+      throw InputError(
+          fmt::format("{}: crack name '{}' is {}", source, name, taken ? "already a part name" : "empty"));
+    if (line.size() < 2)
+      throw InputError(
+          fmt::format("{}: crack '{}' has {} point(s); a crack needs at least 2", source, name, line.size()));
+    Crack crack{line, name, {false, false}};
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const Vec2& x = line[i];
+      if (!x.allFinite())
+        throw InputError(fmt::format("{}: {} is not finite", source, crack_point(name, i, x)));
+      if (!contains(x))
+        throw InputError(fmt::format("{}: {} lies outside the domain", source, crack_point(name, i, x)));
+      const bool end = i == 0 || i + 1 == line.size();
+      const bool boundary = on_boundary(impl->fast_rings, x);
+      if (boundary && !end)
+        throw InputError(fmt::format("{}: {} lies on the boundary; only an end of a crack may (its mouth)",
+                                     source, crack_point(name, i, x)));
+      if (end) crack.tip[i == 0 ? 0 : 1] = !boundary;
+      if (i > 0 && x == line[i - 1])
+        throw InputError(fmt::format("{}: {} repeats the point before it", source, crack_point(name, i, x)));
+    }
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const FastSegment seg(fast_point(line[i]), fast_point(line[i + 1]));
+      // Against the boundary: a crack meets it at a mouth only.
+      for (const BoundarySegment& e : impl->segments) {
+        if (e.ring < 0) continue;
+        const FastSegment edge(fast_point(e.a), fast_point(e.b));
+        if (!CGAL::do_intersect(seg, edge)) continue;
+        // Segments not on one line meet at one point: allowed when it is a mouth.
+        const bool mouth_here = (i == 0 && !crack.tip[0] && edge.has_on(seg.source())) ||
+                                (i + 2 == line.size() && !crack.tip[1] && edge.has_on(seg.target()));
+        const bool along = CGAL::collinear(edge.source(), edge.target(), seg.source()) &&
+                           CGAL::collinear(edge.source(), edge.target(), seg.target());
+        if (!mouth_here || along)
+          throw InputError(
+              fmt::format("{}: crack '{}', segment {} (from ({}, {}) to ({}, {})) meets the boundary of the "
+                          "domain at {} ({} edge {}); a crack lies inside the domain and only its ends may "
+                          "touch the boundary",
+                          source, name, i + 1, line[i].x(), line[i].y(), line[i + 1].x(), line[i + 1].y(),
+                          mouth_here ? "more than its mouth" : "a point other than its ends",
+                          ring_name(static_cast<std::size_t>(e.ring)), e.edge + 1));
+      }
+      // Against itself and the cracks before it: no crossing, touching or doubling back.
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        const bool previous = owner[k] == c && k + 1 == all.size();
+        if (previous ? overlap_beyond(all[k], seg, seg.source()) : CGAL::do_intersect(all[k], seg))
+          throw InputError(
+              fmt::format("{}: crack '{}', segment {} meets {}; cracks do not cross, touch or fold back",
+                          source, name, i + 1,
+                          owner[k] == c ? std::string("an earlier segment of the same crack")
+                                        : fmt::format("crack '{}'", names[owner[k]])));
+      }
+      all.push_back(seg);
+      owner.push_back(c);
+    }
+    const int part = static_cast<int>(impl->part_names.size());
+    impl->part_names.push_back(name);
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Vec2 &a = line[i], &b = line[i + 1];
+      const double length = (b - a).norm();
+      const Vec2 t = (b - a) / length, right(t.y(), -t.x());
+      const int crack_index = static_cast<int>(impl->cracks.size()), edge = static_cast<int>(i);
+      impl->segments.push_back(BoundarySegment{a, b, right, length, -1, edge, part, crack_index});
+      impl->segments.push_back(BoundarySegment{b, a, -right, length, -1, edge, part, crack_index});
+    }
+    impl->cracks.push_back(std::move(crack));
+  }
+  impl->grid = SegmentGrid(impl->segments);
+  return Domain(std::move(impl));
+}
 
 Domain::Domain(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Domain::Domain(const Domain& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
@@ -333,9 +486,14 @@ Domain Domain::from_rings(std::vector<Ring> rings, std::vector<std::vector<int>>
 
 Domain Domain::from_wkt(std::string_view wkt, const std::string& source) {
   WktReader reader(wkt, source);
+  WktGeometry g = reader.geometry();
   std::vector<bool> reversed;
-  std::vector<Ring> oriented = normalised_rings(reader.polygon(), source, reversed);
-  return Domain(std::make_unique<Impl>(std::move(oriented), reversed));
+  std::vector<Ring> oriented = normalised_rings(std::move(g.polygon), source, reversed);
+  Domain domain(std::make_unique<Impl>(std::move(oriented), reversed));
+  if (g.lines.empty()) return domain;
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < g.lines.size(); ++c) names.push_back(fmt::format("crack{}", c + 1));
+  return domain.with_cracks(std::move(g.lines), std::move(names), source);
 }
 
 Domain Domain::from_file(const std::filesystem::path& path) {
@@ -387,6 +545,7 @@ Box Domain::bounding_box() const { return impl_->box; }
 const std::vector<Ring>& Domain::rings() const { return impl_->rings; }
 const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->segments; }
 const std::vector<std::string>& Domain::part_names() const { return impl_->part_names; }
+const std::vector<Crack>& Domain::cracks() const { return impl_->cracks; }
 
 std::vector<Ring> Domain::clip(const Box& box) const {
   const Impl& d = *impl_;

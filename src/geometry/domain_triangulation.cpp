@@ -118,7 +118,11 @@ void mark_nesting_levels(Cdt& cdt) {
 }  // namespace
 
 Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& points) {
-  const std::vector<BoundarySegment>& segments = domain.boundary();
+  // The rings' edges; crack faces (after them) bound no area.
+  std::vector<BoundarySegment> segments = domain.boundary();
+  segments.erase(
+      std::find_if(segments.begin(), segments.end(), [](const BoundarySegment& s) { return s.ring < 0; }),
+      segments.end());
   const double tolerance = outside_tolerance * domain.bounding_box().size().norm();
 
   Triangulation out;

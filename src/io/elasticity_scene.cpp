@@ -155,6 +155,13 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     s.support = read_choice_or(t, "support", support_names(), SupportShape::circular);
     s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
+    const bool circular = s.support == SupportShape::circular;
+    s.support_rule = read_choice_or(t, "support_rule", support_rule_names(),
+                                    circular ? SupportRule::geodesic : SupportRule::visibility);
+    if (s.support_rule == SupportRule::geodesic && !circular)
+      t.error("support_rule",
+              "geodesic distances need circular supports; tensor supports take \"visibility\" or "
+              "\"plain\"");
     t.finish();
   }
   const SceneTable quadrature = root.optional_table("quadrature");

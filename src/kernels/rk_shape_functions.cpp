@@ -1,8 +1,10 @@
 #include "mfree/kernels/rk_shape_functions.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
+#include <limits>
 
 #include "mfree/core/error.hpp"
 #include "mfree/kernels/rk_moment.hpp"
@@ -61,12 +63,14 @@ WindowSample sample_window(double dx, double dy, double inv_a) {
 }
 
 /// The per-point RK construction for one basis, window and support (SPEC section 1).
-/// `out.nodes` holds the neighbours on entry; phi and grad are filled.
+/// `out.nodes` holds the neighbours on entry; phi and grad are filled. With Given, the
+/// windows are given on entry instead (supports that respect the domain): out.phi[k] holds
+/// w_I and out.grad[k] its gradient, for every neighbour, whether or not with_gradient.
 ///
 /// Per-neighbour quantities are scalars and arrays of them (polynomial_basis.hpp), not
 /// small Eigen vectors, and M is summed in its upper triangle: every operand of the three
 /// passes stays in registers.
-template <int Order, Window W, SupportShape S>
+template <int Order, Window W, SupportShape S, bool Given>
 void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, ShapeValues& out,
               bool with_gradient) {
   using Basis = PolynomialBasis<Order>;
@@ -75,8 +79,10 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   using Matrix = typename RKMoment<Order>::Matrix;
 
   const std::size_t n = out.nodes.size();
-  out.phi.resize(n);
-  out.grad.resize(with_gradient ? n : 0);
+  if constexpr (!Given) {
+    out.phi.resize(n);
+    out.grad.resize(with_gradient ? n : 0);
+  }
   out.z.resize(n);
   const double inv_a = 1.0 / s.radius;  // basis scale
   const bool per_node = !s.node_radii.empty();
@@ -87,14 +93,20 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& node = nodes[out.nodes[k]];
     const double dx = x.x() - node.x(), dy = x.y() - node.y();
-    const WindowSample ws =
-        sample_window<W, S>(dx, dy, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
     const double z1 = dx * inv_a, z2 = dy * inv_a;
     out.z[k] = Vec2(z1, z2);
-    moment.add(ws.w, Basis::value(z1, z2));
-    out.phi[k] = ws.w;
-    if (with_gradient) out.grad[k] = Vec2(ws.gx, ws.gy);
+    if constexpr (Given) {
+      moment.add(out.phi[k], Basis::value(z1, z2));
+    } else {
+      const WindowSample ws =
+          sample_window<W, S>(dx, dy, per_node ? 1.0 / s.node_radii[out.nodes[k]] : inv_a);
+      moment.add(ws.w, Basis::value(z1, z2));
+      out.phi[k] = ws.w;
+      if (with_gradient) out.grad[k] = Vec2(ws.gx, ws.gy);
+    }
   }
+  if constexpr (Given)
+    if (!with_gradient) out.grad.clear();
   // M^-1 explicitly (3x3 or 6x6): it serves b and both d b / d x_j.
   Matrix minv;
   const double rcond = moment.invert(minv);
@@ -148,14 +160,21 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
 using PointKernel = void (*)(const Vec2&, std::span<const Vec2>, const RKSettings&, ShapeValues&,
                              bool);
 
-template <int Order>
+template <int Order, bool Given>
 PointKernel select_kernel(Window w, SupportShape s) {
   if (w == Window::cubic_bspline)
-    return s == SupportShape::circular ? &rk_point<Order, Window::cubic_bspline, SupportShape::circular>
-                                       : &rk_point<Order, Window::cubic_bspline, SupportShape::tensor>;
+    return s == SupportShape::circular
+               ? &rk_point<Order, Window::cubic_bspline, SupportShape::circular, Given>
+               : &rk_point<Order, Window::cubic_bspline, SupportShape::tensor, Given>;
   return s == SupportShape::circular
-             ? &rk_point<Order, Window::quadratic_spline, SupportShape::circular>
-             : &rk_point<Order, Window::quadratic_spline, SupportShape::tensor>;
+             ? &rk_point<Order, Window::quadratic_spline, SupportShape::circular, Given>
+             : &rk_point<Order, Window::quadratic_spline, SupportShape::tensor, Given>;
+}
+
+template <bool Given>
+PointKernel select_kernel(const RKSettings& s) {
+  return s.order == RKOrder::linear ? select_kernel<1, Given>(s.window, s.support)
+                                    : select_kernel<2, Given>(s.window, s.support);
 }
 
 }  // namespace
@@ -181,6 +200,13 @@ RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
   // Cells of half the support: a query's box of side 2a then covers about (5 a / 2)^2 of
   // candidates instead of (3 a)^2, 30 % fewer to test.
   cells_ = CellList(nodes_, 0.5 * max_radius_);
+  if (settings_.rule != SupportRule::plain && settings_.obstacles && !settings_.obstacles->empty()) {
+    if (settings_.rule == SupportRule::geodesic && settings_.support != SupportShape::circular)
+      throw InputError(
+          "RK shape functions: the geodesic support rule measures distances along paths and needs "
+          "circular supports; tensor supports take the visibility rule");
+    paths_ = std::make_shared<const SupportPaths>(*settings_.obstacles, settings_.rule, max_radius_);
+  }
 }
 
 void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, double rcond) {
@@ -227,6 +253,10 @@ std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h
 
 void RKShapeFunctions::evaluate(const Vec2& x, ShapeValues& out, bool with_gradient) const {
   out.nodes.clear();
+  if (paths_ && paths_->prepare(x, out.paths)) {
+    evaluate_along_paths(x, out, with_gradient);
+    return;
+  }
   if (settings_.support == SupportShape::circular) {
     cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
       const double a = support_radius(i);
@@ -238,10 +268,37 @@ void RKShapeFunctions::evaluate(const Vec2& x, ShapeValues& out, bool with_gradi
       if (std::abs(p.x() - x.x()) < a && std::abs(p.y() - x.y()) < a) out.nodes.push_back(i);
     });
   }
-  const PointKernel kernel = settings_.order == RKOrder::linear
-                                 ? select_kernel<1>(settings_.window, settings_.support)
-                                 : select_kernel<2>(settings_.window, settings_.support);
-  kernel(x, nodes_, settings_, out, with_gradient);
+  select_kernel<false>(settings_)(x, nodes_, settings_, out, with_gradient);
+}
+
+void RKShapeFunctions::evaluate_along_paths(const Vec2& x, ShapeValues& out, bool with_gradient) const {
+  // The straight distance never exceeds the path's, so the straight search finds every
+  // candidate; the rule then decides which reach x and with what window.
+  out.phi.clear();
+  out.grad.clear();
+  const bool circular = settings_.support == SupportShape::circular;
+  cells_.for_each_in_box(x, max_radius_, [&](Index i, const Vec2& p) {
+    const double a = support_radius(i);
+    if (circular ? (p - x).squaredNorm() >= a * a
+                 : (std::abs(p.x() - x.x()) >= a || std::abs(p.y() - x.y()) >= a))
+      return;
+    Vec2 direction;
+    const double d = paths_->distance(p, x, out.paths, direction);
+    if (!(d < (circular ? a : std::numeric_limits<double>::infinity()))) return;
+    out.nodes.push_back(i);
+    if (circular) {
+      const WindowValue v = evaluate_window(settings_.window, d / a);
+      out.phi.push_back(v.w);
+      out.grad.push_back(v.dw / a * direction);
+    } else {
+      const WindowValue vx = evaluate_window(settings_.window, std::abs(x.x() - p.x()) / a);
+      const WindowValue vy = evaluate_window(settings_.window, std::abs(x.y() - p.y()) / a);
+      out.phi.push_back(vx.w * vy.w);
+      out.grad.emplace_back(std::copysign(1.0 / a, x.x() - p.x()) * vx.dw * vy.w,
+                            std::copysign(1.0 / a, x.y() - p.y()) * vy.dw * vx.w);
+    }
+  });
+  select_kernel<true>(settings_)(x, nodes_, settings_, out, with_gradient);
 }
 
 }  // namespace mfree

@@ -1,9 +1,12 @@
 #include "mfree/quadrature/gauss_cells.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 
 namespace mfree {
 
@@ -25,7 +28,17 @@ QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
           rule.points.push_back(x);
           rule.weights.push_back(g.weights[i] * g.weights[j] * hx * hy);
         }
-  return rule;
+  if (domain.cracks().empty()) return rule;
+  // A point on a crack integrates both faces: two copies with half its weight each.
+  std::vector<Index> origin;
+  std::vector<Vec2> points = split_on_cracks(domain, rule.points, std::min(hx, hy), &origin);
+  std::vector<double> weights(points.size());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const bool split =
+        (p > 0 && origin[p - 1] == origin[p]) || (p + 1 < points.size() && origin[p + 1] == origin[p]);
+    weights[p] = rule.weights[origin[p]] * (split ? 0.5 : 1.0);
+  }
+  return QuadratureRule{std::move(points), std::move(weights)};
 }
 
 }  // namespace mfree

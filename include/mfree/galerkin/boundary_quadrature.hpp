@@ -4,7 +4,9 @@
 // none), each such interval into pieces no longer than `max_length`, each piece carrying
 // `gauss_points` Gauss–Legendre points. Exact for polynomials of degree 2 gauss_points - 1
 // along straight segments, so sums of x n and 1 n over the whole boundary vanish/close to
-// round-off (divergence theorem).
+// round-off (divergence theorem). The points of a crack face lie a tiny offset (1e-7 of
+// max_length) into the material of that face (geometry/crack_faces.hpp), so that the data
+// and the shape functions there belong to that face.
 
 #include <vector>
 

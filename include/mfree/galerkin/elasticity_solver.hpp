@@ -50,6 +50,8 @@ struct ElasticitySettings {
   SupportShape support = SupportShape::circular;
   double support_factor = 2.0;          ///< a = factor * h
   double irregular_factor_scale = 1.25; ///< node radii on irregular clouds (nodal_support_radii)
+  /// How supports respect the domain's cracks, slots and re-entrant corners (support_paths.hpp).
+  SupportRule support_rule = SupportRule::geodesic;
 
   QuadratureScheme scheme = QuadratureScheme::gauss_cells;
   double quadrature_ratio = 4.0;        ///< quadrature points per node

@@ -10,6 +10,9 @@
 //   POLYGON((0 0, 2 0, 2 1, 0 1, 0 0), (0.5 0.25, 0.5 0.75, 1 0.75, 1 0.25, 0.5 0.25))
 // WKT is what GIS tools, Shapely, QGIS and CAD exporters write. Ring orientation in the file
 // is free; mfree normalises it. The closing vertex repeating the first one is optional.
+// Cracks come as line strings beside the polygon, in a collection:
+//   GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1, 0 1)), LINESTRING(0.8 0.5, 1.2 0.5))
+// named crack1, crack2, ... in their order (a MULTILINESTRING counts each line).
 //
 // CGAL does the geometry (inside tests, Boolean clipping); its headers stay in domain.cpp.
 
@@ -32,9 +35,19 @@ struct BoundarySegment {
   Vec2 b;         ///< end vertex (domain on the left of a -> b)
   Vec2 normal;    ///< outward unit normal
   double length;  ///< |b - a|
-  int ring;       ///< 0: outer boundary, k >= 1: hole k
-  int edge;       ///< index of the edge in its ring (from vertex edge to vertex edge + 1)
+  int ring;       ///< 0: outer boundary, k >= 1: hole k, -1: a crack face
+  int edge;       ///< index of the edge in its ring or crack (from vertex edge to vertex edge + 1)
   int part;       ///< named boundary part (Domain::part_names()), -1: none
+  int crack = -1;  ///< the crack (Domain::cracks()) whose face this is, -1: a ring edge
+};
+
+/// A crack: a polyline inside the domain whose two faces are boundary (traction-free unless
+/// a condition names the crack). Each end is a tip inside the domain or lies on the boundary
+/// (an edge crack's mouth). Its faces are the part named `name`.
+struct Crack {
+  std::vector<Vec2> points;  ///< vertices in order, at least 2
+  std::string name;
+  bool tip[2] = {false, false};  ///< whether points.front() / points.back() is a tip
 };
 
 class Domain {
@@ -50,6 +63,13 @@ class Domain {
   /// Parses one WKT POLYGON; `source` names the text in error messages (a file name).
   /// Throws InputError on malformed text, self-intersecting or degenerate rings.
   static Domain from_wkt(std::string_view wkt, const std::string& source = "<wkt>");
+  /// This domain with cracks: polylines (each at least 2 distinct points) inside the closed
+  /// domain, whose vertices other than the ends lie in its interior, crossing no boundary
+  /// edge, no other crack and themselves nowhere; an end on the boundary is a mouth, one in
+  /// the interior a tip. `names` (one per crack, not a part name already) name their faces.
+  /// Throws InputError naming `source` and the crack otherwise.
+  [[nodiscard]] Domain with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std::string> names,
+                                   const std::string& source) const;
   /// Reads a domain file by its extension (case aside): .wkt as WKT (from_wkt), the gmsh
   /// extensions (.geo, .msh, .step, .stp, .brep, .iges, .igs) with read_gmsh_domain
   /// (gmsh_domain.hpp), which also names the boundary parts. A missing or unreadable file, or
@@ -71,7 +91,11 @@ class Domain {
   [[nodiscard]] Box bounding_box() const;
   /// Outer ring (counter-clockwise) then holes (clockwise).
   [[nodiscard]] const std::vector<Ring>& rings() const;
-  /// Every boundary edge with its outward normal, ring by ring in ring order.
+  /// The cracks, in the order given.
+  [[nodiscard]] const std::vector<Crack>& cracks() const;
+  /// Every boundary edge with its outward normal, ring by ring in ring order, then the faces
+  /// of each crack: per crack segment a -> b, the face a -> b (the material on its left;
+  /// normal to the right) and then the face b -> a.
   [[nodiscard]] const std::vector<BoundarySegment>& boundary() const;
   /// Names of the boundary parts (BoundarySegment::part indexes them); may be empty.
   [[nodiscard]] const std::vector<std::string>& part_names() const;

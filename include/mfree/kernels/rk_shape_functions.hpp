@@ -13,9 +13,14 @@
 //
 // Gradients are exact derivatives of phi_I: grad(M^-1) = -M^-1 (grad M) M^-1.
 //
+// Supports may respect the domain (support_paths.hpp): the window then measures the
+// distance d(x_I, x) along paths inside the domain, w(d / a_I), and a node whose path is
+// blocked does not reach x. The basis keeps the straight offsets z_I = (x - x_I) / a.
+//
 // The same construction serves the Galerkin trial functions, the quadrature-cloud functions
 // that define quadrature weights, and the MLS reconstruction of the MPM.
 
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,6 +30,7 @@
 #include "mfree/core/parallel.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/kernels/polynomial_basis.hpp"
+#include "mfree/kernels/support_paths.hpp"
 #include "mfree/kernels/window_function.hpp"
 #include "mfree/search/cell_list.hpp"
 
@@ -43,6 +49,10 @@ struct RKSettings {
   /// Optional radius per node (empty: every node has `radius`). Each must be >= radius.
   std::vector<double> node_radii;
   double rcond_min = 1e-10;  ///< smallest accepted reciprocal condition number of M
+  /// How supports respect the domain, and what they respect (none: every rule is plain).
+  /// The geodesic rule needs circular supports; tensor supports take visibility only.
+  SupportRule rule = SupportRule::plain;
+  std::shared_ptr<const SupportObstacles> obstacles;
 };
 
 /// Shape functions of every node whose support covers one point x.
@@ -52,12 +62,14 @@ struct ShapeValues {
   std::vector<double> phi;
   std::vector<Vec2> grad;
   std::vector<Vec2> z;  ///< scratch: scaled offsets (x - x_I) / a, kept to reuse the storage
+  PathScratch paths;    ///< scratch of supports that respect the domain
   [[nodiscard]] std::size_t size() const { return nodes.size(); }
 };
 
 class RKShapeFunctions {
  public:
-  /// Throws InputError for a non-positive radius or an empty cloud.
+  /// Throws InputError for a non-positive radius, an empty cloud, or the geodesic rule on
+  /// tensor supports.
   RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings);
 
   [[nodiscard]] const std::vector<Vec2>& nodes() const { return nodes_; }
@@ -91,10 +103,14 @@ class RKShapeFunctions {
   }
 
  private:
+  /// evaluate() at a point with obstacles near it: windows from the rule's distances.
+  void evaluate_along_paths(const Vec2& x, ShapeValues& out, bool with_gradient) const;
+
   std::vector<Vec2> nodes_;
   RKSettings settings_;
   double max_radius_ = 0.0;
   CellList cells_;
+  std::shared_ptr<const SupportPaths> paths_;  ///< null: plain supports
 };
 
 /// Radii a_I = factor * max(h, d_k(I)), d_k(I) the distance from node I to its k-th nearest

@@ -3,7 +3,8 @@
 // "background cell" quadrature of meshfree methods. Cells are fitted to the domain's
 // bounding box (nominal side `cell_size`, adjusted per axis to an integer count);
 // points outside the domain are dropped, as that practice does (cut cells are not
-// integrated exactly: the reason meshfree quadrature exists).
+// integrated exactly: the reason meshfree quadrature exists). A point on a crack becomes
+// two, one on each face, with half its weight each (geometry/crack_faces.hpp).
 
 #include "mfree/geometry/domain.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"

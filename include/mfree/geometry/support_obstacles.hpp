@@ -1,0 +1,21 @@
+#pragma once
+// What supports that respect the domain must respect (kernels/support_paths.hpp), made from
+// a domain:
+//   obstacles  both faces of every crack (one segment each), and the boundary edges that can
+//              separate two points of the domain within a support: an edge is one when a
+//              boundary vertex within `reach` of it lies strictly on its outer side (the
+//              walls of a notch, a slot or a hole; never an edge of a convex outer ring);
+//   corners    the reflex vertices of the rings (the domain turns right there), crack tips
+//              and the inner vertices of cracks: where shortest paths in the domain bend.
+// An obstacle's end at a convex vertex or at a crack's mouth is moved out by 1e-9 of the
+// segment's length, so no path along the boundary slips past it through the outside.
+
+#include "mfree/geometry/domain.hpp"
+#include "mfree/kernels/support_paths.hpp"
+
+namespace mfree {
+
+/// The obstacles and corners of `domain` for supports of radius up to `reach`.
+SupportObstacles support_obstacles(const Domain& domain, double reach);
+
+}  // namespace mfree

@@ -1,0 +1,101 @@
+#pragma once
+// Supports that respect the domain: the distance d(x_I, x) a node's window measures to a
+// point is taken along paths inside the domain, so that a support does not reach material
+// joined to its node only across a crack, a slot, a thin wall or a re-entrant corner
+// (SPEC section 13). The window is then w(d / a_I) in place of w(|x - x_I| / a_I); the
+// RK correction (rk_shape_functions.hpp) restores reproduction whatever the window.
+//
+// Rules:
+//   plain       d = |x - x_I|: supports ignore the domain and reach across gaps and cracks.
+//   visibility  d = |x - x_I| when the segment x_I -> x crosses no obstacle, otherwise the
+//               node does not reach x (Belytschko, Lu & Gu 1994; Belytschko, Organ &
+//               Krongauz 1996): the shape functions jump across the shadow lines that
+//               start at crack tips and re-entrant corners.
+//   geodesic    d = the length of the shortest path from x_I to x that crosses no obstacle,
+//               bending at corners: continuous in x, so the window of a node beside a crack
+//               tip wraps around the tip. With one bend at a crack tip it is the distance of
+//               the diffraction method with exponent 1 (Organ, Fleming, Terry & Belytschko
+//               1996, eq. 7: d = (s1 + s2), lambda = 1); here every re-entrant corner is a
+//               bend point and paths may bend several times, as long as they stay within the
+//               support. It is the distance a local problem on the embedded domain (the
+//               eikonal equation |grad d| = 1 in Omega, d = 0 at x_I) would give.
+//
+// Obstacles are straight segments no path may cross (a path touching one at a point does
+// not cross it); corners are the points where paths may bend. The domain makes them
+// (geometry/support_obstacles.hpp): the boundary edges that can separate two points of the
+// domain, both faces of each crack, reflex vertices and crack tips as corners. An end of an
+// obstacle that is not a corner is moved out by 1e-9 of its length, so that a path along
+// the boundary cannot slip past a convex vertex through the outside (the mouth of a slot).
+//
+// The gradient of d in x is the unit vector from the last bend point (or x_I) to x.
+// In three dimensions obstacles become triangles and corners become edges (crack fronts,
+// re-entrant edges); a path bends at a point of an edge, and the same two rules apply.
+//
+// Everything here is per point: prepare() collects the obstacles near one point into a
+// scratch the caller owns (one per thread), distance() reads them.
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "mfree/core/name_table.hpp"
+#include "mfree/core/types.hpp"
+
+namespace mfree {
+
+enum class SupportRule { plain, visibility, geodesic };
+/// plain, visibility, geodesic: the names scenes use.
+const NameTable<SupportRule>& support_rule_names();
+std::string_view to_string(SupportRule rule);
+
+/// Segments no path crosses and the corners where paths bend.
+struct SupportObstacles {
+  std::vector<Vec2> a, b;  ///< segment k runs from a[k] to b[k]
+  std::vector<Vec2> corners;
+  [[nodiscard]] bool empty() const { return a.empty(); }
+};
+
+/// What prepare() collects for one point x: the obstacles and corners within the reach of
+/// x, and (geodesic rule) the in-domain distance from each such corner to x.
+struct PathScratch {
+  std::vector<int> segments;  ///< indices of obstacles near x
+  std::vector<int> corners;   ///< indices of corners near x
+  std::vector<double> to_x;   ///< per near corner: shortest path length to x (inf: none)
+  std::vector<Vec2> last;     ///< per near corner: the path's last point before x
+};
+
+class SupportPaths {
+ public:
+  /// `reach`: the largest support radius (length units) the paths serve.
+  SupportPaths(SupportObstacles obstacles, SupportRule rule, double reach);
+
+  [[nodiscard]] SupportRule rule() const { return rule_; }
+  [[nodiscard]] const SupportObstacles& obstacles() const { return obstacles_; }
+
+  /// Collects the obstacles within the reach of x. False when there are none (or the rule
+  /// is plain): every node then measures |x - x_I|.
+  bool prepare(const Vec2& x, PathScratch& s) const;
+
+  /// d(x_I, x) under the rule, for a node x_I within the reach of x, after prepare(x, s)
+  /// returned true; +inf when no admissible path shorter than the reach joins them.
+  /// `gradient` gets d d / d x (a unit vector; zero where x is the path's last point).
+  double distance(const Vec2& xi, const Vec2& x, const PathScratch& s, Vec2& gradient) const;
+
+  /// Whether the segment p -> q crosses none of the obstacles collected in s.
+  [[nodiscard]] bool visible(const Vec2& p, const Vec2& q, const PathScratch& s) const;
+
+ private:
+  template <class F>
+  void for_each_bucket(const Vec2& x, F&& f) const;
+
+  SupportObstacles obstacles_;
+  SupportRule rule_;
+  double reach_;
+  // Buckets of side reach_ over the obstacles' box: segment and corner indices per bucket.
+  Vec2 origin_ = Vec2::Zero();
+  double side_ = 1.0;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> segment_start_, segment_items_, corner_start_, corner_items_;
+};
+
+}  // namespace mfree

@@ -1,0 +1,70 @@
+#include "mfree/geometry/support_obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mfree {
+
+namespace {
+
+constexpr double end_extension = 1e-9;  ///< of a segment's length, at ends that are not corners
+
+/// > 0 when c lies left of a -> b (twice the signed area).
+double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend_b) {
+  const Vec2 d = end_extension * (b - a);
+  if (extend_a) a -= d;
+  if (extend_b) b += d;
+  o.a.push_back(a);
+  o.b.push_back(b);
+}
+
+}  // namespace
+
+// Quadratic in the number of boundary segments (a few thousand at most for gmsh domains:
+// milliseconds).
+SupportObstacles support_obstacles(const Domain& domain, double reach) {
+  SupportObstacles out;
+  const Box box = domain.bounding_box();
+  const double tolerance = 1e-12 * box.size().norm();
+
+  // Whether the boundary comes back to the outer side of edge a -> b within reach: some
+  // boundary segment (ring edge or crack face) whose box meets the edge's box grown by reach
+  // has an end strictly on that side. Conservative: such a segment's far end may lie beyond.
+  const std::vector<BoundarySegment>& segments = domain.boundary();
+  const auto separates = [&](const Vec2& a, const Vec2& b) {
+    const Vec2 outward = Vec2(b.y() - a.y(), a.x() - b.x()).normalized();
+    const Vec2 lo = a.cwiseMin(b).array() - reach, hi = a.cwiseMax(b).array() + reach;
+    return std::any_of(segments.begin(), segments.end(), [&](const BoundarySegment& f) {
+      const Vec2 flo = f.a.cwiseMin(f.b), fhi = f.a.cwiseMax(f.b);
+      if ((fhi.array() < lo.array()).any() || (flo.array() > hi.array()).any()) return false;
+      return outward.dot(f.a - a) > tolerance || outward.dot(f.b - a) > tolerance;
+    });
+  };
+
+  for (const Ring& r : domain.rings()) {
+    const std::size_t n = r.size();
+    // turn[i] > 0: convex vertex i (left turn), < 0: reflex.
+    std::vector<double> turn(n);
+    for (std::size_t i = 0; i < n; ++i) turn[i] = orientation(r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (turn[i] < 0.0) out.corners.push_back(r[i]);
+      const Vec2 &a = r[i], &b = r[(i + 1) % n];
+      if (separates(a, b)) add_segment(out, a, b, turn[i] > 0.0, turn[(i + 1) % n] > 0.0);
+    }
+  }
+  for (const Crack& c : domain.cracks()) {
+    const std::size_t n = c.points.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1]) || (i > 0 && i + 1 < n))
+        out.corners.push_back(c.points[i]);
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      add_segment(out, c.points[i], c.points[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]));
+  }
+  return out;
+}
+
+}  // namespace mfree

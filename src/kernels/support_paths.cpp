@@ -1,0 +1,213 @@
+#include "mfree/kernels/support_paths.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mfree/core/error.hpp"
+
+namespace mfree {
+
+const NameTable<SupportRule>& support_rule_names() {
+  static const NameTable<SupportRule> table{{"plain", SupportRule::plain},
+                                            {"visibility", SupportRule::visibility},
+                                            {"geodesic", SupportRule::geodesic}};
+  return table;
+}
+
+std::string_view to_string(SupportRule rule) { return support_rule_names().name(rule); }
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+/// Twice the signed area of (a, b, c): > 0 when c lies left of a -> b.
+double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+/// Whether the open segments p q and a b cross at one point interior to both: touching at an
+/// end or running along each other is not crossing.
+bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  const double o1 = orientation(a, b, p), o2 = orientation(a, b, q);
+  if (!((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))) return false;
+  const double o3 = orientation(p, q, a), o4 = orientation(p, q, b);
+  return (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0);
+}
+
+Vec2 unit_or_zero(const Vec2& v) {
+  const double n = v.norm();
+  return n > 0.0 ? Vec2(v / n) : Vec2(Vec2::Zero());
+}
+
+}  // namespace
+
+SupportPaths::SupportPaths(SupportObstacles obstacles, SupportRule rule, double reach)
+    : obstacles_(std::move(obstacles)), rule_(rule), reach_(reach) {
+  if (!(reach_ > 0.0) || !std::isfinite(reach_))
+    throw InputError(fmt::format("support paths: the reach must be positive, got {}", reach_));
+  if (obstacles_.a.size() != obstacles_.b.size())
+    throw Error(fmt::format("support paths: {} segment starts for {} ends", obstacles_.a.size(),
+                            obstacles_.b.size()));
+  if (obstacles_.empty()) return;
+
+  Box box{obstacles_.a[0], obstacles_.a[0]};
+  const auto grow = [&](const Vec2& x) {
+    box.lo = box.lo.cwiseMin(x);
+    box.hi = box.hi.cwiseMax(x);
+  };
+  for (std::size_t k = 0; k < obstacles_.a.size(); ++k) {
+    grow(obstacles_.a[k]);
+    grow(obstacles_.b[k]);
+  }
+  for (const Vec2& c : obstacles_.corners) grow(c);
+  // Buckets of side reach (at most 2048 per axis), so a query looks at 3 x 3 of them.
+  side_ = std::max({reach_, box.size().x() / 2048.0, box.size().y() / 2048.0});
+  const double side = side_;
+  origin_ = box.lo;
+  nx_ = static_cast<int>(box.size().x() / side) + 1;
+  ny_ = static_cast<int>(box.size().y() / side) + 1;
+  const auto bucket_range = [&](const Vec2& lo, const Vec2& hi, int& i0, int& i1, int& j0, int& j1) {
+    i0 = std::clamp(static_cast<int>((lo.x() - origin_.x()) / side), 0, nx_ - 1);
+    i1 = std::clamp(static_cast<int>((hi.x() - origin_.x()) / side), 0, nx_ - 1);
+    j0 = std::clamp(static_cast<int>((lo.y() - origin_.y()) / side), 0, ny_ - 1);
+    j1 = std::clamp(static_cast<int>((hi.y() - origin_.y()) / side), 0, ny_ - 1);
+  };
+  // Two passes (count, fill) into CSR buckets.
+  const auto fill = [&](std::size_t n, auto&& extent, std::vector<int>& start, std::vector<int>& items) {
+    start.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<int> cursor(start.begin(), start.end() - 1);
+      for (std::size_t k = 0; k < n; ++k) {
+        Vec2 lo, hi;
+        extent(k, lo, hi);
+        int i0, i1, j0, j1;
+        bucket_range(lo, hi, i0, i1, j0, j1);
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i) {
+            const std::size_t cell = static_cast<std::size_t>(j) * nx_ + i;
+            if (pass == 0)
+              ++start[cell + 1];
+            else
+              items[cursor[cell]++] = static_cast<int>(k);
+          }
+      }
+      if (pass == 0) {
+        for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+        items.resize(start.back());
+      }
+    }
+  };
+  fill(
+      obstacles_.a.size(),
+      [&](std::size_t k, Vec2& lo, Vec2& hi) {
+        lo = obstacles_.a[k].cwiseMin(obstacles_.b[k]);
+        hi = obstacles_.a[k].cwiseMax(obstacles_.b[k]);
+      },
+      segment_start_, segment_items_);
+  fill(
+      obstacles_.corners.size(), [&](std::size_t k, Vec2& lo, Vec2& hi) { lo = hi = obstacles_.corners[k]; },
+      corner_start_, corner_items_);
+}
+
+template <class F>
+void SupportPaths::for_each_bucket(const Vec2& x, F&& f) const {
+  const double side = side_;
+  const auto cell = [&](double v, double o, int n) {
+    const double t = std::floor((v - o) / side);
+    return static_cast<int>(std::clamp(t, 0.0, static_cast<double>(n - 1)));
+  };
+  const int i0 = cell(x.x() - reach_, origin_.x(), nx_), i1 = cell(x.x() + reach_, origin_.x(), nx_);
+  const int j0 = cell(x.y() - reach_, origin_.y(), ny_), j1 = cell(x.y() + reach_, origin_.y(), ny_);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx_ + i);
+}
+
+bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
+  s.segments.clear();
+  s.corners.clear();
+  if (rule_ == SupportRule::plain || obstacles_.empty()) return false;
+  // The box x +- reach: any obstacle a path within the support can meet lies in it.
+  const Vec2 lo = x.array() - reach_, hi = x.array() + reach_;
+  for_each_bucket(x, [&](std::size_t cell) {
+    for (int i = segment_start_[cell]; i < segment_start_[cell + 1]; ++i) {
+      const int k = segment_items_[i];
+      const Vec2 &a = obstacles_.a[k], &b = obstacles_.b[k];
+      if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() ||
+          std::max(a.y(), b.y()) < lo.y() || std::min(a.y(), b.y()) > hi.y())
+        continue;
+      s.segments.push_back(k);
+    }
+    for (int i = corner_start_[cell]; i < corner_start_[cell + 1]; ++i) {
+      const int k = corner_items_[i];
+      if ((obstacles_.corners[k] - x).squaredNorm() < reach_ * reach_) s.corners.push_back(k);
+    }
+  });
+  if (s.segments.empty()) return false;
+  // A segment spanning several buckets was met once per bucket.
+  std::sort(s.segments.begin(), s.segments.end());
+  s.segments.erase(std::unique(s.segments.begin(), s.segments.end()), s.segments.end());
+  if (rule_ != SupportRule::geodesic) return true;
+
+  // Shortest paths from x to the near corners (Dijkstra on their visibility graph; a
+  // handful of corners, so the O(n^2) form).
+  const std::size_t n = s.corners.size();
+  s.to_x.assign(n, infinity);
+  s.last.assign(n, x);
+  std::vector<char> done(n, 0);
+  for (std::size_t c = 0; c < n; ++c) {
+    const Vec2& p = obstacles_.corners[s.corners[c]];
+    if (visible(x, p, s)) {
+      s.to_x[c] = (p - x).norm();
+      s.last[c] = p;
+    }
+  }
+  for (;;) {
+    std::size_t best = n;
+    for (std::size_t c = 0; c < n; ++c)
+      if (!done[c] && s.to_x[c] < reach_ && (best == n || s.to_x[c] < s.to_x[best])) best = c;
+    if (best == n) break;
+    done[best] = 1;
+    const Vec2& p = obstacles_.corners[s.corners[best]];
+    for (std::size_t c = 0; c < n; ++c) {
+      if (done[c]) continue;
+      const Vec2& q = obstacles_.corners[s.corners[c]];
+      const double through = s.to_x[best] + (q - p).norm();
+      if (through < s.to_x[c] && through < reach_ && visible(p, q, s)) {
+        s.to_x[c] = through;
+        s.last[c] = s.last[best];
+      }
+    }
+  }
+  return true;
+}
+
+bool SupportPaths::visible(const Vec2& p, const Vec2& q, const PathScratch& s) const {
+  for (const int k : s.segments)
+    if (crosses(p, q, obstacles_.a[k], obstacles_.b[k])) return false;
+  return true;
+}
+
+double SupportPaths::distance(const Vec2& xi, const Vec2& x, const PathScratch& s, Vec2& gradient) const {
+  if (visible(xi, x, s)) {
+    gradient = unit_or_zero(x - xi);
+    return (x - xi).norm();
+  }
+  gradient = Vec2::Zero();
+  if (rule_ != SupportRule::geodesic) return infinity;
+  double best = infinity;
+  for (std::size_t c = 0; c < s.corners.size(); ++c) {
+    if (!(s.to_x[c] < reach_)) continue;
+    const Vec2& p = obstacles_.corners[s.corners[c]];
+    const double d = s.to_x[c] + (p - xi).norm();
+    if (d < best && d < reach_ && visible(xi, p, s)) {
+      best = d;
+      gradient = unit_or_zero(x - s.last[c]);
+    }
+  }
+  return best;
+}
+
+}  // namespace mfree
