@@ -45,7 +45,19 @@ int run_linear_statics(const ElasticityScene& scene) {
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
+  for (const TipIntensity& t : r.tips)
+    std::cout << fmt::format("  crack '{}' tip ({:.6g}, {:.6g}): K_I = {:.6e}, K_II = {:.6e}, J = {:.6e} (interaction "
+                             "integral, radius {:.4g})\n",
+                             t.crack, t.frame.position.x(), t.frame.position.y(), t.k.k1, t.k.k2, t.k.j, t.outer_radius);
+
   RunSummary summary("linear_statics", path);
+  if (!r.tips.empty()) {
+    std::vector<RunSummary::Record> tips;
+    for (const TipIntensity& t : r.tips)
+      tips.push_back({{"x", t.frame.position.x()}, {"y", t.frame.position.y()}, {"k1", t.k.k1}, {"k2", t.k.k2},
+                      {"j", t.k.j}, {"radius", t.outer_radius}});
+    summary.records("crack_tips", tips);
+  }
   if (scene.output.probe) {
     const Vec2 u = r.displacement({*scene.output.probe})[0];
     std::cout << fmt::format("  probe ({:.6g}, {:.6g}): u^h = ({:.9e}, {:.9e})\n", scene.output.probe->x(),

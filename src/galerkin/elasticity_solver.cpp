@@ -93,6 +93,10 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         fmt::format("the {} scheme does not integrate cracked domains yet: use scheme = \"gauss_cells\" "
                     "(domain with crack '{}')",
                     to_string(s.scheme), domain.cracks().front().name));
+  if (!domain.cracks().empty() && s.support_rule == SupportRule::plain)
+    throw InputError(fmt::format("crack '{}': plain supports reach across cracks and would join their faces (the crack "
+                                 "would not open); use support_rule = \"geodesic\" or \"visibility\"",
+                                 domain.cracks().front().name));
   const auto obstacles =
       std::make_shared<const SupportObstacles>(support_obstacles(domain, largest_reach(s)));
   res.nodes = timer.time("clouds", [&] { return split_on_cracks(domain, make_cloud(domain, s.nodes), h); });
@@ -175,6 +179,10 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   res.coefficients = timer.time("solve", [&] { return solver->solve(sys.load); });
   res.solver = report(*solver);
 
+  if (!domain.cracks().empty())
+    res.tips = timer.time("stress intensity", [&] {
+      return crack_tip_intensities(domain, *res.trial, res.coefficients, s.problem.material, s.nodes.spacing);
+    });
   if (exact) {
     res.errors = timer.time("errors", [&] {
       return elastic_errors(*res.trial, res.coefficients, s.problem.material, *exact,

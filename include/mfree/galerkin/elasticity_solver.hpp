@@ -29,6 +29,7 @@
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/boundary_quadrature.hpp"
 #include "mfree/galerkin/consistency.hpp"
+#include "mfree/galerkin/crack_tip_intensity.hpp"
 #include "mfree/galerkin/exact_elasticity.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
@@ -102,6 +103,7 @@ struct ElasticityResult : Discretisation {
   SolverReport solver;                  ///< the stiffness's solver and what it did
   Index stiffness_nonzeros = 0;         ///< stored entries of the stiffness (its stencil)
   std::optional<ElasticErrors> errors;
+  std::vector<TipIntensity> tips;       ///< K_I, K_II, J at every crack tip (crack_tip_intensity.hpp)
 
   /// u^h at arbitrary points.
   [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points) const {

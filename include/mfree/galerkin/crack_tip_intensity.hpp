@@ -1,0 +1,35 @@
+#pragma once
+// Stress intensity factors at every crack tip of a domain from a small-strain solution
+// u^h = sum phi_I d_I: the interaction integral (interaction_integral.hpp) over an annulus
+// about each tip, sampled with 4 x 4 Gauss points on cells of h / 2 (a point on the crack
+// split to both faces, quadrature/gauss_cells.hpp), the smooth weight q.
+//
+// The annulus: outer radius r1 = 4 h (h the nodal spacing), r1 / 2 inside, shrunk when it
+// would reach beyond the tip's straight last crack segment, another crack or the domain's
+// boundary (to 0.9 of the nearest); the domain form needs straight traction-free faces and
+// no other boundary inside it. The radius used is reported with the factors.
+
+#include <string>
+#include <vector>
+
+#include "mfree/galerkin/interaction_integral.hpp"
+#include "mfree/geometry/domain.hpp"
+#include "mfree/kernels/rk_shape_functions.hpp"
+
+namespace mfree {
+
+struct TipIntensity {
+  std::string crack;   ///< the crack's name
+  int end = 0;         ///< 0: its first point, 1: its last
+  CrackTipFrame frame; ///< tip and direction of extension
+  double outer_radius = 0.0;  ///< r1 of the annulus used (length)
+  StressIntensity k;
+};
+
+/// K_I, K_II and J at every tip (in crack order, first end before last) for coefficients d of
+/// the trial functions; `h` the nodal spacing. Throws InputError when a tip has no room for
+/// an annulus of one spacing.
+std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
+                                                const Eigen::VectorXd& d, const LinearElastic& material, double h);
+
+}  // namespace mfree
