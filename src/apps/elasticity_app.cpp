@@ -16,6 +16,7 @@
 #include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
+#include "mfree/io/reaction_output.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/galerkin/stiffness_spectrum.hpp"
 
@@ -45,7 +46,12 @@ int run_linear_statics(const ElasticityScene& scene) {
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
+  const Reactions reactions =
+      r.timer.time("reactions", [&] { return elastic_reactions(scene.domain, s, r); });
+  std::cout << reaction_lines(reactions);
+
   RunSummary summary("linear_statics", path);
+  summarise_reactions(summary, reactions);
   if (scene.output.probe) {
     const Vec2 u = r.displacement({*scene.output.probe})[0];
     std::cout << fmt::format("  probe ({:.6g}, {:.6g}): u^h = ({:.9e}, {:.9e})\n", scene.output.probe->x(),

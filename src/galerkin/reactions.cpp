@@ -53,6 +53,13 @@ double Reactions::moment_imbalance() const {
   return scale > 0.0 ? std::abs(balance().moment) / scale : 0.0;
 }
 
+std::vector<std::string> essential_parts(const SolidProblem& problem) {
+  std::vector<std::string> names;
+  for (const BoundaryCondition& c : problem.conditions)
+    if (is_essential(c)) names.push_back(c.name);
+  return names;
+}
+
 Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, const LoadState& load) {
   const SolidProblem& problem = model.problem();
   const BoundaryQuadrature& bq = model.boundary();

@@ -104,6 +104,9 @@ struct Reactions {
   [[nodiscard]] double moment_imbalance() const;
 };
 
+/// The names of the essential conditions of `problem`, in order: the parts of reactions().
+std::vector<std::string> essential_parts(const SolidProblem& problem);
+
 /// The reactions and applied loads of `model` at coefficients d and load `load`.
 Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, const LoadState& load);
 
