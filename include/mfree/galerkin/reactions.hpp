@@ -38,15 +38,19 @@
 // term vanish to round-off: the balance is exact whatever the discretisation error. VCI's
 // test gradients t_I = g_I + xi_I^T m(c_K) do not sum to zero on a row: the imbalance is
 // sum_K w_K P_K sum_I xi_I^T m(c_K), which vanishes for uniform stress (sum_K w_K t_I = b_I
-// sums over I to sum_b w_b N_b = 0) and with refinement otherwise (the cantilever's:
-// tests/galerkin/test_reactions.cpp).
+// sums over I to sum_b w_b N_b = 0) and with refinement otherwise. Measured
+// (tests/galerkin/test_reactions.cpp): the cantilever with Gauss cells and VCI, |R + F| / P =
+// 5.2e-5, 3.1e-6, 1.9e-6 and the moment's 1.8e-4, 1.2e-6, 9.0e-7 of P L at h = 3, 1.5, 0.75;
+// a quadratic field on a perturbed cloud (h = 1/8) 4.3e-5, equal to the nodal sum of f_int.
 //
 // Moments: the rotation v_I = W x_I (W the rotation by +90 degrees, x_I = X_I or X_I + d_I),
 // v^h = W x by linear reproduction, gives the same with sum_K w_K P_K : (W sum_I x_I t_I^T)
 // in place of the internal term; with t = g that is P : W (small strain, sigma symmetric) or
 // P : W F (finite strain, P F^T = J sigma symmetric): zero. At finite strain the symmetrising
 // term leaves int Pi (u - ubar) . (C : (W grad u)) N, of the order of the gap times the
-// strain: the moment balance holds to that order (the force balance exactly).
+// strain: the moment balance holds to that order (the force balance exactly). Measured on a
+// Neo-Hookean block (4 x 1, h = 1/4, strains of some 10 %): 5e-5 to 6e-4 of the largest force
+// times the largest arm with beta = 100, 1e-5 to 1.5e-4 with beta = 1000.
 //
 // Dynamics: the equations are M a + f_int + f_c = f_ext, so sum_p R_p + F = sum_I (M a)_I = the
 // rate of momentum d/dt int rho0 u_t^h (both masses: sum_I of a row is the row-sum mass), and
