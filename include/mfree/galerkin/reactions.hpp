@@ -49,8 +49,8 @@
 // P : W F (finite strain, P F^T = J sigma symmetric): zero. At finite strain the symmetrising
 // term leaves int Pi (u - ubar) . (C : (W grad u)) N, of the order of the gap times the
 // strain: the moment balance holds to that order (the force balance exactly). Measured on a
-// Neo-Hookean block (4 x 1, h = 1/4, strains of some 10 %): 5e-5 to 6e-4 of the largest force
-// times the largest arm with beta = 100, 1e-5 to 1.5e-4 with beta = 1000.
+// Neo-Hookean block (4 x 1, h = 1/4, the load steps of the test): 5e-5 to 6e-4 of the largest
+// force times the largest arm with beta = 100, 1e-5 to 1.5e-4 with beta = 1000.
 //
 // Dynamics: the equations are M a + f_int + f_c = f_ext, so sum_p R_p + F = sum_I (M a)_I = the
 // rate of momentum d/dt int rho0 u_t^h (both masses: sum_I of a row is the row-sum mass), and
