@@ -16,6 +16,7 @@
 #include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_output.hpp"
 #include "mfree/io/elasticity_scene.hpp"
+#include "mfree/io/reaction_output.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/galerkin/stiffness_spectrum.hpp"
 
@@ -45,12 +46,16 @@ int run_linear_statics(const ElasticityScene& scene) {
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
+  const Reactions reactions =
+      r.timer.time("reactions", [&] { return elastic_reactions(scene.domain, s, r); });
+  std::cout << reaction_lines(reactions);
   for (const TipIntensity& t : r.tips)
     std::cout << fmt::format("  crack '{}' tip ({:.6g}, {:.6g}): K_I = {:.6e}, K_II = {:.6e}, J = {:.6e} (interaction "
                              "integral, radius {:.4g})\n",
                              t.crack, t.frame.position.x(), t.frame.position.y(), t.k.k1, t.k.k2, t.k.j, t.outer_radius);
 
   RunSummary summary("linear_statics", path);
+  summarise_reactions(summary, reactions);
   if (!r.tips.empty()) {
     std::vector<RunSummary::Record> tips;
     for (const TipIntensity& t : r.tips)

@@ -13,6 +13,7 @@
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/reactions.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/csv.hpp"
@@ -88,7 +89,12 @@ int run_static(const ElasticityScene& scene) {
   std::string csv = fmt::format("load_factor,iterations,cutbacks,probe_ux,probe_uy,linear_probe_uy,l2_displacement_vs_linear{}\n",
                                 plastic ? ",dissipated,plastic_area" : "");
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
+  // The reactions of every converged step (reactions.csv), the last one reported.
+  ReactionTable reaction_table("load_factor", essential_parts(model.problem()), false);
+  std::optional<Reactions> last_reactions;
   const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+    last_reactions = timer.time("reactions", [&] { return reactions(model, d, {step.factor, 0.0}); });
+    reaction_table.add(static_cast<int>(reaction_table.size()) + 1, step.factor, *last_reactions);
     const int iterations = static_cast<int>(step.history.size()) - 1;
     Vec2 probe(std::nan(""), std::nan(""));
     double linear = std::nan(""), relative = std::nan("");
@@ -120,9 +126,11 @@ int run_static(const ElasticityScene& scene) {
                              return n;
                            }(),
                            sol.solver.text());
+  if (last_reactions) std::cout << reaction_lines(*last_reactions);
   const std::filesystem::path csv_path = o.folder / "load_steps.csv";
   write_file_atomically(csv_path, csv);
-  std::cout << fmt::format("  wrote {}\n", csv_path.filename().string());
+  write_file_atomically(o.folder / "reactions.csv", reaction_table.csv());
+  std::cout << fmt::format("  wrote {}, reactions.csv\n", csv_path.filename().string());
   if (frames) std::cout << fmt::format("  wrote {} frames, {}\n", frames->frames(), frames->series().filename().string());
   if (o.probe) plot("plot_load_deflection.py", csv_path, o.folder);
   std::cout << "stages:\n";
@@ -136,6 +144,7 @@ int run_static(const ElasticityScene& scene) {
                      {"iterations", static_cast<double>(step.history.size()) - 1},
                      {"cutbacks", static_cast<double>(step.cutbacks)}});
   summary.records("load_steps", steps);
+  if (last_reactions) summarise_reactions(summary, *last_reactions);
   summary.stages(timer);
   summary.write(o.folder);
   return 0;
@@ -305,6 +314,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0)
     frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
   const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
+  if (verbose) run.reactions.emplace("time", essential_parts(model.problem()), true);
   std::size_t next_error = 0;
   double next_frame = 0.0;
   const double end = settings.end_time;
@@ -320,6 +330,19 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
       next_frame += end / dyn.frames;
     }
     if (probe_at) run.probe.emplace_back(s.time, displacement_at(*probe_at, 0, s.d));
+    // Reactions with the inertia at the steps of the energy records (the first and last
+    // steps when there are none).
+    const bool last = s.time >= end * (1 - 1e-12);
+    if (run.reactions &&
+        (s.step == 0 || last || (settings.energy_every > 0 && s.step % settings.energy_every == 0))) {
+      Reactions re = timer.time("reactions", [&] {
+        Reactions r = reactions(model, s.d, {1.0, s.time});
+        r.inertia = nodal_resultant(s.inertia(), disc.nodes, s.d, r.current_arm);
+        return r;
+      });
+      run.reactions->add(s.step, s.time, re);
+      if (last) run.last_reactions = std::move(re);
+    }
   };
   DynamicsSettings ds = settings;
   if (verbose) ds.progress = &std::cout;
@@ -334,6 +357,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
     dc.resumed = [&, step](int, double dt) {
       const double time = static_cast<double>(step) * dt;  // as the integrator's t = n dt
       restore_records(s, step, time, end, scene, sampler.has_value(), run, next_frame);
+      if (run.reactions) run.reactions->restore(s, step, time);
       next_error = run.errors.size();
       if (frames) frames->restore(s, time, static_cast<std::size_t>(step) + 1);
     };
@@ -351,6 +375,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
       s.put("errors", std::move(errors));
       s.put("probe", std::move(probe));
       s.put("next_frame", next_frame);
+      if (run.reactions) run.reactions->save(s);
       if (frames) frames->save(s);
       timer.time("checkpoints", [&] { checkpoints->write(p.step, s, scene.output.folder); });
     };
@@ -412,6 +437,11 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
     write_file_atomically(folder / "energy.csv", energy_csv(r.energy));
     std::cout << "  wrote energy.csv\n";
   }
+  if (run.last_reactions) std::cout << reaction_lines(*run.last_reactions);
+  if (run.reactions) {
+    write_file_atomically(folder / "reactions.csv", run.reactions->csv());
+    std::cout << "  wrote reactions.csv\n";
+  }
   if (!run.probe.empty()) {
     std::string csv = "time,probe_ux,probe_uy\n";
     for (const auto& [t, u] : run.probe) csv += fmt::format("{:.9e},{:.9e},{:.9e}\n", t, u.x(), u.y());
@@ -434,6 +464,7 @@ int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   for (const MotionErrors& e : run.errors)
     errors.push_back({{"time", e.time}, {"displacement", e.displacement}, {"velocity", e.velocity}, {"stress", e.stress}});
   summary.records("errors", errors);
+  if (run.last_reactions) summarise_reactions(summary, *run.last_reactions);
   summary.stages(run.timer);
   summary.write(folder);
   return 0;

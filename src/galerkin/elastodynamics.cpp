@@ -210,7 +210,8 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   double work = 0.0;
   const auto record = [&](int step, double t) {
     require_finite(d, v, node_positions, step, t);
-    if (on_step) on_step({step, t, d, v});
+    if (on_step)
+      on_step({step, t, d, v, a, explicit_scheme ? &lumped : nullptr, explicit_scheme ? nullptr : &mass});
     if (energy && (step % s.energy_every == 0 || step == out.steps)) {
       timer.time("energy", [&] { out.energy.push_back({t, kinetic(v), model.strain_energy(d), work, model.dissipated()}); });
       require_finite(out.energy.back(), step);

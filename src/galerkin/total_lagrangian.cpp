@@ -151,6 +151,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   const bool linear = is_linear(problem_.material);
   const bool dead_pressure = is_small_strain(problem_.material);
   traction_of_point_.assign(bq.size(), nullptr);
+  follower_of_point_.assign(bq.size(), nullptr);
   reference_traction_.resize(at_boundary.nodes.size());
   std::vector<bool> seen(problem_.conditions.size(), false);
   // Nitsche's terms and the follower pressures couple the nodes of a boundary point's row
@@ -176,6 +177,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     if (!c) continue;
     if (c->type == BoundaryCondition::Type::pressure && !dead_pressure) {
       follower_.emplace_back(p, c);
+      follower_of_point_[p] = c;
       couple_row(p);
       continue;
     }
@@ -301,32 +303,54 @@ Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const 
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
   for (std::size_t b = 0; b < nitsche_.size(); ++b) {
-    const NitschePoint& p = nitsche_[b];
-    const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point);
-    Vec2 u = Vec2::Zero();
-    for (Index s = begin; s < end; ++s) u += at_boundary_.phi[s] * d.segment<2>(2 * at_boundary_.nodes[s]);
-    const Vec2& n = bq_.normals[p.point];
-    const double w = bq_.weights[p.point];
-    const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n, load.time));
-    const Vec2 traction =
-        p.projection * (boundary_update(b, boundary_deformation_gradient(p.point, d), false).stress * n);
+    const NitscheValues v = nitsche_values(b, d, load);
+    const Index begin = at_boundary_.row_begin(v.point), end = at_boundary_.row_end(v.point);
+    const double w = bq_.weights[v.point];
     for (Index s = begin; s < end; ++s) {
       const double phi = at_boundary_.phi[s];
       f.segment<2>(2 * at_boundary_.nodes[s]) +=
-          w * (-phi * traction - reference_traction_[s].transpose() * gap + penalty * phi * gap);
+          w * (-phi * v.traction - reference_traction_[s].transpose() * v.gap + penalty * phi * v.gap);
     }
   }
   // Follower pressures: -f_I = p int phi_I R x,S dS, x,S = T + sum_J d_J (grad phi_J . T).
   const Mat2 r = rotation_minus_90();
   for (const auto& [p, c] : follower_) {
     const Index begin = at_boundary_.row_begin(p), end = at_boundary_.row_end(p);
-    const Vec2& t = bq_.tangents[p];
-    Vec2 dx = t;
-    for (Index s = begin; s < end; ++s) dx += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].dot(t);
+    const Vec2 dx = follower_stretch(p, d);
     const Vec2 load_at = bq_.weights[p] * load.factor * c->pressure(bq_.points[p], load.time) * (r * dx);
     for (Index s = begin; s < end; ++s) f.segment<2>(2 * at_boundary_.nodes[s]) += at_boundary_.phi[s] * load_at;
   }
   return f;
+}
+
+TotalLagrangian::NitscheValues TotalLagrangian::nitsche_values(std::size_t b, const Eigen::VectorXd& d,
+                                                               const LoadState& load) const {
+  const NitschePoint& p = nitsche_[b];
+  Vec2 u = Vec2::Zero();
+  for (Index s = at_boundary_.row_begin(p.point); s < at_boundary_.row_end(p.point); ++s)
+    u += at_boundary_.phi[s] * d.segment<2>(2 * at_boundary_.nodes[s]);
+  const Vec2& n = bq_.normals[p.point];
+  const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n, load.time));
+  const Vec2 traction =
+      p.projection * (boundary_update(b, boundary_deformation_gradient(p.point, d), false).stress * n);
+  return {p.point, p.condition, traction, gap};
+}
+
+Vec2 TotalLagrangian::follower_stretch(Index p, const Eigen::VectorXd& d) const {
+  const Vec2& t = bq_.tangents[p];
+  Vec2 dx = t;
+  for (Index s = at_boundary_.row_begin(p); s < at_boundary_.row_end(p); ++s)
+    dx += d.segment<2>(2 * at_boundary_.nodes[s]) * at_boundary_.grad[s].dot(t);
+  return dx;
+}
+
+Vec2 TotalLagrangian::boundary_load(Index p, const Eigen::VectorXd& d, const LoadState& load) const {
+  if (const BoundaryCondition* c = traction_of_point_[p])
+    return load.factor * dead_traction(*c, bq_.points[p], bq_.normals[p], load.time);
+  if (const BoundaryCondition* c = follower_of_point_[p])
+    return -load.factor * c->pressure(bq_.points[p], load.time) *
+           (rotation_minus_90() * follower_stretch(p, d));
+  return Vec2::Zero();
 }
 
 Eigen::VectorXd TotalLagrangian::external_force(const LoadState& load) const {

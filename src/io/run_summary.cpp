@@ -59,6 +59,18 @@ void RunSummary::records(const std::string& key, const std::vector<Record>& valu
   entries_.emplace_back(key, out + (values.empty() ? "]" : "\n  ]"));
 }
 
+void RunSummary::object(const std::string& key, const Record& value) {
+  entries_.emplace_back(key, json_object(value));
+}
+
+void RunSummary::objects(const std::string& key, const std::vector<std::pair<std::string, Record>>& values) {
+  std::string out = "{";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    out += fmt::format("{}\n    {}: {}", i ? "," : "", json_string(values[i].first),
+                       json_object(values[i].second));
+  entries_.emplace_back(key, out + (values.empty() ? "}" : "\n  }"));
+}
+
 void RunSummary::stages(const StageTimer& timer) {
   std::string out = "[";
   for (std::size_t i = 0; i < timer.stages().size(); ++i)

@@ -19,6 +19,8 @@ TEST_CASE("run summary: JSON with escaped text, null for non-finite numbers, sta
   s.number("nan", std::nan(""));
   s.numbers("list", {1.0, INFINITY});
   s.records("errors", {{{"time", 0.5}, {"u", 2e-3}}});
+  s.object("applied", {{"force_x", 1.5}, {"moment", std::nan("")}});
+  s.objects("reactions", {{"clamped \"end\"", {{"force_x", -1.5}}}, {"wall", {}}});
   s.stages(timer);
   s.write(folder.path);
   std::ifstream in(folder.path / "summary.json");
@@ -30,6 +32,11 @@ TEST_CASE("run summary: JSON with escaped text, null for non-finite numbers, sta
   CHECK_THAT(json, Catch::Contains(R"("nan": null)"));
   CHECK_THAT(json, Catch::Contains(R"("list": [1, null])"));
   CHECK_THAT(json, Catch::Contains(R"({"time": 0.5, "u": 0.002})"));
+  CHECK_THAT(json, Catch::Contains(R"("applied": {"force_x": 1.5, "moment": null})"));
+  CHECK_THAT(json, Catch::Contains(R"("reactions": {
+    "clamped \"end\"": {"force_x": -1.5},
+    "wall": {}
+  })"));
   CHECK_THAT(json, Catch::Contains(R"("name": "step", "seconds": )") && Catch::Contains(R"("calls": 3})"));
   CHECK_THAT(json, Catch::Contains(R"("calls": 1})"));
   CHECK(json.find("nan\n") == std::string::npos);

@@ -2,6 +2,7 @@
 // `mfree run` and `mfree converge` for total-Lagrangian scenes: statics by Newton with load
 // steps (finite-strain materials or a [newton] section) and dynamics ([dynamics]).
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/io/checkpoint.hpp"
 #include "mfree/io/elasticity_scene.hpp"
+#include "mfree/io/reaction_output.hpp"
 
 namespace mfree {
 
@@ -31,6 +33,8 @@ struct DynamicRun {
   DynamicsResult result;
   std::vector<MotionErrors> errors;             ///< at the scene's error times
   std::vector<std::pair<double, Vec2>> probe;   ///< (t, u^h at the probe) every step
+  std::optional<ReactionTable> reactions;       ///< verbose runs: at the energy records' steps
+  std::optional<Reactions> last_reactions;      ///< verbose runs: at the last step
   StageTimer timer;
 };
 

@@ -68,6 +68,14 @@ struct DynamicState {
   double time = 0.0;
   const Eigen::VectorXd& d;
   const Eigen::VectorXd& v;
+  const Eigen::VectorXd& a;                 ///< accelerations: u_tt^h = sum phi_I a_I
+  const Eigen::VectorXd* lumped = nullptr;  ///< the scheme's mass: lumped (per DOF), or
+  const SparseMatrix* mass = nullptr;       ///< consistent
+  /// M a with the scheme's mass: the inertia forces of the equations of motion (their sum
+  /// over the nodes in a direction is the rate of momentum, d/dt int rho0 u_t^h).
+  [[nodiscard]] Eigen::VectorXd inertia() const {
+    return lumped ? Eigen::VectorXd(lumped->cwiseProduct(a)) : Eigen::VectorXd(*mass * a);
+  }
 };
 
 struct DynamicsResult {

@@ -153,6 +153,30 @@ class TotalLagrangian {
   /// two): for explicit steps, whose every state is accepted.
   [[nodiscard]] Eigen::VectorXd internal_force_committed(const Eigen::VectorXd& d);
   [[nodiscard]] const PointHistory& history() const { return history_; }
+
+  // The boundary terms point by point, for the reactions (galerkin/reactions.hpp): the same
+  // values boundary_force() and external_force() integrate.
+  [[nodiscard]] const BoundaryQuadrature& boundary() const { return bq_; }
+  [[nodiscard]] const GalerkinQuadrature& at_boundary() const { return at_boundary_; }
+  /// beta M / h [Pa / m].
+  [[nodiscard]] double nitsche_penalty() const {
+    return problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
+  }
+  /// The two parts of Nitsche's flux at one Nitsche point: traction = Pi P(F) N of the
+  /// committed state [Pa], gap = Pi (u^h - factor ubar) [m].
+  struct NitscheValues {
+    Index point = 0;  ///< index into boundary() / at_boundary()
+    const BoundaryCondition* condition = nullptr;
+    Vec2 traction = Vec2::Zero();
+    Vec2 gap = Vec2::Zero();
+  };
+  /// The Nitsche points: the boundary points of the essential conditions, in boundary order.
+  [[nodiscard]] std::size_t nitsche_points() const { return nitsche_.size(); }
+  [[nodiscard]] NitscheValues nitsche_values(std::size_t b, const Eigen::VectorXd& d,
+                                             const LoadState& load) const;
+  /// The applied traction at boundary point p per unit reference length [Pa]: tbar or -p N
+  /// of a natural condition (dead), -p R x,S of a follower pressure; zero elsewhere.
+  [[nodiscard]] Vec2 boundary_load(Index p, const Eigen::VectorXd& d, const LoadState& load) const;
   /// Replaces the history (a resumed run); InputError when the sizes do not fit.
   void set_history(PointHistory history);
   /// sum_K w_K D_K: the plastic work per unit thickness done so far (committed) [J/m].
@@ -189,6 +213,9 @@ class TotalLagrangian {
   /// sum_K w_K P(F_K) t_I from the committed states; with `commit`, each point's new state
   /// written into it after its update.
   [[nodiscard]] Eigen::VectorXd domain_force(const Eigen::VectorXd& d, std::vector<MaterialState>* commit) const;
+  /// x,S = T + sum_J d_J (grad phi_J . T) at follower point p: the current boundary's
+  /// stretch vector per reference length.
+  [[nodiscard]] Vec2 follower_stretch(Index p, const Eigen::VectorXd& d) const;
   /// F at Nitsche point p (the trial functions of at_boundary).
   [[nodiscard]] Mat2 boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
 
@@ -203,6 +230,7 @@ class TotalLagrangian {
   std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
   std::vector<NitschePoint> nitsche_;
   std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures
+  std::vector<const BoundaryCondition*> follower_of_point_;           ///< per boundary point; null if none
   std::vector<Index> boundary_offsets_{0}, boundary_nodes_;
   RowIncidence domain_rows_;
   RowIncidence boundary_rows_;

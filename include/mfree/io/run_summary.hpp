@@ -26,6 +26,10 @@ class RunSummary {
   /// An array of flat objects, e.g. the errors at every error time.
   using Record = std::vector<std::pair<std::string, double>>;
   void records(const std::string& key, const std::vector<Record>& values);
+  /// A flat object, e.g. a force and its moment.
+  void object(const std::string& key, const Record& value);
+  /// An object of named flat objects, {"name": {...}, ...}, e.g. the reactions per part.
+  void objects(const std::string& key, const std::vector<std::pair<std::string, Record>>& values);
   /// Stage names, seconds and calls of the run, and their total.
   void stages(const StageTimer& timer);
 

@@ -1,0 +1,64 @@
+#pragma once
+// The reactions of a Galerkin run (galerkin/reactions.hpp) as the run reports them:
+//
+//   console        reaction_lines(): a line per essential part (force R, moment M about the
+//                  origin), the applied loads F, (dynamics) the inertia M a, and the balance
+//                  sum R + F (- M a) with its relative size |.| / |F| (imbalance, Reactions)
+//   reactions.csv  ReactionTable: columns step, load_factor (statics) or time (dynamics),
+//                  part, rx, ry, moment; per record a row per essential part by its name,
+//                  then "applied", (dynamics) "inertia", and "balance"
+//   summary.json   summarise_reactions(): "reactions": {part: {force_x, force_y, moment}},
+//                  "applied": {...}, ("inertia": {...},) "imbalance", "moment_imbalance"
+//
+// Forces per unit thickness, moments per unit thickness, in the units of the scene.
+
+#include <string>
+#include <vector>
+
+#include "mfree/galerkin/reactions.hpp"
+#include "mfree/io/checkpoint.hpp"
+#include "mfree/io/run_summary.hpp"
+
+namespace mfree {
+
+/// The console block: a heading and one line per part, the loads and the balance, each
+/// line indented by `indent`.
+std::string reaction_lines(const Reactions& r, const std::string& indent = "  ");
+
+/// The last reactions of a run into its summary.
+void summarise_reactions(RunSummary& summary, const Reactions& r);
+
+/// The reactions of a run's steps, for reactions.csv.
+class ReactionTable {
+ public:
+  /// column: "load_factor" (statics) or "time" (dynamics); parts: the essential parts' names
+  /// (essential_parts()); inertia: records hold the inertia (dynamics).
+  ReactionTable(std::string column, std::vector<std::string> parts, bool inertia);
+
+  /// Adds the record of step `step` at load factor or time `at`; r of the table's parts.
+  void add(int step, double at, const Reactions& r);
+  [[nodiscard]] std::size_t size() const { return records_.size(); }
+  [[nodiscard]] std::string csv() const;
+
+  /// Checkpoints: the records as numbers ("reactions"), and the records of a run resumed at
+  /// `step` and `time` (InputError, naming the value, when they do not fit: whole records,
+  /// steps increasing up to `step`, at values 0 to `time`).
+  void save(CheckpointState& state) const;
+  void restore(const CheckpointState& state, long long step, double time);
+
+ private:
+  struct Record {
+    int step = 0;
+    double at = 0.0;
+    std::vector<Resultant> parts;
+    Resultant applied, inertia;
+  };
+  [[nodiscard]] std::size_t width() const { return 2 + 3 * (parts_.size() + (inertia_ ? 2 : 1)); }
+
+  std::string column_;
+  std::vector<std::string> parts_;
+  bool inertia_;
+  std::vector<Record> records_;
+};
+
+}  // namespace mfree
