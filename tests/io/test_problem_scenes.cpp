@@ -314,6 +314,9 @@ TEST_CASE(
   const ElasticityScene scene = verification_scene("l-shape/l_shape.toml", {});
   const ExactElasticity exact = *scene.exact();
   const Eigen::Matrix3d d = scene.settings.problem.material.voigt_tangent();
+  // alpha: the root of sin(alpha w) + alpha sin w = 0 for the wedge angle w = 3 pi / 2.
+  const double alpha = scene.constants.at("a");
+  CHECK(std::sin(1.5 * M_PI * alpha) - alpha == Approx(0.0).margin(1e-15));
   // Points in all three quadrants of the L, on the bisector, and beside the line x + y = 0
   // where the scene's angle changes branch (atan(eta / xi) to +-pi / 2 - atan(xi / eta)).
   const std::vector<Vec2> points{{-0.5, -0.5},       {0.3, -0.7},      {-0.8, 0.2}, {0.9, -0.05},
