@@ -29,12 +29,17 @@ double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
 }
 
 /// Whether the open segments p q and a b cross at one point interior to both: touching at an
-/// end or running along each other is not crossing.
-bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+/// end or running along each other is not crossing. An end within `tolerance` (a length) of
+/// the other segment's line counts as lying on it: a point on a boundary edge whose
+/// coordinates carry round-off (a lattice at h = 0.1 puts y = -1 + 10 h = 5.6e-17 on the
+/// face y = 0) touches the edge and is seen from the domain's side, not cut off from it.
+bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double tolerance) {
+  // orientation / length: signed distance from the line (length units).
+  const double ab = tolerance * (b - a).norm(), pq = tolerance * (q - p).norm();
   const double o1 = orientation(a, b, p), o2 = orientation(a, b, q);
-  if (!((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))) return false;
+  if (!((o1 > ab && o2 < -ab) || (o1 < -ab && o2 > ab))) return false;
   const double o3 = orientation(p, q, a), o4 = orientation(p, q, b);
-  return (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0);
+  return (o3 > pq && o4 < -pq) || (o3 < -pq && o4 > pq);
 }
 
 Vec2 unit_or_zero(const Vec2& v) {
@@ -63,6 +68,9 @@ SupportPaths::SupportPaths(SupportObstacles obstacles, SupportRule rule, double 
     grow(obstacles_.b[k]);
   }
   for (const Vec2& c : obstacles_.corners) grow(c);
+  // Round-off of coordinates of this size: 1e-12 of the largest coordinate or extent.
+  tolerance_ =
+      1e-12 * std::max({box.size().norm(), box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()});
   // Buckets of side reach (at most 2048 per axis), so a query looks at 3 x 3 of them.
   side_ = std::max({reach_, box.size().x() / 2048.0, box.size().y() / 2048.0});
   const double side = side_;
@@ -186,7 +194,7 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
 
 bool SupportPaths::visible(const Vec2& p, const Vec2& q, const PathScratch& s) const {
   for (const int k : s.segments)
-    if (crosses(p, q, obstacles_.a[k], obstacles_.b[k])) return false;
+    if (crosses(p, q, obstacles_.a[k], obstacles_.b[k], tolerance_)) return false;
   return true;
 }
 

@@ -91,6 +91,7 @@ class SupportPaths {
   SupportObstacles obstacles_;
   SupportRule rule_;
   double reach_;
+  double tolerance_ = 0.0;  ///< a segment end this close to an obstacle's line lies on it (length)
   // Buckets of side reach_ over the obstacles' box: segment and corner indices per bucket.
   Vec2 origin_ = Vec2::Zero();
   double side_ = 1.0;
