@@ -80,6 +80,27 @@ double memory_lower_bound(const Domain& domain, const ElasticitySettings& s) {
   return n * (16.0 + s.quadrature_ratio * pi * f * f * 28.0 + lattice + 2.0 * 2.0 * pi * 4.0 * f * f * 12.0);
 }
 
+/// Plain supports must not join material across a gap (a slot, a thin cavity): the place,
+/// and what to change, in an InputError.
+void refuse_bridges(const std::vector<Vec2>& nodes, const std::vector<Vec2>& points,
+                    const SupportObstacles& obstacles, const ElasticitySettings& s) {
+  const double radius = s.support_factor * s.nodes.spacing *
+                        (s.nodes.kind == CloudKind::lattice ? 1.0 : s.irregular_factor_scale);
+  const std::optional<Bridge> b = find_bridge(nodes, points, obstacles, radius);
+  if (!b) return;
+  throw InputError(fmt::format(
+      "plain supports of radius {:.4g} join material across a gap near ({:.6g}, {:.6g}): the node at "
+      "({:.6g}, {:.6g}) "
+      "reaches the point ({:.6g}, {:.6g}), {:.4g} away, that is {} away through the domain, so the two sides "
+      "would "
+      "move together; use support_rule = \"geodesic\" (the default) or \"visibility\", a smaller spacing, or "
+      "allow_bridging = true to run it anyway",
+      radius, 0.5 * (b->node.x() + b->point.x()), 0.5 * (b->node.y() + b->point.y()), b->node.x(),
+      b->node.y(), b->point.x(), b->point.y(), b->straight,
+      std::isfinite(b->in_domain) ? fmt::format("{:.4g}", b->in_domain)
+                                  : std::string("more than two radii")));
+}
+
 }  // namespace
 
 Discretisation discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer) {
@@ -125,6 +146,9 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
     }
     throw Error("unknown quadrature scheme");
   });
+
+  if (s.support_rule == SupportRule::plain && !s.allow_bridging)
+    refuse_bridges(res.nodes, res.quadrature.points, *obstacles, s);
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
   res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, condition_parts(s.problem.conditions));

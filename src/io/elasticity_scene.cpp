@@ -158,6 +158,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     const bool circular = s.support == SupportShape::circular;
     s.support_rule = read_choice_or(t, "support_rule", support_rule_names(),
                                     circular ? SupportRule::geodesic : SupportRule::visibility);
+    s.allow_bridging = t.boolean_or("allow_bridging", false);
+    if (s.allow_bridging && s.support_rule != SupportRule::plain)
+      t.error("allow_bridging",
+              "applies to support_rule = \"plain\" only: the other rules do not bridge gaps");
     if (s.support_rule == SupportRule::geodesic && !circular)
       t.error("support_rule",
               "geodesic distances need circular supports; tensor supports take \"visibility\" or "

@@ -7,6 +7,8 @@
 #include <limits>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/search/cell_list.hpp"
 
 namespace mfree {
 
@@ -216,6 +218,33 @@ double SupportPaths::distance(const Vec2& xi, const Vec2& x, const PathScratch& 
     }
   }
   return best;
+}
+
+std::optional<Bridge> find_bridge(const std::vector<Vec2>& nodes, const std::vector<Vec2>& points,
+                                  const SupportObstacles& obstacles, double radius) {
+  if (obstacles.empty() || nodes.empty()) return std::nullopt;
+  // Paths searched up to 2 radii: a node within the radius whose path is longer bridges.
+  const SupportPaths paths(obstacles, SupportRule::geodesic, 2.0 * radius);
+  const CellList cells(nodes, radius);
+  const Index n = static_cast<Index>(points.size());
+  std::vector<std::optional<Bridge>> found(points.size());
+  parallel_blocks(n, 256, [&](Index begin, Index end) {
+    PathScratch scratch;
+    for (Index k = begin; k < end; ++k) {
+      const Vec2& x = points[k];
+      if (!paths.prepare(x, scratch)) continue;
+      cells.for_each_in_box(x, radius, [&](Index, const Vec2& p) {
+        const double straight = (p - x).norm();
+        if (found[k] || !(straight < radius)) return;
+        Vec2 gradient;
+        const double d = paths.distance(p, x, scratch, gradient);
+        if (d > 2.0 * straight) found[k] = Bridge{p, x, straight, d};
+      });
+    }
+  });
+  for (const std::optional<Bridge>& b : found)
+    if (b) return b;
+  return std::nullopt;
 }
 
 }  // namespace mfree

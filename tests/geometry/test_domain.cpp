@@ -1,18 +1,20 @@
 #include <catch2/catch.hpp>
-
-#include "../test_support.hpp"
-
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
 
 using mfree::Box;
+using mfree::crack_offset;
 using mfree::Domain;
+using mfree::Index;
 using mfree::Ring;
+using mfree::split_on_cracks;
 using mfree::Vec2;
 
 namespace {
@@ -305,4 +307,46 @@ TEST_CASE("bad WKT and bad rings are InputErrors naming the source", "[geometry]
              Contains(directory));
   CHECK_THAT(input_error_message([] { (void)Domain::rectangle(Vec2(0, 0), Vec2(1, 0)); }),
              Contains("lo < hi"));
+}
+
+TEST_CASE("cracks: line strings beside the polygon, tips and mouths, two faces each, points on them split",
+          "[geometry][crack]") {
+  const Domain d = Domain::from_wkt(
+      "GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1, 0 1, 0 0)), LINESTRING(0.5 0.5, 1 0.5, 1.2 0.7),"
+      " MULTILINESTRING((2 0.3, 1.7 0.3)))",
+      "cracked");
+  REQUIRE(d.cracks().size() == 2);
+  CHECK(d.cracks()[0].name == "crack1");
+  CHECK(d.cracks()[0].tip[0]);
+  CHECK(d.cracks()[0].tip[1]);
+  CHECK(!d.cracks()[1].tip[0]);  // on the edge x = 2: a mouth
+  CHECK(d.cracks()[1].tip[1]);
+  CHECK(d.area() == Approx(2.0).epsilon(1e-15));
+  // 4 ring edges, then two faces per crack segment (3 segments) with opposite normals.
+  const auto& b = d.boundary();
+  REQUIRE(b.size() == 4 + 6);
+  double length = 0.0;
+  Vec2 normal_sum = Vec2::Zero();
+  for (std::size_t s = 4; s < b.size(); ++s) {
+    CHECK(b[s].ring == -1);
+    CHECK(d.part_names()[b[s].part] == d.cracks()[b[s].crack].name);
+    length += b[s].length;
+    normal_sum += b[s].length * b[s].normal;
+  }
+  CHECK(length == Approx(2.0 * (0.5 + std::sqrt(0.08) + 0.3)).epsilon(1e-14));
+  CHECK(normal_sum.norm() <= 1e-15);
+  CHECK(b[4].normal.isApprox(Vec2(0, -1)));  // face a -> b of the first segment: material above
+  // A lattice point on a crack becomes two, one on each side; a point at a tip stays one.
+  std::vector<Index> origin;
+  const std::vector<Vec2> split =
+      split_on_cracks(d, {Vec2(0.75, 0.5), Vec2(0.5, 0.5), Vec2(0.3, 0.3), Vec2(1.8, 0.3)}, 0.1, &origin);
+  REQUIRE(split.size() == 6);
+  CHECK(origin == std::vector<Index>{0, 0, 1, 2, 3, 3});
+  CHECK(split[0].y() - 0.5 == Approx(crack_offset * 0.1).epsilon(1e-6));
+  CHECK(split[1].y() - 0.5 == Approx(-crack_offset * 0.1).epsilon(1e-6));
+  CHECK(split[2] == Vec2(0.5, 0.5));
+  // Names of cracks may not repeat a part name.
+  CHECK_THROWS_WITH(
+      Domain::rectangle(Vec2(0, 0), Vec2(1, 1)).with_cracks({{Vec2(0.2, 0.5), Vec2(0.6, 0.5)}}, {"top"}, "t"),
+      Catch::Contains("crack name 'top' is already a part name"));
 }

@@ -45,3 +45,102 @@ TEST_CASE("support paths: a point on a corner face with round-off in its coordin
         Approx(node.norm() + across.norm()).epsilon(1e-14));
   CHECK(path_distance(SupportRule::plain, node, across) == Approx((across - node).norm()).epsilon(1e-14));
 }
+
+namespace {
+
+/// The unit square with a crack from (0.2, 0.5) to its tip (0.5, 0.5), and a slot 0.04 wide
+/// and 0.7 deep from the top at x = 0.8.
+const Domain& cracked_square() {
+  static const Domain d = Domain::from_wkt(
+      "GEOMETRYCOLLECTION(POLYGON((0 0, 1 0, 1 1, 0.82 1, 0.82 0.3, 0.78 0.3, 0.78 1, 0 1, 0 0)),"
+      " LINESTRING(0.2 0.5, 0.5 0.5))");
+  return d;
+}
+
+double distance_in(const Domain& domain, SupportRule rule, double reach, const Vec2& xi, const Vec2& x,
+                   Vec2& g) {
+  const SupportPaths paths(support_obstacles(domain, reach), rule, reach);
+  PathScratch s;
+  if (!paths.prepare(x, s)) {
+    g = (x - xi).normalized();
+    return (x - xi).norm();
+  }
+  return paths.distance(xi, x, s, g);
+}
+
+}  // namespace
+
+TEST_CASE("support paths: around a crack tip the geodesic distance is continuous, visibility jumps to a cut",
+          "[kernels][crack]") {
+  // A node below the crack, points moving along y = 0.6 from behind the tip to ahead of it:
+  // the straight line to the node crosses the crack until x passes the shadow line.
+  const Vec2 node(0.4, 0.45);
+  double largest_step = 0.0, previous = -1.0;
+  bool visibility_cut = false, visibility_seen = false;
+  for (int k = 0; k <= 400; ++k) {
+    const Vec2 x(0.3 + 0.4 * k / 400.0, 0.6);
+    Vec2 g;
+    const double d = distance_in(cracked_square(), SupportRule::geodesic, 0.5, node, x, g);
+    REQUIRE(std::isfinite(d));
+    CHECK(d >= (x - node).norm() - 1e-15);
+    if (previous >= 0.0) largest_step = std::max(largest_step, std::abs(d - previous));
+    previous = d;
+    const double v = distance_in(cracked_square(), SupportRule::visibility, 0.5, node, x, g);
+    visibility_cut |= std::isinf(v);
+    visibility_seen |= std::isfinite(v);
+  }
+  // Steps of 0.001 along the line move a continuous distance by at most 0.001.
+  CHECK(largest_step <= 1.0001e-3);
+  CHECK(visibility_cut);
+  CHECK(visibility_seen);
+  // Behind the tip the path bends at it: |node - tip| + |tip - x|.
+  Vec2 g;
+  const Vec2 tip(0.5, 0.5), behind(0.35, 0.55);
+  CHECK(distance_in(cracked_square(), SupportRule::geodesic, 0.5, node, behind, g) ==
+        Approx((tip - node).norm() + (behind - tip).norm()).epsilon(1e-14));
+}
+
+TEST_CASE("support paths: the gradient of the geodesic distance is its finite difference, also past a bend",
+          "[kernels][crack]") {
+  const Vec2 node(0.4, 0.45);
+  for (const Vec2& x : {Vec2(0.35, 0.55), Vec2(0.6, 0.62), Vec2(0.3, 0.7)}) {
+    Vec2 g;
+    distance_in(cracked_square(), SupportRule::geodesic, 0.5, node, x, g);
+    const double e = 1e-7;
+    Vec2 fd;
+    for (int c = 0; c < 2; ++c) {
+      Vec2 p = x, m = x, gp, gm;
+      p[c] += e;
+      m[c] -= e;
+      fd[c] = (distance_in(cracked_square(), SupportRule::geodesic, 0.5, node, p, gp) -
+               distance_in(cracked_square(), SupportRule::geodesic, 0.5, node, m, gm)) /
+              (2 * e);
+    }
+    CAPTURE(x.transpose(), g.transpose(), fd.transpose());
+    CHECK((g - fd).norm() <= 1e-7);
+  }
+}
+
+TEST_CASE("support paths: across a slot the path bends twice, and plain supports that reach across are found",
+          "[kernels][crack]") {
+  // From one wall of the slot to the other: down, round its bottom corners (0.78, 0.3) and
+  // (0.82, 0.3), and up.
+  const Vec2 left(0.76, 0.4), right(0.84, 0.4);
+  Vec2 g;
+  const double expected = (Vec2(0.78, 0.3) - left).norm() + 0.04 + (right - Vec2(0.82, 0.3)).norm();
+  CHECK(distance_in(cracked_square(), SupportRule::geodesic, 0.5, left, right, g) ==
+        Approx(expected).epsilon(1e-14));
+  CHECK(std::isinf(distance_in(cracked_square(), SupportRule::visibility, 0.5, left, right, g)));
+
+  const SupportObstacles slot = support_obstacles(cracked_square(), 0.2);
+  // Supports of 0.1 on either side of the slot reach across it; supports of 0.1 away from it
+  // (and the crack's neighbourhood is not asked about) do not.
+  const auto b = find_bridge({Vec2(0.76, 0.5)}, {Vec2(0.84, 0.5)}, slot, 0.1);
+  REQUIRE(b);
+  CHECK(b->straight == Approx(0.08));
+  CHECK(b->in_domain > 0.4);
+  CHECK(!find_bridge({Vec2(0.76, 0.5)}, {Vec2(0.7, 0.5)}, slot, 0.1));
+  // Around the L's re-entrant corner a path is at most sqrt(2) the straight one: no bridge.
+  const SupportObstacles corner = support_obstacles(l_shape(), 0.3);
+  CHECK(!find_bridge({Vec2(0.05, -0.01)}, {Vec2(-0.01, 0.05)}, corner, 0.3));
+}

@@ -14,11 +14,15 @@
 #include <CGAL/Kd_tree.h>
 #include <CGAL/Search_traits_2.h>
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/geometry/support_obstacles.hpp"
 #include "mfree/kernels/rk_shape_functions.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
@@ -131,6 +135,39 @@ void BM_rk_value_gradient(benchmark::State& state) {
   state.counters["threads"] = thread_count();
 }
 
+/// RK values and gradients on a plate [-1, 1] x [-0.5, 0.5] with 12 cracks of length 0.3 in
+/// a row, under each support rule (0 plain, 1 visibility, 2 geodesic): the cost of supports
+/// that respect the domain. Counter `near` is the share of points with a crack within reach.
+void BM_rk_supports_near_cracks(benchmark::State& state) {
+  std::string wkt = "GEOMETRYCOLLECTION(POLYGON((-1 -0.5, 1 -0.5, 1 0.5, -1 0.5))";
+  for (int c = 0; c < 12; ++c) {
+    const double x = -0.9 + c * (1.8 / 11.0);
+    wkt += fmt::format(", LINESTRING({} -0.15, {} 0.15)", x + 0.02, x - 0.02);
+  }
+  const Domain domain = Domain::from_wkt(wkt + ")");
+  CloudSettings cs;
+  cs.spacing = std::sqrt(2.0 / static_cast<double>(state.range(0)));
+  const std::vector<Vec2> nodes = make_cloud(domain, cs);
+  const double h = cs.spacing;
+  RKSettings s;
+  s.radius = 2.0 * h;
+  s.rule = static_cast<SupportRule>(state.range(1));
+  s.obstacles = std::make_shared<const SupportObstacles>(support_obstacles(domain, s.radius));
+  const RKShapeFunctions rk(nodes, s);
+  std::vector<Vec2> x(nodes.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = nodes[i] + Vec2(0.31 * h, 0.17 * h);
+  for (auto _ : state)
+    rk.for_each(x, true, [&](Index, const ShapeValues& v) { benchmark::DoNotOptimize(v.grad.data()); });
+  const SupportPaths paths(*s.obstacles, SupportRule::visibility, s.radius);
+  PathScratch scratch;
+  std::size_t near = 0;
+  for (const Vec2& p : x) near += paths.prepare(p, scratch);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(x.size()));
+  state.SetLabel(std::string(to_string(s.rule)));
+  state.counters["near"] = static_cast<double>(near) / static_cast<double>(x.size());
+  state.counters["threads"] = thread_count();
+}
+
 void BM_quadrature_weights(benchmark::State& state) {
   const auto order = state.range(1) == 1 ? RKOrder::linear : RKOrder::quadratic;
   const Cloud c = cloud(state.range(0));
@@ -154,6 +191,10 @@ void BM_quadrature_weights(benchmark::State& state) {
 BENCHMARK(BM_search_cell_list)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_search_cgal_kdtree)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_rk_value_gradient)->ArgsProduct({{10000, 100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_rk_supports_near_cracks)
+    ->ArgsProduct({{10000, 100000}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_quadrature_weights)->ArgsProduct({{10000, 100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

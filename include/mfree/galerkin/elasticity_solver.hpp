@@ -53,6 +53,9 @@ struct ElasticitySettings {
   double irregular_factor_scale = 1.25; ///< node radii on irregular clouds (nodal_support_radii)
   /// How supports respect the domain's cracks, slots and re-entrant corners (support_paths.hpp).
   SupportRule support_rule = SupportRule::geodesic;
+  /// Plain supports are refused where they join material across a gap narrower than the
+  /// support (find_bridge, support_paths.hpp) unless this is set.
+  bool allow_bridging = false;
 
   QuadratureScheme scheme = QuadratureScheme::gauss_cells;
   double quadrature_ratio = 4.0;        ///< quadrature points per node

@@ -35,6 +35,7 @@
 // scratch the caller owns (one per thread), distance() reads them.
 
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -98,5 +99,21 @@ class SupportPaths {
   int nx_ = 1, ny_ = 1;
   std::vector<int> segment_start_, segment_items_, corner_start_, corner_items_;
 };
+
+/// A node whose plain support of radius `radius` reaches a point across a gap: |x - x_I| <
+/// radius while the shortest path between them in the domain is more than twice as long (or
+/// longer than two radii): a slot, a crack, a thin cavity narrower than the support. Corners
+/// do not count (around a re-entrant corner of 90 degrees a path is at most sqrt(2) times
+/// the straight distance).
+struct Bridge {
+  Vec2 node, point;
+  double straight = 0.0;   ///< |point - node|
+  double in_domain = 0.0;  ///< the shortest path in the domain, +inf beyond two radii
+};
+
+/// The first bridge (points in order) plain supports of `radius` about the nodes would make
+/// to the points (the quadrature points), if any.
+std::optional<Bridge> find_bridge(const std::vector<Vec2>& nodes, const std::vector<Vec2>& points,
+                                  const SupportObstacles& obstacles, double radius);
 
 }  // namespace mfree
