@@ -13,7 +13,9 @@
 #include <fstream>
 #include <map>
 #include <new>
+#include <set>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -34,11 +36,22 @@ struct BoundaryEdge {
   int part;  // index into BoundaryMesh::part_names, -1: none
 };
 
-/// What is read from gmsh: the boundary's line elements and the coordinates of their nodes.
+/// One line element of a crack curve: its end nodes, its curve (gmsh tag) and its name.
+struct CrackEdge {
+  std::size_t a;
+  std::size_t b;
+  int curve;
+  int name;  // index into BoundaryMesh::crack_names, -1: the curve is in no physical group
+};
+
+/// What is read from gmsh: the line elements of the boundary and of the crack curves, and the
+/// coordinates of their nodes.
 struct BoundaryMesh {
   std::vector<BoundaryEdge> edges;
   std::unordered_map<std::size_t, Vec2> nodes;
   std::vector<std::string> part_names;
+  std::vector<CrackEdge> crack_edges;    // per crack curve, its elements in the curve's order
+  std::vector<std::string> crack_names;  // physical names of the crack curves, by group tag
 };
 
 std::string lower_case(std::string s) {
@@ -90,10 +103,11 @@ class GmshSession {
   }
 };
 
-/// The part index of every boundary curve (-1: none) with the part names, from the dim-1
-/// physical groups. Parts are numbered by group tag; groups of the same name are one part.
+/// The part index of every curve (-1: none) with the part names, from the dim-1 physical
+/// groups. Parts are numbered by group tag; groups of the same name are one part. `kind` names
+/// the curves in messages ("boundary curve").
 std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::string>& part_names,
-                               const std::string& source) {
+                               const std::string& source, std::string_view kind) {
   std::map<int, int> group_of_curve;  // curve tag -> physical group tag, 0: none
   std::map<int, std::string> used;    // group tag -> name, groups on the boundary only
   for (const auto& [dim, curve] : curves) {
@@ -111,9 +125,10 @@ std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::
       std::string list;
       for (std::size_t i = 0; i < names.size(); ++i)
         list += fmt::format("{}'{}'", i == 0 ? "" : (i + 1 == names.size() ? " and " : ", "), names[i]);
-      throw InputError(fmt::format("{}: boundary curve {} belongs to the physical curves {}; a boundary "
-                                   "edge belongs to one named part only",
-                                   source, curve, list));
+      throw InputError(
+          fmt::format("{}: {} {} belongs to the physical curves {}; a {} belongs to one "
+                      "named part only",
+                      source, kind, curve, list, kind));
     }
     group_of_curve[curve] = groups.empty() ? 0 : groups.front();
     if (!groups.empty()) used[groups.front()] = names.front();
@@ -129,8 +144,52 @@ std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::
   return out;
 }
 
-/// Opens the file in the current gmsh session and reads the boundary of its surfaces: line
-/// elements (meshing the curves first when the file has no 1D mesh), nodes and parts.
+/// The end nodes of the line elements of a curve, in the curve's order. gmsh lists an
+/// element's end (primary) nodes first, then its higher-order nodes.
+std::vector<std::pair<std::size_t, std::size_t>> curve_elements(int curve) {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, node_tags;
+  gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, curve);
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    std::string name;
+    int element_dim = 0, order = 0, nodes_per_element = 0, primary = 0;
+    std::vector<double> local;
+    gmsh::model::mesh::getElementProperties(types[t], name, element_dim, order, nodes_per_element, local,
+                                            primary);
+    const std::vector<std::size_t>& n = node_tags[t];
+    for (std::size_t e = 0; e + nodes_per_element <= n.size(); e += nodes_per_element)
+      out.emplace_back(n[e], n[e + 1]);
+  }
+  return out;
+}
+
+/// The curves read as cracks: those embedded in a surface (Curve{c} In Surface{s};) and the
+/// curves of physical groups that bound no surface and are embedded in none, since a .msh file
+/// does not record embedding. Other free curves (construction lines without a group) are left
+/// out, as before cracks were read.
+gmsh::vectorpair crack_curves(const gmsh::vectorpair& surfaces, const gmsh::vectorpair& curves) {
+  std::set<int> tags;
+  for (const auto& [dim, surface] : surfaces) {
+    gmsh::vectorpair embedded;
+    gmsh::model::mesh::getEmbedded(2, surface, embedded);
+    for (const auto& [d, tag] : embedded)
+      if (d == 1) tags.insert(tag);
+  }
+  for (const auto& [dim, curve] : curves) {
+    std::vector<int> up, down, groups;
+    gmsh::model::getAdjacencies(1, curve, up, down);
+    gmsh::model::getPhysicalGroupsForEntity(1, curve, groups);
+    if (up.empty() && !groups.empty()) tags.insert(curve);
+  }
+  gmsh::vectorpair out;
+  for (int tag : tags) out.emplace_back(1, tag);
+  return out;
+}
+
+/// Opens the file in the current gmsh session and reads the boundary of its surfaces and the
+/// crack curves: line elements (meshing the curves first when the file has no 1D mesh), nodes
+/// and parts.
 BoundaryMesh read_boundary(const std::string& file) {
   gmsh::open(file);
 
@@ -161,31 +220,27 @@ BoundaryMesh read_boundary(const std::string& file) {
   if (boundary.empty()) throw InputError(fmt::format("{}: the surfaces have no boundary curves", file));
 
   BoundaryMesh mesh;
-  const std::map<int, int> part = curve_parts(boundary, mesh.part_names, file);
+  const std::map<int, int> part = curve_parts(boundary, mesh.part_names, file, "boundary curve");
   const bool is_msh = lower_case(std::filesystem::path(file).extension().string()) == ".msh";
   for (const auto& [dim, curve] : boundary) {
-    gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, curve);
-    std::size_t count = 0;
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      std::string name;
-      int element_dim = 0, order = 0, nodes_per_element = 0, primary = 0;
-      std::vector<double> local;
-      gmsh::model::mesh::getElementProperties(types[t], name, element_dim, order, nodes_per_element, local,
-                                              primary);
-      // gmsh lists an element's end (primary) nodes first, then its higher-order nodes.
-      const std::vector<std::size_t>& n = node_tags[t];
-      for (std::size_t e = 0; e + nodes_per_element <= n.size(); e += nodes_per_element) {
-        mesh.edges.push_back(BoundaryEdge{n[e], n[e + 1], part.at(curve)});
-      }
-      count += element_tags[t].size();
-    }
-    if (count == 0) {
+    const auto elements = curve_elements(curve);
+    for (const auto& [a, b] : elements) mesh.edges.push_back(BoundaryEdge{a, b, part.at(curve)});
+    if (elements.empty()) {
       throw InputError(fmt::format(
           "{}: boundary curve {} has no 1D mesh elements{}", file, curve,
           is_msh ? " (a .msh file holds only the elements of physical groups unless written with "
                    "Mesh.SaveAll = 1: put every boundary curve in a physical curve)"
                  : ""));
     }
+  }
+  const gmsh::vectorpair cracks = crack_curves(surfaces, curves);
+  const std::map<int, int> crack_name = curve_parts(cracks, mesh.crack_names, file, "embedded curve");
+  for (const auto& [dim, curve] : cracks) {
+    const auto elements = curve_elements(curve);
+    for (const auto& [a, b] : elements)
+      mesh.crack_edges.push_back(CrackEdge{a, b, curve, crack_name.at(curve)});
+    if (elements.empty())
+      throw InputError(fmt::format("{}: embedded curve {} has no 1D mesh elements", file, curve));
   }
 
   std::vector<std::size_t> tags;
@@ -207,7 +262,8 @@ BoundaryMesh read_boundary(const std::string& file) {
 }
 
 // The boundary mesh through a pipe from the child process that read it: 'M' and the mesh
-// (nodes: tag, x, y; edges: a, b, part; part names), or 'E' and an error message.
+// (nodes: tag, x, y; edges: a, b, part; part names; crack edges: a, b, curve, name; crack
+// names), or 'E' and an error message. Counts are std::size_t, names their length and bytes.
 
 template <class T>
 void put(std::string& out, const T& value) {
@@ -224,11 +280,17 @@ std::string serialise(const BoundaryMesh& mesh) {
   }
   put(out, mesh.edges.size());
   for (const BoundaryEdge& e : mesh.edges) put(out, e);
-  put(out, mesh.part_names.size());
-  for (const std::string& name : mesh.part_names) {
-    put(out, name.size());
-    out += name;
-  }
+  const auto put_names = [&out](const std::vector<std::string>& names) {
+    put(out, names.size());
+    for (const std::string& name : names) {
+      put(out, name.size());
+      out += name;
+    }
+  };
+  put_names(mesh.part_names);
+  put(out, mesh.crack_edges.size());
+  for (const CrackEdge& e : mesh.crack_edges) put(out, e);
+  put_names(mesh.crack_names);
   return out;
 }
 
@@ -256,11 +318,18 @@ BoundaryMesh deserialise(const std::string& bytes, const std::string& file) {
   }
   mesh.edges.resize(count());
   for (BoundaryEdge& e : mesh.edges) take(&e, sizeof e);
-  mesh.part_names.resize(count());
-  for (std::string& name : mesh.part_names) {
-    name.resize(count());
-    take(name.data(), name.size());
-  }
+  const auto take_names = [&](std::vector<std::string>& names) {
+    names.resize(count());
+    for (std::string& name : names) {
+      name.resize(count());
+      take(name.data(), name.size());
+    }
+  };
+  take_names(mesh.part_names);
+  mesh.crack_edges.resize(count());
+  for (CrackEdge& e : mesh.crack_edges) take(&e, sizeof e);
+  take_names(mesh.crack_names);
+  if (at != bytes.size()) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
   return mesh;
 }
 
@@ -422,6 +491,175 @@ void outer_ring_first(std::vector<Ring>& rings, std::vector<std::vector<int>>& p
   std::swap(parts[0], parts[outer[0]]);
 }
 
+/// A crack chained from the line elements of its curves: its vertices in order, its name and
+/// its curves (gmsh tags, ascending).
+struct CrackChain {
+  std::vector<Vec2> points;
+  std::string name;
+  std::vector<int> curves;
+};
+
+/// "curve 5" or "curves 5, 6 and 9".
+std::string curve_list(const std::vector<int>& curves) {
+  std::string out = curves.size() == 1 ? "curve " : "curves ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    out += fmt::format("{}{}", i == 0 ? "" : (i + 1 == curves.size() ? " and " : ", "), curves[i]);
+  return out;
+}
+
+/// The crack edges of one connected set of crack curves, and its end nodes (the nodes that end
+/// one edge; none for a closed loop).
+struct CrackComponent {
+  std::vector<std::size_t> edges;  // indices into BoundaryMesh::crack_edges
+  std::vector<std::size_t> ends;
+  std::vector<int> curves;  // ascending
+};
+
+/// Splits the crack edges into connected components; throws InputError where more than two
+/// edges meet (a branching network).
+std::vector<CrackComponent> crack_components(const BoundaryMesh& mesh, const std::string& source) {
+  const std::vector<CrackEdge>& edges = mesh.crack_edges;
+  // node -> its edges; ordered, so that the lowest offending node is the one reported
+  std::map<std::size_t, std::vector<std::size_t>> edges_at;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    edges_at[edges[e].a].push_back(e);
+    edges_at[edges[e].b].push_back(e);
+  }
+  for (const auto& [node, at] : edges_at) {
+    if (at.size() <= 2) continue;
+    std::set<int> curves;
+    for (std::size_t e : at) curves.insert(edges[e].curve);
+    const Vec2& x = mesh.nodes.at(node);
+    throw InputError(fmt::format(
+        "{}: embedded {}: a branch point at ({}, {}) (node {}, where {} of their line elements end); "
+        "a crack is one unbranched line and cracks do not touch: make the branches separate cracks that "
+        "do not meet",
+        source, curve_list({curves.begin(), curves.end()}), x.x(), x.y(), node, at.size()));
+  }
+  std::vector<CrackComponent> out;
+  std::vector<bool> seen(edges.size(), false);
+  for (std::size_t first = 0; first < edges.size(); ++first) {
+    if (seen[first]) continue;
+    CrackComponent c;
+    std::set<int> curves;
+    std::vector<std::size_t> stack{first};
+    seen[first] = true;
+    while (!stack.empty()) {
+      const std::size_t e = stack.back();
+      stack.pop_back();
+      c.edges.push_back(e);
+      curves.insert(edges[e].curve);
+      for (const std::size_t node : {edges[e].a, edges[e].b}) {
+        const std::vector<std::size_t>& at = edges_at.at(node);
+        if (at.size() == 1) c.ends.push_back(node);
+        for (std::size_t f : at)
+          if (!seen[f]) {
+            seen[f] = true;
+            stack.push_back(f);
+          }
+      }
+    }
+    c.curves.assign(curves.begin(), curves.end());
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+/// The vertices of an open component from one end to the other, running the way its
+/// lowest-numbered curve runs: the way that curve's first element (gmsh orders a curve's
+/// elements along it) goes from its node a to its node b.
+std::vector<Vec2> walk(const BoundaryMesh& mesh, const CrackComponent& c) {
+  std::unordered_map<std::size_t, std::vector<std::size_t>> edges_at;
+  std::size_t guide = mesh.crack_edges.size();  // the first element of the lowest curve
+  for (std::size_t e : c.edges) {
+    edges_at[mesh.crack_edges[e].a].push_back(e);
+    edges_at[mesh.crack_edges[e].b].push_back(e);
+    if (mesh.crack_edges[e].curve == c.curves[0]) guide = std::min(guide, e);
+  }
+  std::vector<std::size_t> nodes{c.ends[0]};
+  bool backwards = false;
+  for (std::size_t edge = edges_at.at(c.ends[0])[0];;) {
+    const CrackEdge& e = mesh.crack_edges[edge];
+    const std::size_t next = e.a == nodes.back() ? e.b : e.a;
+    if (edge == guide) backwards = next == e.a;
+    nodes.push_back(next);
+    const std::vector<std::size_t>& at = edges_at.at(next);
+    if (at.size() == 1) break;
+    edge = at[0] == edge ? at[1] : at[0];
+  }
+  if (backwards) std::reverse(nodes.begin(), nodes.end());
+  std::vector<Vec2> points;
+  for (std::size_t n : nodes) points.push_back(mesh.nodes.at(n));
+  return points;
+}
+
+/// The cracks of the mesh, one per connected set of crack curves, in the order of their
+/// physical groups. Throws InputError naming the curves when a set branches, closes into a
+/// loop, has a curve in no physical group or curves of two groups, or when two sets share one
+/// name.
+std::vector<CrackChain> chain_cracks(const BoundaryMesh& mesh, const std::string& source) {
+  std::map<int, CrackChain> by_name;  // name index -> its crack
+  for (const CrackComponent& c : crack_components(mesh, source)) {
+    if (c.ends.empty()) {
+      const Vec2& x = mesh.nodes.at(mesh.crack_edges[c.edges[0]].a);
+      throw InputError(fmt::format(
+          "{}: embedded {}: a closed loop through ({}, {}); a crack is an open line with two ends. "
+          "An inner boundary is a hole: put its curve loop in the surface (Plane Surface(s) = {{outer, "
+          "hole}};) instead of embedding it",
+          source, curve_list(c.curves), x.x(), x.y()));
+    }
+    std::set<int> names;
+    for (std::size_t e : c.edges) {
+      const CrackEdge& edge = mesh.crack_edges[e];
+      if (edge.name < 0)
+        throw InputError(fmt::format(
+            "{}: embedded curve {} belongs to no physical curve; an embedded curve is read as a crack "
+            "named by its physical curve: add it to one (Physical Curve(\"crack\") = {{{}}};) or remove "
+            "it from the surface",
+            source, edge.curve, edge.curve));
+      names.insert(edge.name);
+    }
+    if (names.size() > 1)
+      throw InputError(
+          fmt::format("{}: embedded {}: one line in the physical curves '{}' and '{}'; "
+                      "a crack has one name: put its curves in one physical curve",
+                      source, curve_list(c.curves), mesh.crack_names[*names.begin()],
+                      mesh.crack_names[*std::next(names.begin())]));
+    const int name = *names.begin();
+    if (const auto other = by_name.find(name); other != by_name.end())
+      throw InputError(fmt::format(
+          "{}: the physical curve '{}' holds two separate lines (embedded {} and {}); "
+          "a crack is one line: give each its own physical curve",
+          source, mesh.crack_names[name], curve_list(other->second.curves), curve_list(c.curves)));
+    by_name[name] = CrackChain{walk(mesh, c), mesh.crack_names[name], c.curves};
+  }
+  std::vector<CrackChain> out;
+  for (auto& [name, chain] : by_name) out.push_back(std::move(chain));
+  return out;
+}
+
+/// The domain with the cracks (Domain::with_cracks); its InputErrors also name the gmsh curves
+/// of the cracks they name.
+Domain with_gmsh_cracks(const Domain& domain, std::vector<CrackChain> chains, const std::string& source) {
+  std::vector<std::vector<Vec2>> lines;
+  std::vector<std::string> names;
+  for (CrackChain& c : chains) {
+    lines.push_back(std::move(c.points));
+    names.push_back(c.name);
+  }
+  try {
+    return domain.with_cracks(std::move(lines), std::move(names), source);
+  } catch (const InputError& e) {
+    std::string message = e.what(), curves;
+    for (const CrackChain& c : chains)
+      if (message.find(fmt::format("crack '{}'", c.name)) != std::string::npos ||
+          message.find(fmt::format("crack name '{}'", c.name)) != std::string::npos)
+        curves += fmt::format("{}crack '{}' is the embedded {}", curves.empty() ? "" : ", ", c.name,
+                              curve_list(c.curves));
+    throw InputError(curves.empty() ? message : fmt::format("{} ({})", message, curves));
+  }
+}
+
 }  // namespace
 
 bool is_gmsh_file(const std::filesystem::path& file) {
@@ -451,7 +689,10 @@ Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimit
   BoundaryMesh mesh = read_isolated(source, limits);
   auto [rings, parts] = chain_rings(mesh, source);
   outer_ring_first(rings, parts, source);
-  return Domain::from_rings(std::move(rings), std::move(parts), std::move(mesh.part_names), source);
+  Domain domain = Domain::from_rings(std::move(rings), std::move(parts), std::move(mesh.part_names), source);
+  std::vector<CrackChain> cracks = chain_cracks(mesh, source);
+  if (cracks.empty()) return domain;
+  return with_gmsh_cracks(domain, std::move(cracks), source);
 }
 
 }  // namespace mfree

@@ -15,6 +15,8 @@
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/memory.hpp"
+#include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/geometry/gmsh_domain.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
@@ -451,4 +453,229 @@ TEST_CASE("gmsh domains: a reader killed from outside is not called a malformed 
   killer.join();
   CHECK_THAT(message, Contains(path) && Contains("ended from outside by signal 9") &&
                           Contains("lack of memory") && !Contains("malformed") && !Contains("InputError"));
+}
+
+namespace {
+
+/// K_I, K_II at every tip of a plate [-1, 1]^2 clamped on y = -1 and pulled by a unit traction
+/// on y = 1 (plane strain, E = 1, nu = 0.3, lattice of spacing 0.1, the default scheme).
+std::vector<mfree::TipIntensity> pulled_plate_tips(const Domain& d) {
+  mfree::ElasticitySettings s;
+  s.nodes.spacing = 0.1;
+  s.problem.material = mfree::LinearElastic{1.0, 0.3, mfree::PlaneModel::strain};
+  s.problem.spacing = 0.1;
+  const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
+  const auto pull = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 1.0); };
+  using Type = mfree::BoundaryCondition::Type;
+  s.problem.conditions = {
+      {Type::displacement, mfree::select_box(d, mfree::Box{Vec2(-2, -1.01), Vec2(2, -0.99)}), zero, "clamp"},
+      {Type::traction, mfree::select_box(d, mfree::Box{Vec2(-2, 0.99), Vec2(2, 1.01)}), pull, "pull"}};
+  return mfree::solve_elasticity(d, s, nullptr).tips;
+}
+
+/// The gmsh domain has the WKT domain's rings and cracks (points, tips, names, faces), exactly.
+void check_same_cracks(const Domain& gmsh, const Domain& wkt) {
+  CHECK(gmsh.rings() == wkt.rings());
+  CHECK(gmsh.area() == wkt.area());
+  REQUIRE(gmsh.cracks().size() == wkt.cracks().size());
+  for (std::size_t c = 0; c < wkt.cracks().size(); ++c) {
+    INFO("crack " << c);
+    CHECK(gmsh.cracks()[c].name == wkt.cracks()[c].name);
+    CHECK(gmsh.cracks()[c].points == wkt.cracks()[c].points);
+    CHECK(gmsh.cracks()[c].tip[0] == wkt.cracks()[c].tip[0]);
+    CHECK(gmsh.cracks()[c].tip[1] == wkt.cracks()[c].tip[1]);
+  }
+  REQUIRE(gmsh.boundary().size() == wkt.boundary().size());
+  for (std::size_t i = 0; i < wkt.boundary().size(); ++i) {
+    const BoundarySegment &s = gmsh.boundary()[i], &t = wkt.boundary()[i];
+    INFO("segment " << i);
+    CHECK(s.a == t.a);
+    CHECK(s.b == t.b);
+    CHECK(s.normal == t.normal);
+    CHECK(s.crack == t.crack);
+    if (s.crack >= 0) CHECK(gmsh.part_names()[s.part] == wkt.part_names()[t.part]);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gmsh cracks: embedded physical curves are the cracks of the equivalent WKT", "[geometry][crack]") {
+  const mfree::testing::ScratchFolder folder("gmsh_cracks");
+  // meshes/centre_crack.geo: a centre crack with two tips; meshes/edge_crack.geo: an edge crack
+  // (mouth on x = -1, tip at (-0.25, 0)) of two curves, the second drawn backwards.
+  const std::string centre_wkt = write_file(folder, "centre.wkt",
+                                            "GEOMETRYCOLLECTION(POLYGON((-1 -1, 1 -1, 1 1, -1 1)), "
+                                            "LINESTRING(-0.25 0, 0.25 0))");
+  const std::string edge_wkt = write_file(folder, "edge.wkt",
+                                          "GEOMETRYCOLLECTION(POLYGON((-1 -1, 1 -1, 1 1, -1 1, -1 0)), "
+                                          "LINESTRING(-1 0, -0.5 0, -0.25 0))");
+  for (const auto& [geo, wkt_path, tips] : std::vector<std::tuple<std::string, std::string, int>>{
+           {"centre_crack.geo", centre_wkt, 2}, {"edge_crack.geo", edge_wkt, 1}}) {
+    INFO(geo);
+    const Domain gmsh = mesh(geo), wkt = Domain::from_file(wkt_path);
+    REQUIRE(gmsh.cracks().size() == 1);
+    CHECK(gmsh.cracks()[0].tip[0] == (tips == 2));  // the edge crack runs from its mouth
+    CHECK(gmsh.cracks()[0].tip[1]);
+    CHECK(gmsh.part_names() == std::vector<std::string>{"bottom", "right", "top", "left", "crack1"});
+    check_same_cracks(gmsh, wkt);
+
+    // The same solve on both: the same K at the same tips.
+    const std::vector<mfree::TipIntensity> a = pulled_plate_tips(gmsh), b = pulled_plate_tips(wkt);
+    REQUIRE(a.size() == static_cast<std::size_t>(tips));
+    REQUIRE(b.size() == a.size());
+    for (std::size_t t = 0; t < a.size(); ++t) {
+      INFO("tip " << t << ": K_I " << a[t].k.k1 << ", K_II " << a[t].k.k2);
+      CHECK(a[t].crack == "crack1");
+      CHECK(a[t].frame.position == b[t].frame.position);
+      // Under tension the crack opens: K_I = 0.935 at the centre crack's tips, 1.198 at the edge
+      // crack's (sigma sqrt(pi a) = 0.886 and 1.535; the clamp and the finite plate change them).
+      CHECK(a[t].k.k1 > 0.5);
+      CHECK(std::abs(a[t].k.k1 - b[t].k.k1) <= 1e-10 * std::abs(b[t].k.k1));
+      CHECK(std::abs(a[t].k.k2 - b[t].k.k2) <= 1e-10 * std::abs(b[t].k.k1));
+    }
+  }
+  // The .msh written from centre_crack.geo (which records no embedding): its physical curve
+  // that bounds no surface is the crack all the same.
+  check_same_cracks(mesh("centre_crack.msh"), Domain::from_file(centre_wkt));
+}
+
+TEST_CASE("gmsh cracks: an OpenCASCADE fragment and several physical curves", "[geometry][crack]") {
+  const mfree::testing::ScratchFolder folder("gmsh_crack_kinds");
+  // A line fragmented into the rectangle [0, 2] x [0, 1] is embedded in it, its end (0, 0.5)
+  // shared with the left side: an edge crack of gmsh's default element size.
+  const Domain occ = Domain::from_file(write_file(folder, "occ.geo", R"(
+    SetFactory("OpenCASCADE");
+    Rectangle(1) = {0, 0, 0, 2, 1};
+    Point(5) = {0, 0.5, 0}; Point(6) = {0.5, 0.5, 0};
+    Line(5) = {5, 6};
+    BooleanFragments{ Surface{1}; Delete; }{ Curve{5}; Delete; }
+    Physical Curve("notch") = {5};
+  )"));
+  REQUIRE(occ.cracks().size() == 1);
+  const mfree::Crack& notch = occ.cracks()[0];
+  CHECK(notch.name == "notch");
+  CHECK(notch.points.front() == Vec2(0, 0.5));
+  CHECK(notch.points.back() == Vec2(0.5, 0.5));
+  CHECK(notch.points.size() >= 3);  // gmsh's default size meshes it in pieces
+  CHECK(!notch.tip[0]);
+  CHECK(notch.tip[1]);
+
+  // Two physical embedded curves are two cracks, in the order of their groups; an unnamed
+  // group names its crack by number, and a free curve in no group is left out.
+  const Domain two = Domain::from_file(write_file(folder, "two.geo", square_geo("1") + R"(
+    Point(5) = {0.2, 0.3, 0, 0.1}; Point(6) = {0.6, 0.3, 0, 0.1};
+    Point(7) = {0.3, 0.7, 0, 0.1}; Point(8) = {0.7, 0.7, 0, 0.1};
+    Point(9) = {3, 3, 0}; Point(10) = {4, 3, 0};
+    Line(5) = {5, 6}; Line(6) = {7, 8}; Line(7) = {9, 10};
+    Curve{5, 6} In Surface{1};
+    Physical Curve(12) = {5};
+    Physical Curve("upper", 3) = {6};
+  )"));
+  REQUIRE(two.cracks().size() == 2);
+  CHECK(two.cracks()[0].name == "upper");  // group 3 before group 12
+  CHECK(two.cracks()[1].name == "12");
+  CHECK(two.cracks()[0].points.size() == 5);  // 0.4 long at size 0.1
+  CHECK(two.cracks()[1].points.front() == Vec2(0.2, 0.3));
+  CHECK(two.cracks()[1].points.back() == Vec2(0.6, 0.3));
+  for (const mfree::Crack& c : two.cracks()) CHECK((c.tip[0] && c.tip[1]));
+}
+
+TEST_CASE("gmsh cracks: embedded curves that are not cracks are InputErrors naming the curve",
+          "[geometry][crack]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_crack_errors");
+  // The unit square of size-1 elements, then the embedded curves of each case (of one element
+  // where the points have size 1).
+  const auto refusal = [&](const std::string& name, const std::string& curves) {
+    const std::string path = write_file(folder, name, square_geo("1") + curves);
+    const std::string message = input_error_message(path);
+    return std::make_pair(path, message);
+  };
+  {
+    const auto [path, message] = refusal("loop.geo", R"(
+      Point(5) = {0.2, 0.2, 0}; Point(6) = {0.8, 0.2, 0}; Point(7) = {0.5, 0.8, 0};
+      Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 5};
+      Curve{5, 6, 7} In Surface{1};
+      Physical Curve("ring") = {5, 6, 7};
+    )");
+    CHECK_THAT(message, Contains(path) && Contains("embedded curves 5, 6 and 7: a closed loop") &&
+                            Contains("put its curve loop in the surface"));
+  }
+  {
+    const auto [path, message] = refusal("cross.geo", R"(
+      Point(5) = {0.2, 0.5, 0, 1}; Point(6) = {0.8, 0.5, 0, 1}; Point(7) = {0.5, 0.2, 0, 1}; Point(8) = {0.5, 0.8, 0, 1};
+      Line(5) = {5, 6}; Line(6) = {7, 8};
+      Curve{5, 6} In Surface{1};
+      Physical Curve("a") = {5};
+      Physical Curve("b") = {6};
+    )");
+    CHECK_THAT(message, Contains(path) && Contains("crack 'b', segment 1 meets crack 'a'") &&
+                            Contains("crack 'a' is the embedded curve 5") &&
+                            Contains("crack 'b' is the embedded curve 6"));
+  }
+  {
+    // Four curves from a shared centre point: a branching network.
+    const auto [path, message] = refusal("branch.geo", R"(
+      Point(5) = {0.5, 0.5, 0}; Point(6) = {0.2, 0.5, 0}; Point(7) = {0.8, 0.5, 0}; Point(8) = {0.5, 0.8, 0};
+      Line(5) = {5, 6}; Line(6) = {5, 7}; Line(7) = {5, 8};
+      Curve{5, 6, 7} In Surface{1};
+      Physical Curve("t") = {5, 6, 7};
+    )");
+    CHECK_THAT(message, Contains(path) &&
+                            Contains("embedded curves 5, 6 and 7: a branch point at (0.5, 0.5)") &&
+                            Contains("3 of their line elements end"));
+  }
+  {
+    const auto [path, message] = refusal("leaves.geo", R"(
+      Point(5) = {0.5, 0.5, 0, 1}; Point(6) = {1.5, 0.5, 0, 1};
+      Line(5) = {5, 6};
+      Curve{5} In Surface{1};
+      Physical Curve("long") = {5};
+    )");
+    CHECK_THAT(message, Contains(path) &&
+                            Contains("crack 'long', point 2 (1.5, 0.5) lies outside the domain") &&
+                            Contains("crack 'long' is the embedded curve 5"));
+  }
+  {
+    const auto [path, message] = refusal("unnamed.geo", R"(
+      Point(5) = {0.2, 0.5, 0}; Point(6) = {0.8, 0.5, 0};
+      Line(5) = {5, 6};
+      Curve{5} In Surface{1};
+    )");
+    CHECK_THAT(message, Contains(path) && Contains("embedded curve 5 belongs to no physical curve") &&
+                            Contains("Physical Curve(\"crack\") = {5};"));
+  }
+  {
+    const auto [path, message] = refusal("two_names.geo", R"(
+      Point(5) = {0.2, 0.5, 0}; Point(6) = {0.5, 0.5, 0}; Point(7) = {0.8, 0.5, 0};
+      Line(5) = {5, 6}; Line(6) = {6, 7};
+      Curve{5, 6} In Surface{1};
+      Physical Curve("a") = {5};
+      Physical Curve("b") = {6};
+    )");
+    CHECK_THAT(message, Contains(path) &&
+                            Contains("embedded curves 5 and 6: one line in the physical curves 'a' and 'b'"));
+  }
+  {
+    const auto [path, message] = refusal("two_lines.geo", R"(
+      Point(5) = {0.2, 0.3, 0}; Point(6) = {0.8, 0.3, 0}; Point(7) = {0.2, 0.7, 0}; Point(8) = {0.8, 0.7, 0};
+      Line(5) = {5, 6}; Line(6) = {7, 8};
+      Curve{5, 6} In Surface{1};
+      Physical Curve("slits") = {5, 6};
+    )");
+    CHECK_THAT(message,
+               Contains(path) && Contains("the physical curve 'slits' holds two separate lines (embedded "
+                                          "curve 5 and curve 6)"));
+  }
+  {
+    // A boundary part's name given to a crack.
+    const auto [path, message] = refusal("part_name.geo", R"(
+      Point(5) = {0.2, 0.5, 0}; Point(6) = {0.8, 0.5, 0};
+      Line(5) = {5, 6};
+      Curve{5} In Surface{1};
+      Physical Curve("edge") = {1, 5};
+    )");
+    CHECK_THAT(message, Contains(path) && Contains("crack name 'edge' is already a part name") &&
+                            Contains("crack 'edge' is the embedded curve 5"));
+  }
 }

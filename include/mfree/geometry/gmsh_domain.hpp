@@ -21,11 +21,28 @@
 // ("Physical Curve") of its curve, -1 for curves in none; a group without a name is named by
 // its number ("7"). Domain::part_names() lists the groups on the boundary, by group tag.
 //
+// Cracks (Domain::with_cracks): curves embedded in a surface (Curve{c} In Surface{s}; or an
+// OpenCASCADE BooleanFragments of a surface and a line) that belong to a physical curve. The
+// line elements of the crack curves are chained across curves into one polyline per connected
+// line of curves, running the way its lowest-numbered curve runs; its name is its physical
+// curve's (its number for a group without a name), and several physical curves give several
+// cracks, in group order. An end on the boundary (a point shared with a boundary curve, or on a
+// straight boundary edge) is a mouth, an end inside a tip. A .msh file records no embedding, so
+// there a curve of a physical group that bounds no surface is a crack as well (the .msh gmsh
+// writes from a .geo with an embedded physical curve reads as that .geo); free curves in no
+// physical group that are not embedded are ignored (construction lines). InputErrors naming the
+// file and the curves: an embedded curve in no physical curve (an embedded curve is never taken
+// silently: name it, or remove the embedding if it only guided a mesh), a closed loop (an inner
+// boundary is a hole of the surface), curves that branch (more than two elements at a node),
+// one line of curves in two physical curves, one physical curve holding two separate lines, and
+// every refusal of Domain::with_cracks (a crack leaving the surface, crossing another, running
+// along the boundary), whose message is followed by the curves of the cracks it names.
+//
 // gmsh runs in a child process of its own for every read (a gmsh session there: initialise,
-// read, finalise), which sends the boundary back through a pipe: gmsh's global state never
-// enters this process (reads from several threads, or beside a program's own gmsh session, are
-// safe), and a file that crashes libgmsh (tests/fuzz/known_crashes) ends as an InputError
-// naming the file and the signal instead of a crash. gmsh prints nothing; OpenCASCADE's STEP
+// read, finalise), which sends the boundary and the crack curves back through a pipe: gmsh's
+// global state never enters this process (reads from several threads, or beside a program's
+// own gmsh session, are safe), and a file that crashes libgmsh (tests/fuzz/known_crashes) ends
+// as an InputError naming the file and the signal instead of a crash. gmsh prints nothing; OpenCASCADE's STEP
 // parser may still print its own syntax errors to standard output.
 //
 // The child runs under limits (mfree/core/child_process.hpp): wall time, 60 s by default, and
@@ -68,7 +85,8 @@ struct GmshReaderLimits {
 /// error (its messages are quoted), the model has no surface or has volumes, a node lies off the
 /// plane z = 0, a boundary curve has no 1D elements, a curve belongs to two physical groups,
 /// the boundary does not close into rings (or meets itself), the surfaces form more than one
-/// connected region, the rings fail Domain::from_rings's checks, gmsh crashes on the file, or
+/// connected region, the rings fail Domain::from_rings's checks, the embedded curves are not
+/// cracks (see above), gmsh crashes on the file, or
 /// gmsh exceeds a limit (naming it). Throws Error when the reader process is killed from
 /// outside (as by the system's out-of-memory killer) or fails.
 [[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file,
