@@ -57,7 +57,9 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
       t.frame.position = end == 0 ? crack.points.front() : crack.points.back();
       t.frame.direction = (t.frame.position - (end == 0 ? crack.points[1] : crack.points[n - 2])).normalized();
       const double room = 0.9 * room_at_tip(domain, c, end);
-      t.outer_radius = std::min(4.0 * h, room);
+      // A fixed share of the room once refined enough: the annulus then stays where u^h
+      // converges, not a fixed number of spacings from the tip.
+      t.outer_radius = std::min(room, std::max(4.0 * h, 0.5 * room));
       if (t.outer_radius < h)
         throw InputError(fmt::format("stress intensity at the tip ({}, {}) of crack '{}': the annulus of the interaction "
                                      "integral has {:.3g} of room (its straight last segment, other cracks and the "

@@ -369,6 +369,20 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
   if (names.size() != lines.size())
     throw Error(fmt::format("{}: {} cracks but {} names", source, lines.size(), names.size()));
   auto impl = std::make_unique<Impl>(*impl_);
+  // Every segment of every crack, bucketed, for the test that no two meet.
+  std::vector<BoundarySegment> pieces;
+  for (std::size_t c = 0; c < lines.size(); ++c) {
+    if (lines[c].size() < 2)
+      throw InputError(fmt::format("{}: crack '{}' has {} point(s); a crack needs at least 2", source,
+                                   names[c], lines[c].size()));
+    for (std::size_t i = 0; i < lines[c].size(); ++i)
+      if (!lines[c][i].allFinite())
+        throw InputError(fmt::format("{}: {} is not finite", source, crack_point(names[c], i, lines[c][i])));
+    for (std::size_t i = 0; i + 1 < lines[c].size(); ++i)
+      pieces.push_back(BoundarySegment{lines[c][i], lines[c][i + 1], Vec2::Zero(), 0.0, -1,
+                                       static_cast<int>(i), -1, static_cast<int>(c)});
+  }
+  const SegmentGrid pieces_grid(pieces);
   std::vector<FastSegment> all;    // every crack segment so far
   std::vector<std::size_t> owner;  // its crack
   for (std::size_t c = 0; c < lines.size(); ++c) {
@@ -379,14 +393,9 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
     if (name.empty() || taken)
       throw InputError(
           fmt::format("{}: crack name '{}' is {}", source, name, taken ? "already a part name" : "empty"));
-    if (line.size() < 2)
-      throw InputError(
-          fmt::format("{}: crack '{}' has {} point(s); a crack needs at least 2", source, name, line.size()));
     Crack crack{line, name, {false, false}};
     for (std::size_t i = 0; i < line.size(); ++i) {
       const Vec2& x = line[i];
-      if (!x.allFinite())
-        throw InputError(fmt::format("{}: {} is not finite", source, crack_point(name, i, x)));
       if (!contains(x))
         throw InputError(fmt::format("{}: {} lies outside the domain", source, crack_point(name, i, x)));
       const bool end = i == 0 || i + 1 == line.size();
@@ -401,34 +410,39 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const FastSegment seg(fast_point(line[i]), fast_point(line[i + 1]));
       // Against the boundary: a crack meets it at a mouth only.
-      for (const BoundarySegment& e : impl->segments) {
-        if (e.ring < 0) continue;
-        const FastSegment edge(fast_point(e.a), fast_point(e.b));
-        if (!CGAL::do_intersect(seg, edge)) continue;
-        // Segments not on one line meet at one point: allowed when it is a mouth.
-        const bool mouth_here = (i == 0 && !crack.tip[0] && edge.has_on(seg.source())) ||
-                                (i + 2 == line.size() && !crack.tip[1] && edge.has_on(seg.target()));
-        const bool along = CGAL::collinear(edge.source(), edge.target(), seg.source()) &&
-                           CGAL::collinear(edge.source(), edge.target(), seg.target());
-        if (!mouth_here || along)
-          throw InputError(
-              fmt::format("{}: crack '{}', segment {} (from ({}, {}) to ({}, {})) meets the boundary of the "
-                          "domain at {} ({} edge {}); a crack lies inside the domain and only its ends may "
-                          "touch the boundary",
-                          source, name, i + 1, line[i].x(), line[i].y(), line[i + 1].x(), line[i + 1].y(),
-                          mouth_here ? "more than its mouth" : "a point other than its ends",
-                          ring_name(static_cast<std::size_t>(e.ring)), e.edge + 1));
-      }
+      impl->grid.for_each_meeting(
+          Box{line[i].cwiseMin(line[i + 1]), line[i].cwiseMax(line[i + 1])}, [&](int k) {
+            const BoundarySegment& e = impl->segments[k];
+            if (e.ring < 0) return;
+            const FastSegment edge(fast_point(e.a), fast_point(e.b));
+            if (!CGAL::do_intersect(seg, edge)) return;
+            // Segments not on one line meet at one point: allowed when it is a mouth.
+            const bool mouth_here = (i == 0 && !crack.tip[0] && edge.has_on(seg.source())) ||
+                                    (i + 2 == line.size() && !crack.tip[1] && edge.has_on(seg.target()));
+            const bool along = CGAL::collinear(edge.source(), edge.target(), seg.source()) &&
+                               CGAL::collinear(edge.source(), edge.target(), seg.target());
+            if (!mouth_here || along)
+              throw InputError(fmt::format(
+                  "{}: crack '{}', segment {} (from ({}, {}) to ({}, {})) meets the boundary of the "
+                  "domain at {} ({} edge {}); a crack lies inside the domain and only its ends may "
+                  "touch the boundary",
+                  source, name, i + 1, line[i].x(), line[i].y(), line[i + 1].x(), line[i + 1].y(),
+                  mouth_here ? "more than its mouth" : "a point other than its ends",
+                  ring_name(static_cast<std::size_t>(e.ring)), e.edge + 1));
+          });
       // Against itself and the cracks before it: no crossing, touching or doubling back.
-      for (std::size_t k = 0; k < all.size(); ++k) {
-        const bool previous = owner[k] == c && k + 1 == all.size();
-        if (previous ? overlap_beyond(all[k], seg, seg.source()) : CGAL::do_intersect(all[k], seg))
-          throw InputError(
-              fmt::format("{}: crack '{}', segment {} meets {}; cracks do not cross, touch or fold back",
-                          source, name, i + 1,
-                          owner[k] == c ? std::string("an earlier segment of the same crack")
-                                        : fmt::format("crack '{}'", names[owner[k]])));
-      }
+      const int here = static_cast<int>(all.size());
+      pieces_grid.for_each_meeting(
+          Box{line[i].cwiseMin(line[i + 1]), line[i].cwiseMax(line[i + 1])}, [&](int k) {
+            if (k >= here) return;
+            const bool previous = owner[k] == c && k + 1 == here;
+            if (previous ? overlap_beyond(all[k], seg, seg.source()) : CGAL::do_intersect(all[k], seg))
+              throw InputError(
+                  fmt::format("{}: crack '{}', segment {} meets {}; cracks do not cross, touch or fold back",
+                              source, name, i + 1,
+                              owner[k] == c ? std::string("an earlier segment of the same crack")
+                                            : fmt::format("crack '{}'", names[owner[k]])));
+          });
       all.push_back(seg);
       owner.push_back(c);
     }

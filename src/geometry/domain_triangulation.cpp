@@ -83,9 +83,11 @@ bool snap_into(const Domain& domain, const Vec2& x, double tolerance, Vec2& snap
 }
 
 /// Sets every face's nesting level by flooding from the unbounded region: faces reached
-/// without crossing a constraint share a level, crossing one adds 1. Breadth-first over
+/// without crossing a constraint share a level, crossing one adds 1 (a passable one, a
+/// crack's, adds nothing: the material is on both of its sides). Breadth-first over
 /// levels, so each region is reached first from the region enclosing it.
-void mark_nesting_levels(Cdt& cdt) {
+template <class Passable>
+void mark_nesting_levels(Cdt& cdt, Passable&& passable) {
   std::deque<Cdt::Edge> border;  // constrained edges whose far side may be unmarked
   std::vector<Cdt::Face_handle> stack;
   const auto flood = [&](Cdt::Face_handle start, int level) {
@@ -98,7 +100,7 @@ void mark_nesting_levels(Cdt& cdt) {
       for (int i = 0; i < 3; ++i) {
         const Cdt::Face_handle n = f->neighbor(i);
         if (n->info().level != -1) continue;
-        if (cdt.is_constrained(Cdt::Edge(f, i))) {
+        if (cdt.is_constrained(Cdt::Edge(f, i)) && !passable(Cdt::Edge(f, i))) {
           border.emplace_back(f, i);
         } else {
           n->info().level = level;
@@ -175,7 +177,35 @@ Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& 
     cdt.insert_constraint(segment_start[s], segment_start[last_of_ring ? ring_start : s + 1]);
   }
 
-  mark_nesting_levels(cdt);
+  // Cracks: constraints through the material, so that no triangle spans the two faces (the
+  // points on them are split, one copy per face: crack_faces.hpp) and the opening shows.
+  for (const Crack& c : domain.cracks()) {
+    Cdt::Vertex_handle previous;
+    for (const Vec2& a : c.points) {
+      const Cdt::Vertex_handle v = cdt.insert(CgalPoint(a.x(), a.y()), hint);
+      if (v->info().index < 0) {
+        v->info().index = static_cast<Index>(out.points.size());
+        out.points.push_back(a);
+      }
+      if (previous != Cdt::Vertex_handle()) cdt.insert_constraint(previous, v);
+      previous = v;
+      hint = v->face();
+    }
+  }
+  const auto on_crack = [&](const Cdt::Edge& e) {
+    const CgalPoint& p = e.first->vertex(Cdt::cw(e.second))->point();
+    const CgalPoint& q = e.first->vertex(Cdt::ccw(e.second))->point();
+    for (const Crack& c : domain.cracks())
+      for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+        const CgalPoint a(c.points[i].x(), c.points[i].y()), b(c.points[i + 1].x(), c.points[i + 1].y());
+        if (CGAL::collinear(a, b, p) && CGAL::collinear(a, b, q) &&
+            CGAL::collinear_are_ordered_along_line(a, p, b) &&
+            CGAL::collinear_are_ordered_along_line(a, q, b))
+          return true;
+      }
+    return false;
+  };
+  mark_nesting_levels(cdt, on_crack);
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (f->info().level % 2 == 1) {
       // CGAL's faces are counter-clockwise.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mfree/geometry/segment_grid.hpp"
+
 namespace mfree {
 
 namespace {
@@ -24,8 +26,6 @@ void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend
 
 }  // namespace
 
-// Quadratic in the number of boundary segments (a few thousand at most for gmsh domains:
-// milliseconds).
 SupportObstacles support_obstacles(const Domain& domain, double reach) {
   SupportObstacles out;
   const Box box = domain.bounding_box();
@@ -35,14 +35,15 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
   // boundary segment (ring edge or crack face) whose box meets the edge's box grown by reach
   // has an end strictly on that side. Conservative: such a segment's far end may lie beyond.
   const std::vector<BoundarySegment>& segments = domain.boundary();
+  const SegmentGrid grid(segments);
   const auto separates = [&](const Vec2& a, const Vec2& b) {
     const Vec2 outward = Vec2(b.y() - a.y(), a.x() - b.x()).normalized();
-    const Vec2 lo = a.cwiseMin(b).array() - reach, hi = a.cwiseMax(b).array() + reach;
-    return std::any_of(segments.begin(), segments.end(), [&](const BoundarySegment& f) {
-      const Vec2 flo = f.a.cwiseMin(f.b), fhi = f.a.cwiseMax(f.b);
-      if ((fhi.array() < lo.array()).any() || (flo.array() > hi.array()).any()) return false;
-      return outward.dot(f.a - a) > tolerance || outward.dot(f.b - a) > tolerance;
+    bool found = false;
+    grid.for_each_meeting(Box{a.cwiseMin(b).array() - reach, a.cwiseMax(b).array() + reach}, [&](int k) {
+      const BoundarySegment& f = segments[k];
+      found = found || outward.dot(f.a - a) > tolerance || outward.dot(f.b - a) > tolerance;
     });
+    return found;
   };
 
   for (const Ring& r : domain.rings()) {

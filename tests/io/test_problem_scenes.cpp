@@ -452,7 +452,7 @@ TEST_CASE("crack plate, centre crack: K_I at both tips within 2 % of Tada's stri
       errors.push_back(std::abs(right.k.k1 / reference - 1));
     }
     CHECK(errors[1] <= 0.02);
-    CHECK(errors[1] <= 0.8 * errors[0]);  // measured 0.65
+    CHECK(errors[1] <= 0.8 * errors[0]);  // measured 0.32 (geodesic)
   }
 }
 
@@ -467,7 +467,9 @@ TEST_CASE(
   // K_I +1.4 %, K_II +0.4 % (h = 0.05), K_I +0.6 %, K_II +1.4 % (h = 0.025).
   const StressIntensityPair reference = griffith_inclined_crack(1.0, 0.25, M_PI / 4);
   const auto levels = crack_plate_tips("inclined_crack.toml", {"0.05", "0.025"});
-  std::vector<double> k1_errors;
+  // The finite plate's values, about Griffith's times 1.018 (K_I) and 1.013 (K_II): the
+  // distance to them falls with h (measured 0.34 % -> 0.19 %, 0.78 % -> 0.25 %).
+  std::vector<double> k1_gaps, k2_gaps;
   for (const auto& tips : levels) {
     const TipIntensity& lower = tip_at(tips, -0.176776695296637, -0.176776695296637);
     const TipIntensity& upper = tip_at(tips, 0.176776695296637, 0.176776695296637);
@@ -477,11 +479,11 @@ TEST_CASE(
     CHECK(lower.k.k2 == Approx(upper.k.k2).epsilon(1e-3));
     CHECK(std::abs(upper.k.k1 / reference.k1 - 1) <= 0.025);
     CHECK(std::abs(upper.k.k2 / reference.k2 - 1) <= 0.025);
-    k1_errors.push_back(std::abs(upper.k.k1 / reference.k1 - 1));
+    k1_gaps.push_back(std::abs(upper.k.k1 / reference.k1 - 1.018));
+    k2_gaps.push_back(std::abs(upper.k.k2 / reference.k2 - 1.013));
   }
-  // K_I's error falls (0.41 of the coarse one); K_II's grows towards the plate's +1.3 % as
-  // the discretisation's negative error shrinks, so only its bound is asserted.
-  CHECK(k1_errors[1] <= 0.6 * k1_errors[0]);
+  CHECK(k1_gaps[1] <= 0.7 * k1_gaps[0]);
+  CHECK(k2_gaps[1] <= 0.7 * k2_gaps[0]);
 }
 
 TEST_CASE("crack plate, edge crack a/w = 0.5: K_I approaches the handbook's 2.826 sqrt(pi a) as h falls",
@@ -502,5 +504,5 @@ TEST_CASE("crack plate, edge crack a/w = 0.5: K_I approaches the handbook's 2.82
   }
   CHECK(errors[0] <= 0.06);
   CHECK(errors[1] <= 0.035);
-  CHECK(errors[1] <= 0.7 * errors[0]);  // measured 0.56
+  CHECK(errors[1] <= 0.7 * errors[0]);  // measured 0.48
 }

@@ -6,7 +6,9 @@
 // The triangulation is the constrained Delaunay triangulation of the points and the
 // domain's boundary vertices, with every boundary segment as a constraint, restricted to
 // the domain: holes and re-entrant notches stay empty, and the triangle areas add up to
-// |Omega| up to round-off.
+// |Omega| up to round-off. Cracks are constraints too: no triangle spans a crack, whose
+// faces carry the copies of the points on it (geometry/crack_faces.hpp), so a warped plot
+// shows the crack open.
 //
 // Points may lie on the boundary. A point a little outside it — up to 1e-9 times the
 // diagonal of the domain's bounding box, as lattice nodes meant to lie on a boundary do

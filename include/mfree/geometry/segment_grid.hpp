@@ -7,6 +7,7 @@
 // A region whose box the boundary cannot meet lies wholly inside or wholly outside the
 // domain, and one point of it decides which.
 
+#include <algorithm>
 #include <vector>
 
 #include "mfree/core/types.hpp"
@@ -20,6 +21,27 @@ class SegmentGrid {
 
   /// False only if no segment's bounding box meets the closed box.
   [[nodiscard]] bool may_touch(const Box& box) const;
+
+  /// Calls f(index) once for every segment whose bounding box meets the closed box.
+  template <class F>
+  void for_each_meeting(const Box& box, F&& f) const {
+    if (items_.empty() || box.hi.x() < extent_.lo.x() || box.lo.x() > extent_.hi.x() ||
+        box.hi.y() < extent_.lo.y() || box.lo.y() > extent_.hi.y())
+      return;
+    const int i0 = column(box.lo.x()), j0 = row(box.lo.y());
+    for (int j = j0; j <= row(box.hi.y()); ++j)
+      for (int i = i0; i <= column(box.hi.x()); ++i) {
+        const int k = j * nx_ + i;
+        for (int m = start_[k]; m < start_[k + 1]; ++m) {
+          const Box& b = boxes_[items_[m]];
+          if (b.lo.x() > box.hi.x() || box.lo.x() > b.hi.x() || b.lo.y() > box.hi.y() ||
+              box.lo.y() > b.hi.y())
+            continue;
+          // Reported from the first bucket the two boxes share only.
+          if (i == std::max(i0, column(b.lo.x())) && j == std::max(j0, row(b.lo.y()))) f(items_[m]);
+        }
+      }
+  }
 
  private:
   [[nodiscard]] int column(double x) const;
