@@ -18,11 +18,11 @@ const NameTable<Consistency>& consistency_names() {
 std::string_view to_string(Consistency c) { return consistency_names().name(c); }
 
 ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                             const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq,
-                                             RKOrder order)
+                                             const GalerkinQuadrature& at_boundary,
+                                             const BoundaryQuadrature& bq, RKOrder order)
     : q_(q),
       nodes_(nodes),
-      monomials_(order == RKOrder::linear ? 1 : 3),
+      monomials_(order == RKOrder::linear ? 1 : 6),
       incidence_(q.offsets, q.nodes, static_cast<Index>(nodes.size())),
       scale_(nodes.size(), 1.0),
       target_(nodes.size(), Moments::Zero()) {
@@ -34,30 +34,36 @@ ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature& q, const 
       double s = 0.0;
       for (Index k : rows) s = std::max(s, (q.centroids[k] - nodes[i]).norm());
       if (s > 0.0) scale_[i] = s;
-      // Boundary sum of phi_I m n, minus the volume part sum_K w_K phi_I(x_K) grad m of the
-      // divergence theorem (grad m = e_l / s_I for m_l = (x_l - x_I,l) / s_I).
+      // Boundary sum of phi_I m n, minus the volume part sum_K w_K phi_I(x_K) grad m(x_K) of
+      // the divergence theorem.
       Moments t = Moments::Zero();
       const std::span<const Index> bp = on_boundary.rows_of(i), bs = on_boundary.slots_of(i);
       for (std::size_t a = 0; a < bp.size(); ++a) {
         const Index p = bp[a];
-        const Eigen::Vector3d m = monomial(i, bq.points[p]);
+        const Monomials m = monomial(i, bq.points[p]);
         t += (bq.weights[p] * at_boundary.phi[bs[a]]) * m * bq.normals[p].transpose();
       }
-      if (monomials_ == 3) {
-        double volume = 0.0;
-        for (std::size_t a = 0; a < rows.size(); ++a) volume += q.weights[rows[a]] * q.phi[slots[a]];
-        t(1, 0) -= volume / scale_[i];
-        t(2, 1) -= volume / scale_[i];
-      }
-      t.bottomRows(3 - monomials_).setZero();
+      if (monomials_ > 1)
+        for (std::size_t a = 0; a < rows.size(); ++a)
+          t -= q.weights[rows[a]] * q.phi[slots[a]] * monomial_gradient(i, q.points[rows[a]]);
+      t.bottomRows(6 - monomials_).setZero();
       target_[i] = t;
     }
   });
 }
 
-Eigen::Vector3d ConsistencyConditions::monomial(Index i, const Vec2& x) const {
-  const Vec2 z = (x - nodes_[i]) / scale_[i];
-  return {1.0, z.x(), z.y()};
+ConsistencyConditions::Monomials ConsistencyConditions::monomial(Index i, const Vec2& p) const {
+  const Vec2 z = (p - nodes_[i]) / scale_[i];
+  Monomials m;
+  m << 1.0, z.x(), z.y(), z.x() * z.x(), z.x() * z.y(), z.y() * z.y();
+  return m;
+}
+
+ConsistencyConditions::Moments ConsistencyConditions::monomial_gradient(Index i, const Vec2& p) const {
+  const Vec2 z = (p - nodes_[i]) / scale_[i];
+  Moments g;
+  g << 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 2.0 * z.x(), 0.0, z.y(), z.x(), 0.0, 2.0 * z.y();
+  return g / scale_[i];
 }
 
 ConsistencyConditions::Moments ConsistencyConditions::residual(Index i, const std::vector<Vec2>& g) const {
@@ -67,7 +73,7 @@ ConsistencyConditions::Moments ConsistencyConditions::residual(Index i, const st
     const Index k = rows[a];
     r -= q_.weights[k] * monomial(i, q_.centroids[k]) * g[slots[a]].transpose();
   }
-  r.bottomRows(3 - monomials_).setZero();
+  r.bottomRows(6 - monomials_).setZero();
   return r;
 }
 
@@ -101,13 +107,14 @@ std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
       if (rows.empty()) continue;
       // M_I xi_I = R_I on the order's monomials; for linear RK the unused rows of M_I are
       // (sum_K w_K) I, and those of R_I zero, so that xi_I is zero there.
-      Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+      using Matrix6 = Eigen::Matrix<double, 6, 6>;
+      Matrix6 m = Matrix6::Zero();
       for (Index k : rows) {
-        const Eigen::Vector3d p = monomial(i, q_.centroids[k]);
+        const Monomials p = monomial(i, q_.centroids[k]);
         m += q_.weights[k] * p * p.transpose();
       }
-      if (monomials_ == 1) m = m(0, 0) * Eigen::Matrix3d::Identity();
-      const Eigen::LDLT<Eigen::Matrix3d> ldlt(m);
+      if (monomials_ == 1) m = m(0, 0) * Matrix6::Identity();
+      const Eigen::LDLT<Matrix6> ldlt(m);
       if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
         throw NumericalError(fmt::format(
             "VCI: the moment matrix of node {} at ({:.6g}, {:.6g}) is singular ({} quadrature points in "

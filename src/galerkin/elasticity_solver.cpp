@@ -22,6 +22,8 @@ const NameTable<QuadratureScheme>& scheme_names() {
 
 std::string_view to_string(QuadratureScheme s) { return scheme_names().name(s); }
 
+int default_gauss_points(RKOrder order) { return order == RKOrder::linear ? 3 : 4; }
+
 Consistency default_consistency(QuadratureScheme s) {
   switch (s) {
     case QuadratureScheme::projected: return Consistency::symmetric;
@@ -140,7 +142,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         return projected_quadrature(*res.trial, quad, lattice);
       }
       case QuadratureScheme::gauss_cells:
-        return direct_quadrature(*res.trial, gauss_cell_rule(domain, h, s.gauss_points));
+        return direct_quadrature(
+            *res.trial, gauss_cell_rule(domain, h, s.gauss_points.value_or(default_gauss_points(s.order))));
       case QuadratureScheme::nodal:
         return direct_quadrature(*res.trial, QuadratureRule{res.nodes, voronoi_weights(res.nodes, domain)});
     }

@@ -178,7 +178,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
     if (t.has("consistency")) s.consistency = read_choice(t, "consistency", consistency_names());
-    s.gauss_points = static_cast<int>(t.integer_or("gauss_points", 3, 1, 12));
+    if (t.has("gauss_points")) s.gauss_points = static_cast<int>(t.integer("gauss_points", 1, 12));
     t.finish();
   }
   {
@@ -443,7 +443,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     }
     if (t.has("reference")) st.reference = t.number("reference", -1e300, 1e300);
     st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
-    st.quadratic_gauss_points = static_cast<int>(t.integer_or("quadratic_gauss_points", s.gauss_points, 1, 12));
+    st.quadratic_gauss_points = s.gauss_points;
+    if (t.has("quadratic_gauss_points"))
+      st.quadratic_gauss_points = static_cast<int>(t.integer("quadratic_gauss_points", 1, 12));
     t.finish();
     out.study = st;
   }

@@ -10,7 +10,7 @@
 //                 scheme's), consistency (symmetric | vci | none; vci is of the RK order:
 //                 quadratic RK gets quadratic VCI; default by scheme: vci for gauss_cells,
 //                 symmetric for projected, none for nodal), gauss_points (per direction per
-//                 cell, default 3)
+//                 cell, default 3 for linear RK and 4 for quadratic: default_gauss_points)
 //   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
 //                 youngs_modulus, poisson_ratio (at most 0.49 in plane strain: max_poisson_ratio,
 //                 galerkin/total_lagrangian.hpp; allow_locking = true lifts that), density (dynamics)
@@ -53,8 +53,8 @@
 //                 checkpoint_every = n (dynamics: steps between checkpoints, io/checkpoint.hpp)
 //   [study]       for `mfree converge`: spacings, clouds, orders, schemes (each with the scene's
 //                 consistency, or its own default), betas, probe, reference, quadratic_factor,
-//                 quadratic_gauss_points (default gauss_points); time_schemes, time_steps,
-//                 time_step_check (dynamics)
+//                 quadratic_gauss_points (default the scene's gauss_points, else 4); time_schemes,
+//                 time_steps, time_step_check (dynamics)
 //
 // Every key is type- and range-checked; unknown keys are errors (scene_reader.hpp).
 
@@ -107,7 +107,7 @@ struct StudySettings {
   std::optional<Vec2> probe;
   std::optional<double> reference;  ///< reference u_y at the probe
   double quadratic_factor = 3.0;
-  int quadratic_gauss_points = 3;  ///< default: the scene's gauss_points
+  std::optional<int> quadratic_gauss_points;  ///< default: the scene's gauss_points (or the order's default)
   std::vector<TimeScheme> time_schemes;  ///< dynamics: default the scene's scheme
   std::vector<double> time_steps;        ///< dynamics: one per time scheme (default the scene's)
   bool time_step_check = false;          ///< dynamics: rerun the finest level with dt / 2
