@@ -24,14 +24,25 @@ double distance_to_segment(const Vec2& x, const Vec2& a, const Vec2& b) {
 double room_at_tip(const Domain& domain, std::size_t c, int end) {
   const Crack& crack = domain.cracks()[c];
   const std::size_t n = crack.points.size();
-  const Vec2& tip = end == 0 ? crack.points.front() : crack.points.back();
-  const Vec2& before = end == 0 ? crack.points[1] : crack.points[n - 2];
-  double room = (tip - before).norm();
+  // The straight run of segments behind the tip (a crack meshed into many elements) ends at
+  // the first vertex off its line, a kink: the faces in the annulus must be straight.
+  const auto point = [&](std::size_t k) -> const Vec2& {
+    return end == 0 ? crack.points[k] : crack.points[n - 1 - k];
+  };
+  const Vec2& tip = point(0);
+  const Vec2 direction = (point(1) - tip).normalized();
+  std::size_t straight = 1;  // the segments 0 .. straight - 1 from the tip lie on one line
+  while (straight + 1 < n) {
+    const Vec2 d = point(straight + 1) - tip;
+    if (std::abs(direction.x() * d.y() - direction.y() * d.x()) > 1e-12 * d.norm()) break;
+    ++straight;
+  }
+  double room = (point(straight) - tip).norm();
   for (const BoundarySegment& s : domain.boundary()) {
     if (s.crack == static_cast<int>(c)) {
-      // Its own other segments (a kink) bound the annulus too: the faces in it must be straight.
-      const bool last = end == 0 ? s.edge == 0 : s.edge == static_cast<int>(n) - 2;
-      if (!last) room = std::min(room, distance_to_segment(tip, s.a, s.b));
+      const std::size_t from_tip =
+          end == 0 ? static_cast<std::size_t>(s.edge) : n - 2 - static_cast<std::size_t>(s.edge);
+      if (from_tip >= straight) room = std::min(room, distance_to_segment(tip, s.a, s.b));
       continue;
     }
     room = std::min(room, distance_to_segment(tip, s.a, s.b));

@@ -23,7 +23,9 @@ SegmentGrid::SegmentGrid(const std::vector<BoundarySegment>& segments) {
   }
   // About one bucket per segment, shaped like the extent, so a bucket holds O(1) segments
   // of a boundary whose edges have comparable lengths.
-  const Vec2 size = extent_.size().cwiseMax(1e-300);
+  // A flat extent (segments along one line: a straight crack) gets a side of 1e-6 of the
+  // other, so the aspect ratio and the bucket counts stay finite.
+  const Vec2 size = extent_.size().cwiseMax(1e-6 * std::max(extent_.size().maxCoeff(), 1e-300));
   const double n = static_cast<double>(boxes_.size());
   const double aspect = size.x() / size.y();
   constexpr int max_side = 2048;

@@ -24,6 +24,25 @@ void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend
   o.b.push_back(b);
 }
 
+/// The vertices of a polyline (closed: a ring) without those where it runs straight on
+/// (turn below 1e-12 of the product of the two edges' lengths): a straight side meshed into
+/// many elements is one obstacle, and no corner. The ends of an open polyline stay.
+std::vector<Vec2> without_straight_vertices(const std::vector<Vec2>& p, bool closed) {
+  const std::size_t n = p.size();
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!closed && (i == 0 || i + 1 == n)) {
+      out.push_back(p[i]);
+      continue;
+    }
+    const Vec2& before = out.empty() ? p[(i + n - 1) % n] : out.back();
+    const Vec2& after = p[(i + 1) % n];
+    const double turn = orientation(before, p[i], after);
+    if (std::abs(turn) > 1e-12 * (p[i] - before).norm() * (after - p[i]).norm()) out.push_back(p[i]);
+  }
+  return out;
+}
+
 }  // namespace
 
 SupportObstacles support_obstacles(const Domain& domain, double reach) {
@@ -46,7 +65,8 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
     return found;
   };
 
-  for (const Ring& r : domain.rings()) {
+  for (const Ring& given : domain.rings()) {
+    const Ring r = without_straight_vertices(given, true);
     const std::size_t n = r.size();
     // turn[i] > 0: convex vertex i (left turn), < 0: reflex.
     std::vector<double> turn(n);
@@ -58,12 +78,13 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
     }
   }
   for (const Crack& c : domain.cracks()) {
-    const std::size_t n = c.points.size();
+    const std::vector<Vec2> p = without_straight_vertices(c.points, false);
+    const std::size_t n = p.size();
     for (std::size_t i = 0; i < n; ++i)
       if ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1]) || (i > 0 && i + 1 < n))
-        out.corners.push_back(c.points[i]);
+        out.corners.push_back(p[i]);
     for (std::size_t i = 0; i + 1 < n; ++i)
-      add_segment(out, c.points[i], c.points[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]));
+      add_segment(out, p[i], p[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]));
   }
   return out;
 }

@@ -7,8 +7,9 @@
 //              walls of a notch, a slot or a hole; never an edge of a convex outer ring);
 //   corners    the reflex vertices of the rings (the domain turns right there), crack tips
 //              and the inner vertices of cracks: where shortest paths in the domain bend.
-// An obstacle's end at a convex vertex or at a crack's mouth is moved out by 1e-9 of the
-// segment's length, so no path along the boundary slips past it through the outside.
+// Vertices where the boundary or a crack runs straight on are dropped first (a straight side
+// meshed into many elements is one obstacle). An obstacle's end at a convex vertex or at a crack's mouth is
+// moved out by 1e-9 of the segment's length, so no path along the boundary slips past it through the outside.
 
 #include "mfree/geometry/domain.hpp"
 #include "mfree/kernels/support_paths.hpp"
