@@ -35,7 +35,7 @@ Resultant Reactions::balance() const {
 namespace {
 
 double force_scale(const Reactions& r) {
-  double scale = r.applied.force.norm();
+  double scale = std::max(r.applied.force.norm(), r.applied_magnitude);
   for (const PartReaction& p : r.parts) scale = std::max(scale, p.reaction.force.norm());
   if (r.inertia) scale = std::max(scale, r.inertia->force.norm());
   return scale;
@@ -89,13 +89,18 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
   // Applied: tractions and pressures at the boundary points, the body force at the domain's.
   for (Index p = 0; p < bq.size(); ++p) {
     const Vec2 t = model.boundary_load(p, d, load);
-    if (t != Vec2::Zero()) r.applied += weighted(bq.weights[p], t, boundary_arm(p));
+    if (t != Vec2::Zero()) {
+      r.applied += weighted(bq.weights[p], t, boundary_arm(p));
+      r.applied_magnitude += std::abs(bq.weights[p]) * t.norm();
+    }
   }
   if (problem.body_force) {
     const GalerkinQuadrature& q = model.quadrature();
     for (Index k = 0; k < q.size(); ++k) {
       const Vec2 arm = r.current_arm ? Vec2(q.points[k] + row_value(q, k, d)) : q.points[k];
-      r.applied += weighted(q.weights[k], load.factor * problem.body_force(q.points[k], load.time), arm);
+      const Vec2 b = load.factor * problem.body_force(q.points[k], load.time);
+      r.applied += weighted(q.weights[k], b, arm);
+      r.applied_magnitude += std::abs(q.weights[k]) * b.norm();
     }
   }
   return r;

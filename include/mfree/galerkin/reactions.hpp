@@ -96,13 +96,15 @@ struct PartReaction {
 struct Reactions {
   std::vector<PartReaction> parts;   ///< one per essential condition, in the conditions' order
   Resultant applied;                 ///< body force, tractions and pressures
+  double applied_magnitude = 0.0;    ///< sum of |w t| and |w b|: the loads' size when they balance
   std::optional<Resultant> inertia;  ///< dynamics: sum_I (M a)_I and its moment
   bool current_arm = false;          ///< moments about x = X + u^h (finite strain), else X
   double arm = 0.0;                  ///< the largest |x| of a boundary point: the moments' scale
 
   /// sum_p R_p + F - inertia: zero for the exact discrete balance.
   [[nodiscard]] Resultant balance() const;
-  /// |balance force| / the largest of |F|, |R_p|, |inertia| (0 when all vanish).
+  /// |balance force| / the largest of |F|, the applied magnitude, |R_p|, |inertia| (0 when
+  /// all vanish).
   [[nodiscard]] double force_imbalance() const;
   /// |balance moment| / (arm × that force scale).
   [[nodiscard]] double moment_imbalance() const;
