@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -44,9 +45,8 @@ namespace {
 
 /// RK settings for a cloud of nominal spacing h: uniform radius on lattices, node radii
 /// reaching across gaps on irregular clouds.
-RKSettings rk_settings(const std::vector<Vec2>& points, CloudKind kind, double h, RKOrder order,
-                       const ElasticitySettings& s, double factor,
-                       std::shared_ptr<const SupportObstacles> obstacles) {
+RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, CloudKind kind, double h,
+                       RKOrder order, const ElasticitySettings& s, double factor) {
   RKSettings r;
   r.order = order;
   r.window = s.window;
@@ -54,14 +54,11 @@ RKSettings rk_settings(const std::vector<Vec2>& points, CloudKind kind, double h
   r.radius = factor * h;
   if (kind != CloudKind::lattice) r.node_radii = nodal_support_radii(points, h, factor * s.irregular_factor_scale);
   r.rule = s.support_rule;
-  r.obstacles = std::move(obstacles);
+  // What the supports must respect, found for the largest of these radii.
+  const double reach =
+      r.node_radii.empty() ? r.radius : *std::max_element(r.node_radii.begin(), r.node_radii.end());
+  r.obstacles = std::make_shared<const SupportObstacles>(support_obstacles(domain, reach));
   return r;
-}
-
-/// The largest support radius the clouds' RK functions can have: factor h, widened by the
-/// irregular clouds' scale and by their gaps (nodal_support_radii doubles at most twice).
-double largest_reach(const ElasticitySettings& s) {
-  return 4.0 * s.support_factor * s.irregular_factor_scale * s.nodes.spacing;
 }
 
 /// A lower bound of the bytes a discretisation takes, from the node count N = |Omega| / h^2
@@ -85,9 +82,7 @@ double memory_lower_bound(const Domain& domain, const ElasticitySettings& s) {
 /// Plain supports must not join material across a gap (a slot, a thin cavity): the place,
 /// and what to change, in an InputError.
 void refuse_bridges(const std::vector<Vec2>& nodes, const std::vector<Vec2>& points,
-                    const SupportObstacles& obstacles, const ElasticitySettings& s) {
-  const double radius = s.support_factor * s.nodes.spacing *
-                        (s.nodes.kind == CloudKind::lattice ? 1.0 : s.irregular_factor_scale);
+                    const SupportObstacles& obstacles, double radius) {
   const std::optional<Bridge> b = find_bridge(nodes, points, obstacles, radius);
   if (!b) return;
   throw InputError(fmt::format(
@@ -117,15 +112,14 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
                     "(domain with crack '{}')",
                     to_string(s.scheme), domain.cracks().front().name));
   if (!domain.cracks().empty() && s.support_rule == SupportRule::plain)
-    throw InputError(fmt::format("crack '{}': plain supports reach across cracks and would join their faces (the crack "
-                                 "would not open); use support_rule = \"geodesic\" or \"visibility\"",
-                                 domain.cracks().front().name));
-  const auto obstacles =
-      std::make_shared<const SupportObstacles>(support_obstacles(domain, largest_reach(s)));
+    throw InputError(
+        fmt::format("crack '{}': plain supports reach across cracks and would join their faces (the crack "
+                    "would not open); use support_rule = \"geodesic\" or \"visibility\"",
+                    domain.cracks().front().name));
   res.nodes = timer.time("clouds", [&] { return split_on_cracks(domain, make_cloud(domain, s.nodes), h); });
   res.trial = timer.time("shape functions", [&] {
     return std::make_unique<RKShapeFunctions>(
-        res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor, obstacles));
+        res.nodes, rk_settings(domain, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
 
   // Quadrature: points, weights, and the gradients of the weak form.
@@ -137,7 +131,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         const std::vector<Vec2> xq = make_quadrature_cloud(domain, qc, s.quadrature_ratio);
         const double hq = h / std::sqrt(s.quadrature_ratio);
         const RKShapeFunctions quad(
-            xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor, obstacles));
+            xq, rk_settings(domain, xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor));
         const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
         return projected_quadrature(*res.trial, quad, lattice);
       }
@@ -151,7 +145,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
   });
 
   if (s.support_rule == SupportRule::plain && !s.allow_bridging)
-    refuse_bridges(res.nodes, res.quadrature.points, *obstacles, s);
+    refuse_bridges(res.nodes, res.quadrature.points, *res.trial->settings().obstacles,
+                   res.trial->max_support_radius());
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
   res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, condition_parts(s.problem.conditions));

@@ -11,11 +11,6 @@ namespace {
 
 constexpr double end_extension = 1e-9;  ///< of a segment's length, at ends that are not corners
 
-/// > 0 when c lies left of a -> b (twice the signed area).
-double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
 void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend_b) {
   const Vec2 d = end_extension * (b - a);
   if (extend_a) a -= d;

@@ -25,11 +25,6 @@ namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
-/// Twice the signed area of (a, b, c): > 0 when c lies left of a -> b.
-double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
 /// Whether the open segments p q and a b cross at one point interior to both: touching at an
 /// end or running along each other is not crossing. An end within `tolerance` (a length) of
 /// the other segment's line counts as lying on it: a point on a boundary edge whose
