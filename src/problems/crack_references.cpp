@@ -55,24 +55,39 @@ double griffith_crack_opening(double normal_stress, double half_length, double s
   return 4.0 * normal_stress * std::sqrt(half_length * half_length - s * s) / effective;
 }
 
-ExactElasticity williams_near_tip_solution(const CrackTipFrame& tip, double k1, double k2,
-                                           const LinearElastic& material) {
-  tip.validate();
-  material.validate();
-  const NearTipConstants c = near_tip_constants(material);
-  const Mat2 q = tip.rotation();
-  const Vec2 origin = tip.position;
-  const auto local_state = [=](const Vec2& x) {
+namespace {
+
+/// Williams' field of (k1, k2) about `tip` at a global point, in the tip's local frame, with
+/// the rotation Q that takes local tensors to global ones (Q T Q^T).
+struct WilliamsAbout {
+  Mat2 q;
+  Vec2 origin;
+  double k1, k2;
+  NearTipConstants c;
+  [[nodiscard]] NearTipState at(const Vec2& x) const {
     const Vec2 local = q.transpose() * (x - origin);
     return williams_field(k1, k2, local.norm(), std::atan2(local.y(), local.x()), c);
-  };
+  }
+};
+
+WilliamsAbout williams_about(const CrackTipFrame& tip, double k1, double k2, const LinearElastic& material) {
+  tip.validate();
+  material.validate();
+  return {tip.rotation(), tip.position, k1, k2, near_tip_constants(material)};
+}
+
+}  // namespace
+
+ExactElasticity williams_near_tip_solution(const CrackTipFrame& tip, double k1, double k2,
+                                           const LinearElastic& material) {
+  const WilliamsAbout w = williams_about(tip, k1, k2, material);
   ExactElasticity e;
   e.displacement = [=](const Vec2& x) -> Vec2 {
-    if (x == origin) return Vec2::Zero();  // u vanishes at the tip
-    return q * local_state(x).displacement;
+    if (x == w.origin) return Vec2::Zero();  // u vanishes at the tip
+    return w.q * w.at(x).displacement;
   };
   e.stress = [=](const Vec2& x) {
-    const Mat2 s = q * local_state(x).stress * q.transpose();
+    const Mat2 s = w.q * w.at(x).stress * w.q.transpose();
     return Eigen::Vector3d(s(0, 0), s(1, 1), s(0, 1));
   };
   e.body_force = [](const Vec2&) { return Vec2::Zero(); };
@@ -81,16 +96,8 @@ ExactElasticity williams_near_tip_solution(const CrackTipFrame& tip, double k1, 
 
 std::function<Mat2(const Vec2&)> williams_near_tip_gradient(const CrackTipFrame& tip, double k1, double k2,
                                                             const LinearElastic& material) {
-  tip.validate();
-  material.validate();
-  const NearTipConstants c = near_tip_constants(material);
-  const Mat2 q = tip.rotation();
-  const Vec2 origin = tip.position;
-  return [=](const Vec2& x) -> Mat2 {
-    const Vec2 local = q.transpose() * (x - origin);
-    return q * williams_field(k1, k2, local.norm(), std::atan2(local.y(), local.x()), c).gradient *
-           q.transpose();
-  };
+  const WilliamsAbout w = williams_about(tip, k1, k2, material);
+  return [=](const Vec2& x) -> Mat2 { return w.q * w.at(x).gradient * w.q.transpose(); };
 }
 
 }  // namespace mfree
