@@ -14,6 +14,8 @@
 #include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -39,16 +41,17 @@ std::string ring_name(std::size_t k) {
   return k == 0 ? std::string("the outer ring") : fmt::format("hole {}", k);
 }
 
-/// What a WKT text holds: one polygon and the line strings beside it (cracks).
+/// What a WKT text holds: polygons (one, or the regions of the domain) and the line strings
+/// beside them (cracks).
 struct WktGeometry {
-  std::vector<Ring> polygon;
+  std::vector<std::vector<Ring>> polygons;
   std::vector<std::vector<Vec2>> lines;
 };
 
-/// Strict reader of one WKT POLYGON: POLYGON ((x y, x y, ...), (x y, ...), ...), or of a
-/// GEOMETRYCOLLECTION of one POLYGON and LINESTRINGs or MULTILINESTRINGs.
-/// Keywords are case-insensitive; anything else (Z/M coordinates, EMPTY, a second
-/// polygon, other geometries, trailing text) is an error reported with its line and column.
+/// Strict reader of WKT: POLYGON ((x y, x y, ...), (x y, ...), ...), a MULTIPOLYGON, or a
+/// GEOMETRYCOLLECTION of POLYGONs (or MULTIPOLYGONs) and LINESTRINGs or MULTILINESTRINGs.
+/// Keywords are case-insensitive; anything else (Z/M coordinates, EMPTY, other geometries,
+/// trailing text) is an error reported with its line and column.
 class WktReader {
  public:
   WktReader(std::string_view text, const std::string& source) : text_(text), source_(source) {}
@@ -62,8 +65,9 @@ class WktReader {
       do {
         skip_space();
         if (at_keyword("POLYGON")) {
-          if (!g.polygon.empty()) fail("a second POLYGON (a domain is one polygon with holes)");
-          g.polygon = polygon();
+          g.polygons.push_back(polygon());
+        } else if (at_keyword("MULTIPOLYGON")) {
+          multipolygon(g.polygons);
         } else if (at_keyword("LINESTRING")) {
           pos_ += std::string_view("LINESTRING").size();
           g.lines.push_back(ring());
@@ -75,13 +79,15 @@ class WktReader {
           } while (accept(','));
           expect(')');
         } else {
-          fail("expected POLYGON, LINESTRING or MULTILINESTRING in the collection");
+          fail("expected POLYGON, MULTIPOLYGON, LINESTRING or MULTILINESTRING in the collection");
         }
       } while (accept(','));
       expect(')');
-      if (g.polygon.empty()) fail("the collection has no POLYGON");
+      if (g.polygons.empty()) fail("the collection has no POLYGON");
+    } else if (at_keyword("MULTIPOLYGON")) {
+      multipolygon(g.polygons);
     } else {
-      g.polygon = polygon();
+      g.polygons.push_back(polygon());
     }
     skip_space();
     if (pos_ != text_.size()) fail("unexpected text after the geometry");
@@ -92,6 +98,22 @@ class WktReader {
   std::vector<Ring> polygon() {
     skip_space();
     expect_keyword("POLYGON");
+    return polygon_body();
+  }
+
+  void multipolygon(std::vector<std::vector<Ring>>& out) {
+    skip_space();
+    expect_keyword("MULTIPOLYGON");
+    skip_space();
+    if (at_keyword("EMPTY")) fail("MULTIPOLYGON EMPTY has no area");
+    expect('(');
+    do {
+      out.push_back(polygon_body());
+    } while (accept(','));
+    expect(')');
+  }
+
+  std::vector<Ring> polygon_body() {
     skip_space();
     if (at_keyword("EMPTY")) fail("POLYGON EMPTY has no area");
     expect('(');
@@ -155,10 +177,10 @@ class WktReader {
 
   void expect_keyword(std::string_view word) {
     if (!at_keyword(word))
-      fail(fmt::format(
-          "expected {} (mfree reads one POLYGON, alone or in a GEOMETRYCOLLECTION with LINESTRING "
-          "cracks)",
-          word));
+      fail(
+          fmt::format("expected {} (mfree reads a POLYGON or the regions of a MULTIPOLYGON, alone or in a "
+                      "GEOMETRYCOLLECTION with LINESTRING cracks)",
+                      word));
     pos_ += word.size();
   }
 
@@ -304,6 +326,9 @@ struct Domain::Impl {
 
   std::vector<std::string> part_names;
   std::vector<Crack> cracks;
+  std::vector<Region> regions;
+  std::vector<std::vector<FastPolygon>> region_polygons;  // per region, its rings
+  std::vector<Box> region_boxes;
 
   explicit Impl(std::vector<Ring> oriented, const std::vector<bool>& reversed,
                 const std::vector<std::vector<int>>& parts = {}, std::vector<std::string> names = {})
@@ -413,9 +438,13 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
       impl->grid.for_each_meeting(
           Box{line[i].cwiseMin(line[i + 1]), line[i].cwiseMax(line[i + 1])}, [&](int k) {
             const BoundarySegment& e = impl->segments[k];
-            if (e.ring < 0) return;
             const FastSegment edge(fast_point(e.a), fast_point(e.b));
             if (!CGAL::do_intersect(seg, edge)) return;
+            if (e.ring < 0)  // a crack or interface the domain has already
+              throw InputError(fmt::format(
+                  "{}: crack '{}', segment {} meets {} '{}'; cracks do not cross or touch", source, name,
+                  i + 1, impl->cracks[e.crack].interface() ? "the interface" : "crack",
+                  impl->cracks[e.crack].name));
             // Segments not on one line meet at one point: allowed when it is a mouth.
             const bool mouth_here = (i == 0 && !crack.tip[0] && edge.has_on(seg.source())) ||
                                     (i + 2 == line.size() && !crack.tip[1] && edge.has_on(seg.target()));
@@ -498,19 +527,213 @@ Domain Domain::from_rings(std::vector<Ring> rings, std::vector<std::vector<int>>
   return Domain(std::make_unique<Impl>(std::move(oriented), reversed, edge_parts, std::move(part_names)));
 }
 
-Domain Domain::from_wkt(std::string_view wkt, const std::string& source) {
+namespace {
+
+/// A piece of an edge two regions share, oriented along the edge of the first region (which
+/// lies on its left).
+struct SharedPiece {
+  Vec2 a, b;
+};
+
+/// The pieces that edges of ring sets `first` and `second` share (collinear overlaps of
+/// positive length, exact predicates), oriented along `first`'s edges.
+std::vector<SharedPiece> shared_pieces(const std::vector<Ring>& first, const std::vector<Ring>& second) {
+  std::vector<SharedPiece> out;
+  for (const Ring& r : first)
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Vec2 &a = r[i], &b = r[(i + 1) % r.size()];
+      const Box box{a.cwiseMin(b), a.cwiseMax(b)};
+      const Vec2 along = b - a;
+      for (const Ring& q : second)
+        for (std::size_t j = 0; j < q.size(); ++j) {
+          const Vec2 &c = q[j], &e = q[(j + 1) % q.size()];
+          if (c.cwiseMax(e).x() < box.lo.x() || c.cwiseMin(e).x() > box.hi.x() ||
+              c.cwiseMax(e).y() < box.lo.y() || c.cwiseMin(e).y() > box.hi.y())
+            continue;
+          if (!CGAL::collinear(fast_point(a), fast_point(b), fast_point(c)) ||
+              !CGAL::collinear(fast_point(a), fast_point(b), fast_point(e)))
+            continue;
+          // Along a -> b the overlap runs from the later start to the earlier end; its ends
+          // are vertices of one ring or the other, so they are exact.
+          const auto param = [&](const Vec2& x) { return (x - a).dot(along); };
+          const Vec2& lo2 = param(c) < param(e) ? c : e;
+          const Vec2& hi2 = param(c) < param(e) ? e : c;
+          const Vec2& from = param(lo2) > 0.0 ? lo2 : a;
+          const Vec2& to = param(hi2) < param(b) ? hi2 : b;
+          if (param(to) > param(from)) out.push_back({from, to});
+        }
+    }
+  return out;
+}
+
+/// Joins pieces end to start into polylines; throws naming `what` when they close on
+/// themselves or branch.
+std::vector<std::vector<Vec2>> chain(const std::vector<SharedPiece>& pieces, const std::string& what) {
+  const auto key = [](const Vec2& x) { return std::pair<double, double>(x.x(), x.y()); };
+  std::map<std::pair<double, double>, std::size_t> starting;
+  std::set<std::pair<double, double>> ends;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    if (!starting.emplace(key(pieces[k].a), k).second)
+      throw InputError(fmt::format("{} branches at ({}, {})", what, pieces[k].a.x(), pieces[k].a.y()));
+    ends.insert(key(pieces[k].b));
+  }
+  std::vector<std::vector<Vec2>> lines;
+  std::size_t used = 0;
+  for (const SharedPiece& first : pieces) {
+    if (ends.count(key(first.a))) continue;  // not the start of a polyline
+    std::vector<Vec2> line{first.a};
+    for (auto at = starting.find(key(first.a)); at != starting.end(); at = starting.find(key(line.back()))) {
+      line.push_back(pieces[at->second].b);
+      ++used;
+    }
+    lines.push_back(std::move(line));
+  }
+  if (used != pieces.size())
+    throw InputError(
+        fmt::format("{} closes on itself (an inclusion); mfree ties interfaces that run from "
+                    "boundary to boundary: cut the outer region so that the interface ends on "
+                    "its boundary",
+                    what));
+  return lines;
+}
+
+}  // namespace
+
+Domain Domain::from_regions(std::vector<std::vector<Ring>> polygons, const RegionOptions& options,
+                            const std::string& source, std::vector<std::vector<std::vector<int>>> edge_parts,
+                            std::vector<std::string> part_names) {
+  if (!edge_parts.empty() && edge_parts.size() != polygons.size())
+    throw Error(
+        fmt::format("{}: edge parts for {} of {} regions", source, edge_parts.size(), polygons.size()));
+  std::vector<std::string> names = options.names;
+  if (names.empty())
+    for (std::size_t r = 0; r < polygons.size(); ++r) names.push_back(fmt::format("region{}", r + 1));
+  if (names.size() != polygons.size())
+    throw InputError(
+        fmt::format("{}: {} region names for {} polygons", source, names.size(), polygons.size()));
+  for (std::size_t r = 0; r < names.size(); ++r)
+    if (names[r].empty() || std::find(names.begin(), names.begin() + r, names[r]) != names.begin() + r)
+      throw InputError(fmt::format("{}: region name '{}' is {}", source, names[r],
+                                   names[r].empty() ? "empty" : "given twice"));
+
+  // Each region valid on its own, then their union one polygon with holes and no overlap.
+  std::vector<Region> regions;
+  std::vector<ExactPolygonWithHoles> exact;
+  double area = 0.0;
+  std::vector<SharedPiece> parted;  // region edges with a part, oriented
+  std::vector<int> parted_as;       // and their parts
+  for (std::size_t r = 0; r < polygons.size(); ++r) {
+    std::vector<bool> reversed;
+    Region region{names[r],
+                  normalised_rings(std::move(polygons[r]), fmt::format("{}, region '{}'", source, names[r]),
+                                   reversed, edge_parts.empty() ? nullptr : &edge_parts[r])};
+    for (std::size_t k = 0; !edge_parts.empty() && k < region.rings.size(); ++k) {
+      const Ring& ring = region.rings[k];
+      const std::size_t n = ring.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const int part = edge_parts[r][k][reversed[k] ? (2 * n - 2 - i) % n : i];
+        if (part < -1 || part >= static_cast<int>(part_names.size()))
+          throw InputError(fmt::format("{}: edge part {} is not a named part (there are {})", source, part,
+                                       part_names.size()));
+        if (part < 0) continue;
+        parted.push_back({ring[i], ring[(i + 1) % n]});
+        parted_as.push_back(part);
+      }
+    }
+    ExactPolygonWithHoles p(exact_polygon(region.rings[0]));
+    for (std::size_t k = 1; k < region.rings.size(); ++k) p.add_hole(exact_polygon(region.rings[k]));
+    exact.push_back(std::move(p));
+    for (const Ring& ring : region.rings) area += ring_area(ring);
+    regions.push_back(std::move(region));
+  }
+  std::vector<ExactPolygonWithHoles> joined;
+  CGAL::join(exact.begin(), exact.end(), std::back_inserter(joined));
+  if (joined.size() != 1)
+    throw InputError(
+        fmt::format("{}: the {} regions make {} separate pieces; regions of one domain share edges", source,
+                    regions.size(), joined.size()));
+  std::vector<Ring> rings{to_ring(joined[0].outer_boundary())};
+  for (auto h = joined[0].holes_begin(); h != joined[0].holes_end(); ++h) rings.push_back(to_ring(*h));
+  // Each edge of the union lies along an edge of a region: it takes that edge's part.
+  std::vector<std::vector<int>> union_parts;
+  for (const Ring& ring : rings) {
+    std::vector<int>& parts = union_parts.emplace_back(ring.size(), -1);
+    for (std::size_t i = 0; i < ring.size() && !parted.empty(); ++i) {
+      for (std::size_t e = 0; e < parted.size(); ++e) {
+        const Vec2 &a = ring[i], &b = ring[(i + 1) % ring.size()], &c = parted[e].a, &d = parted[e].b;
+        if (CGAL::collinear(fast_point(c), fast_point(d), fast_point(a)) &&
+            CGAL::collinear(fast_point(c), fast_point(d), fast_point(b)) && (a - c).dot(d - c) >= 0.0 &&
+            (b - c).dot(d - c) >= 0.0 && (a - d).dot(c - d) >= 0.0 && (b - d).dot(c - d) >= 0.0) {
+          parts[i] = parted_as[e];
+          break;
+        }
+      }
+    }
+  }
+  std::vector<bool> reversed;
+  std::vector<Ring> oriented =
+      normalised_rings(std::move(rings), source + " (the union of its regions)", reversed, &union_parts);
+  auto impl = std::make_unique<Impl>(std::move(oriented), reversed, union_parts, std::move(part_names));
+  if (std::abs(impl->area - area) > 1e-12 * area)
+    throw InputError(
+        fmt::format("{}: the regions overlap (their areas add up to {:.10g}, their union has {:.10g})",
+                    source, area, impl->area));
+  for (const Region& region : regions) {
+    std::vector<FastPolygon> fast;
+    for (const Ring& ring : region.rings) fast.push_back(fast_polygon(ring));
+    impl->region_polygons.push_back(std::move(fast));
+    impl->region_boxes.push_back(ring_bounding_box(region.rings[0]));
+  }
+  impl->regions = std::move(regions);
+  Domain domain(std::move(impl));
+  if (!options.interfaces) return domain;
+
+  // The interfaces: per pair of regions, the edges they share, joined into polylines.
+  const std::vector<Region>& all = domain.regions();
+  std::vector<std::vector<Vec2>> lines;
+  std::vector<std::string> line_names;
+  std::vector<std::pair<int, int>> sides;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      const std::string name = fmt::format("{}/{}", all[i].name, all[j].name);
+      for (std::vector<Vec2>& line : chain(shared_pieces(all[i].rings, all[j].rings),
+                                           fmt::format("{}: the interface '{}'", source, name))) {
+        lines.push_back(std::move(line));
+        line_names.push_back(name);
+        sides.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      }
+    }
+  // An interface in several pieces gets a number per piece.
+  std::map<std::string, int> pieces, numbered;
+  for (const std::string& n : line_names) ++pieces[n];
+  for (std::string& n : line_names)
+    if (const std::string base = n; pieces[base] > 1) n += fmt::format("#{}", ++numbered[base]);
+  Domain with = domain.with_cracks(std::move(lines), std::move(line_names), source);
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    Crack& c = with.impl_->cracks[with.impl_->cracks.size() - sides.size() + k];
+    c.left = sides[k].first;
+    c.right = sides[k].second;
+  }
+  return with;
+}
+
+Domain Domain::from_wkt(std::string_view wkt, const std::string& source, const RegionOptions& regions) {
   WktReader reader(wkt, source);
   WktGeometry g = reader.geometry();
-  std::vector<bool> reversed;
-  std::vector<Ring> oriented = normalised_rings(std::move(g.polygon), source, reversed);
-  Domain domain(std::make_unique<Impl>(std::move(oriented), reversed));
+  Domain domain = [&] {
+    if (g.polygons.size() > 1 || !regions.names.empty())
+      return from_regions(std::move(g.polygons), regions, source);
+    std::vector<bool> reversed;
+    std::vector<Ring> oriented = normalised_rings(std::move(g.polygons.front()), source, reversed);
+    return Domain(std::make_unique<Impl>(std::move(oriented), reversed));
+  }();
   if (g.lines.empty()) return domain;
   std::vector<std::string> names;
   for (std::size_t c = 0; c < g.lines.size(); ++c) names.push_back(fmt::format("crack{}", c + 1));
   return domain.with_cracks(std::move(g.lines), std::move(names), source);
 }
 
-Domain Domain::from_file(const std::filesystem::path& path) {
+Domain Domain::from_file(const std::filesystem::path& path, const RegionOptions& regions) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError(fmt::format("mesh file '{}' does not exist or is not a regular file",
@@ -523,7 +746,14 @@ Domain Domain::from_file(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  if (is_gmsh_file(path)) return read_gmsh_domain(path);
+  if (is_gmsh_file(path)) {
+    if (!regions.names.empty())
+      throw InputError(
+          fmt::format("mesh file '{}': a gmsh file names its regions (physical surfaces); "
+                      "region names are for WKT files",
+                      path.string()));
+    return read_gmsh_domain(path);
+  }
   if (extension != ".wkt") {
     std::string accepted = ".wkt";
     for (const std::string_view e : gmsh_extensions) accepted += fmt::format(", {}", e);
@@ -537,7 +767,7 @@ Domain Domain::from_file(const std::filesystem::path& path) {
   if (!in || !text) {
     throw InputError(fmt::format("cannot read mesh file '{}'", path.string()));
   }
-  return from_wkt(text.str(), path.string());
+  return from_wkt(text.str(), path.string(), regions);
 }
 
 bool Domain::contains(const Vec2& x) const {
@@ -560,6 +790,22 @@ const std::vector<Ring>& Domain::rings() const { return impl_->rings; }
 const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->segments; }
 const std::vector<std::string>& Domain::part_names() const { return impl_->part_names; }
 const std::vector<Crack>& Domain::cracks() const { return impl_->cracks; }
+const std::vector<Region>& Domain::regions() const { return impl_->regions; }
+
+int Domain::region_at(const Vec2& x) const {
+  const Impl& d = *impl_;
+  if (d.regions.empty()) return 0;
+  const Epick::Point_2 p = fast_point(x);
+  for (std::size_t r = 0; r < d.regions.size(); ++r) {
+    if (!d.region_boxes[r].contains(x)) continue;
+    const std::vector<FastPolygon>& rings = d.region_polygons[r];
+    if (rings[0].bounded_side(p) == CGAL::ON_UNBOUNDED_SIDE) continue;
+    if (std::none_of(rings.begin() + 1, rings.end(),
+                     [&](const FastPolygon& h) { return h.bounded_side(p) == CGAL::ON_BOUNDED_SIDE; }))
+      return static_cast<int>(r);
+  }
+  return -1;
+}
 
 std::vector<Ring> Domain::clip(const Box& box) const {
   const Impl& d = *impl_;

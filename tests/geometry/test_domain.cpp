@@ -350,3 +350,50 @@ TEST_CASE("cracks: line strings beside the polygon, tips and mouths, two faces e
       Domain::rectangle(Vec2(0, 0), Vec2(1, 1)).with_cracks({{Vec2(0.2, 0.5), Vec2(0.6, 0.5)}}, {"top"}, "t"),
       Catch::Contains("crack name 'top' is already a part name"));
 }
+
+TEST_CASE("regions: the union of polygons that share edges, interfaces along the shared pieces",
+          "[geometry][regions]") {
+  // Two squares side by side; the right one has a vertex half-way up the shared edge, so the
+  // shared edge comes in two pieces that join into one interface.
+  const Domain d = Domain::from_wkt("MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((1 0, 2 0, 2 1, 1 1, 1 0.5)))",
+                                    "two.wkt", {{"left", "right"}, true});
+  REQUIRE(d.regions().size() == 2);
+  CHECK(d.regions()[1].name == "right");
+  CHECK(d.area() == Approx(2.0).epsilon(1e-15));
+  CHECK(d.rings().size() == 1);
+  REQUIRE(d.cracks().size() == 1);
+  const mfree::Crack& c = d.cracks()[0];
+  CHECK(c.name == "left/right");
+  CHECK(c.interface());
+  CHECK(c.left == 0);
+  CHECK(c.right == 1);
+  CHECK(!c.tip[0]);
+  CHECK(!c.tip[1]);
+  REQUIRE(c.points.size() == 3);
+  CHECK(c.points.front() == Vec2(1, 0));  // along the left square's edge, which runs upwards
+  CHECK(c.points.back() == Vec2(1, 1));
+  CHECK(d.region_at(Vec2(0.5, 0.5)) == 0);
+  CHECK(d.region_at(Vec2(1.5, 0.5)) == 1);
+  CHECK(d.region_at(Vec2(3, 0.5)) == -1);
+  // Without interfaces the regions stay, the shared edge is inside the domain.
+  const Domain smooth = Domain::from_wkt("MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((1 0, 2 0, 2 1, 1 1)))",
+                                         "two.wkt", {{}, false});
+  CHECK(smooth.cracks().empty());
+  CHECK(smooth.regions()[0].name == "region1");
+  CHECK(smooth.boundary().size() >= 4);
+
+  // Refusals: apart, overlapping, an inclusion, a crack across the interface.
+  const auto refusal = [](const std::string& text) {
+    return input_error_message([&] { (void)Domain::from_wkt(text, "regions.wkt"); });
+  };
+  using Catch::Matchers::Contains;
+  CHECK_THAT(refusal("MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((2 0, 3 0, 3 1, 2 1)))"),
+             Contains("2 separate pieces"));
+  CHECK_THAT(refusal("MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((0.5 0, 2 0, 2 1, 0.5 1)))"),
+             Contains("overlap"));
+  CHECK_THAT(refusal("MULTIPOLYGON(((0 0, 3 0, 3 3, 0 3), (1 1, 1 2, 2 2, 2 1)), ((1 1, 2 1, 2 2, 1 2)))"),
+             Contains("closes on itself"));
+  CHECK_THAT(refusal("GEOMETRYCOLLECTION(MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((1 0, 2 0, 2 1, 1 1))),"
+                     " LINESTRING(0.5 0.5, 1.5 0.5))"),
+             Contains("meets the interface 'region1/region2'"));
+}

@@ -13,6 +13,8 @@
 // Cracks come as line strings beside the polygon, in a collection:
 //   GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1, 0 1)), LINESTRING(0.8 0.5, 1.2 0.5))
 // named crack1, crack2, ... in their order (a MULTILINESTRING counts each line).
+// Several polygons (a MULTIPOLYGON, or POLYGONs in the collection) are the regions of one
+// domain, named region1, region2, ... unless RegionOptions names them (from_regions).
 //
 // CGAL does the geometry (inside tests, Boolean clipping); its headers stay in domain.cpp.
 
@@ -48,6 +50,26 @@ struct Crack {
   std::vector<Vec2> points;  ///< vertices in order, at least 2
   std::string name;
   bool tip[2] = {false, false};  ///< whether points.front() / points.back() is a tip
+  /// An interface between two regions (Domain::regions()) is a crack whose faces are tied,
+  /// not free: the region on the left of the polyline (points in order; the face a -> b's
+  /// material) and the one on its right. -1 for a crack.
+  int left = -1, right = -1;
+  [[nodiscard]] bool interface() const { return left >= 0; }
+};
+
+/// A named region of a domain made of several (a material, or a part of an assembly).
+struct Region {
+  std::string name;
+  std::vector<Ring> rings;  ///< oriented like Domain::rings()
+};
+
+/// How a domain of several polygons is built (from_regions).
+struct RegionOptions {
+  std::vector<std::string> names;  ///< the regions' names in order; empty: region1, region2, ...
+  /// true: the edges two regions share become interfaces, cracks whose faces are tied
+  /// (supports end there, nodes on them split, the strain may jump); false: they stay inside
+  /// the domain and the approximation is smooth across them.
+  bool interfaces = true;
 };
 
 class Domain {
@@ -62,7 +84,20 @@ class Domain {
                            std::vector<std::string> part_names, const std::string& source);
   /// Parses one WKT POLYGON; `source` names the text in error messages (a file name).
   /// Throws InputError on malformed text, self-intersecting or degenerate rings.
-  static Domain from_wkt(std::string_view wkt, const std::string& source = "<wkt>");
+  static Domain from_wkt(std::string_view wkt, const std::string& source = "<wkt>",
+                         const RegionOptions& regions = {});
+  /// The union of regions: polygons with holes (rings as from_rings takes them) that share
+  /// edges, or pieces of edges, and overlap nowhere; their union must be one polygon with
+  /// holes. Where two regions share edges the domain gets an interface (a Crack with left
+  /// and right set) named "<left>/<right>", unless options.interfaces is false. An interface
+  /// runs from boundary to boundary; one that closes on itself (an inclusion) or meets
+  /// another is refused. `edge_parts`, when given, holds per region, ring and edge (as given)
+  /// the index of its part in `part_names` or -1; an edge of the union takes the part of the
+  /// region edge it lies along. Throws InputError naming `source` and the regions otherwise.
+  static Domain from_regions(std::vector<std::vector<Ring>> polygons, const RegionOptions& options,
+                             const std::string& source,
+                             std::vector<std::vector<std::vector<int>>> edge_parts = {},
+                             std::vector<std::string> part_names = {});
   /// This domain with cracks: polylines (each at least 2 distinct points) inside the closed
   /// domain, whose vertices other than the ends lie in its interior, crossing no boundary
   /// edge, no other crack and themselves nowhere; an end on the boundary is a mouth, one in
@@ -74,7 +109,7 @@ class Domain {
   /// extensions (.geo, .msh, .step, .stp, .brep, .iges, .igs) with read_gmsh_domain
   /// (gmsh_domain.hpp), which also names the boundary parts. A missing or unreadable file, or
   /// another extension (the message lists the accepted ones), is an InputError naming the path.
-  static Domain from_file(const std::filesystem::path& path);
+  static Domain from_file(const std::filesystem::path& path, const RegionOptions& regions = {});
 
   Domain(const Domain&);
   Domain(Domain&&) noexcept;
@@ -91,8 +126,13 @@ class Domain {
   [[nodiscard]] Box bounding_box() const;
   /// Outer ring (counter-clockwise) then holes (clockwise).
   [[nodiscard]] const std::vector<Ring>& rings() const;
-  /// The cracks, in the order given.
+  /// The cracks, in the order given, and the interfaces between regions.
   [[nodiscard]] const std::vector<Crack>& cracks() const;
+  /// The regions of a domain built from several; empty for one polygon.
+  [[nodiscard]] const std::vector<Region>& regions() const;
+  /// The region holding x (on an edge two regions share: the first); 0 for a domain
+  /// without regions; -1 outside every region.
+  [[nodiscard]] int region_at(const Vec2& x) const;
   /// Every boundary edge with its outward normal, ring by ring in ring order, then the faces
   /// of each crack: per crack segment a -> b, the face a -> b (the material on its left;
   /// normal to the right) and then the face b -> a.
