@@ -24,7 +24,9 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
       breaks[p.segment].push_back(p.t0);
       breaks[p.segment].push_back(p.t1);
     }
+  std::vector<Index> first(segments.size() + 1, 0);  // segment s's points: [first[s], first[s + 1])
   for (std::size_t s = 0; s < segments.size(); ++s) {
+    first[s] = bq.size();
     const BoundarySegment& seg = segments[s];
     std::vector<double>& b = breaks[s];
     std::sort(b.begin(), b.end());
@@ -39,7 +41,8 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
       for (int p = 0; p < pieces; ++p)
         for (std::size_t k = 0; k < g.points.size(); ++k) {
           const double t = t0 + span * ((p + g.points[k]) / pieces);
-          bq.points.push_back(inside_face(seg, seg.a + t * (seg.b - seg.a), max_length));
+          bq.points.push_back(seg.a + t * (seg.b - seg.a));
+          bq.samples.push_back(inside_face(seg, bq.points.back(), max_length));
           bq.normals.push_back(seg.normal);
           bq.tangents.push_back(tangent);
           bq.weights.push_back(g.weights[k] * piece);
@@ -47,7 +50,40 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
         }
     }
   }
+  first[segments.size()] = bq.size();
+  // An interface segment's faces a -> b and b -> a follow each other (Domain::boundary()),
+  // cut alike (no condition selects them) and with Gauss points symmetric about the middle:
+  // the faces' points are the same in reverse order.
+  bq.twin.assign(bq.points.size(), -1);
+  for (std::size_t s = 0; s + 1 < segments.size(); ++s) {
+    const BoundarySegment &face = segments[s], &other = segments[s + 1];
+    if (face.crack < 0 || !domain.cracks()[face.crack].interface() || other.crack != face.crack ||
+        other.a != face.b || other.b != face.a)
+      continue;
+    const Index n = first[s + 1] - first[s];
+    if (first[s + 2] - first[s + 1] != n)
+      throw Error(fmt::format("boundary quadrature: the faces of interface segment {} have {} and {} points",
+                              s, n, first[s + 2] - first[s + 1]));
+    for (Index j = 0; j < n; ++j) {
+      const Index p = first[s] + j, q = first[s + 1] + n - 1 - j;
+      if ((bq.points[p] - bq.points[q]).norm() > 1e-9 * max_length)
+        throw Error(fmt::format("boundary quadrature: interface point {} has no twin on the other face", p));
+      bq.twin[p] = q;
+      bq.twin[q] = p;
+    }
+  }
   return bq;
+}
+
+GalerkinQuadrature boundary_functions(const RKShapeFunctions& trial, const BoundaryQuadrature& bq) {
+  GalerkinQuadrature at = sample_shape_functions(trial, bq.samples, true);
+  for (Index p = 0; p < at.size(); ++p) {
+    at.points[p] = bq.points[p];
+    const Vec2 back = bq.points[p] - bq.samples[p];
+    if (back != Vec2::Zero())
+      for (Index s = at.row_begin(p); s < at.row_end(p); ++s) at.phi[s] += at.grad[s].dot(back);
+  }
+  return at;
 }
 
 }  // namespace mfree

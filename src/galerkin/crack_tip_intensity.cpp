@@ -53,7 +53,7 @@ double room_at_tip(const Domain& domain, std::size_t c, int end) {
 }  // namespace
 
 std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
-                                                const Eigen::VectorXd& d, const LinearElastic& material, double h) {
+                                                const Eigen::VectorXd& d, const LawAt& law_at, double h) {
   std::vector<TipIntensity> out;
   if (domain.cracks().empty()) return out;
   const QuadratureRule rule = gauss_cell_rule(domain, 0.5 * h, 4);
@@ -76,6 +76,7 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
                                      "integral has {:.3g} of room (its straight last segment, other cracks and the "
                                      "boundary), less than the nodal spacing {}: refine the cloud",
                                      t.frame.position.x(), t.frame.position.y(), crack.name, room, h));
+      const LinearElastic& material = law_at(t.frame.position);
       const DomainWeight weight{0.5 * t.outer_radius, t.outer_radius, WeightProfile::smooth};
       std::vector<Vec2> points;
       std::vector<double> weights;

@@ -150,9 +150,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 
   // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
   res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, condition_parts(s.problem.conditions));
-  res.at_boundary = timer.time("boundary functions", [&] {
-    return sample_shape_functions(*res.trial, res.boundary.points, true);
-  });
+  res.at_boundary =
+      timer.time("boundary functions", [&] { return boundary_functions(*res.trial, res.boundary); });
   const ConsistencyConditions conditions(res.quadrature, res.nodes, res.at_boundary, res.boundary, s.order);
   res.consistency_before = conditions.defect(res.quadrature.grad);
 
@@ -201,14 +200,20 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   res.coefficients = timer.time("solve", [&] { return solver->solve(sys.load); });
   res.solver = report(*solver);
 
-  if (!domain.cracks().empty())
+  if (std::any_of(domain.cracks().begin(), domain.cracks().end(),
+                  [](const Crack& c) { return c.tip[0] || c.tip[1]; }))
     res.tips = timer.time("stress intensity", [&] {
-      return crack_tip_intensities(domain, *res.trial, res.coefficients, s.problem.material, s.nodes.spacing);
+      return crack_tip_intensities(
+          domain, *res.trial, res.coefficients,
+          [&](const Vec2& x) -> const LinearElastic& { return s.problem.law_at(domain, x); },
+          s.nodes.spacing);
     });
   if (exact) {
     res.errors = timer.time("errors", [&] {
-      return elastic_errors(*res.trial, res.coefficients, s.problem.material, *exact,
-                            gauss_cell_rule(domain, 0.5 * s.nodes.spacing, s.error_gauss_points));
+      return elastic_errors(
+          *res.trial, res.coefficients,
+          [&](const Vec2& x) -> const LinearElastic& { return s.problem.law_at(domain, x); }, *exact,
+          gauss_cell_rule(domain, 0.5 * s.nodes.spacing, s.error_gauss_points));
     });
   }
   return res;

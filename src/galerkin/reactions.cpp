@@ -66,6 +66,7 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
   const GalerkinQuadrature& at = model.at_boundary();
   Reactions r;
   r.current_arm = !is_small_strain(problem.material);
+  for (const Material& m : problem.region_materials) r.current_arm = r.current_arm || !is_small_strain(m);
   const auto boundary_arm = [&](Index p) -> Vec2 {
     return r.current_arm ? Vec2(bq.points[p] + row_value(at, p, d)) : bq.points[p];
   };

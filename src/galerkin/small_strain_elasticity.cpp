@@ -1,5 +1,7 @@
 #include "mfree/galerkin/small_strain_elasticity.hpp"
 
+#include <algorithm>
+
 namespace mfree {
 
 Eigen::Vector3d strain_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d) {
@@ -23,10 +25,13 @@ Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd
 SolidProblem solid_problem(const ElasticityProblem& problem) {
   SolidProblem solid;
   solid.material = problem.material;
+  solid.region_materials.assign(problem.region_materials.begin(), problem.region_materials.end());
   if (problem.body_force) solid.body_force = [b = problem.body_force](const Vec2& x, double) { return b(x); };
   solid.conditions = problem.conditions;
   solid.nitsche_beta = problem.nitsche_beta;
-  solid.penalty_modulus = p_wave_modulus(solid.material);
+  solid.penalty_modulus = solid.region_materials.empty() ? p_wave_modulus(solid.material) : 0.0;
+  for (const Material& m : solid.region_materials)
+    solid.penalty_modulus = std::max(solid.penalty_modulus, p_wave_modulus(m));
   solid.spacing = problem.spacing;
   return solid;
 }
@@ -34,7 +39,8 @@ SolidProblem solid_problem(const ElasticityProblem& problem) {
 ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
                                      const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
                                      const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary) {
-  problem.material.validate();
+  if (problem.region_materials.empty()) problem.material.validate();
+  for (const LinearElastic& m : problem.region_materials) m.validate();
   const TotalLagrangian model(solid_problem(problem), domain, nodes, q, test_gradients, bq, at_boundary);
   // The residual is affine in d: K = its tangent anywhere, f = -residual(0).
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 
@@ -146,10 +148,37 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
       boundary_rows_(boundary_offsets_, boundary_nodes_, nodes) {
   if (!(problem_.nitsche_beta > 0.0))
     throw InputError(fmt::format("Nitsche penalty beta must be positive, got {}", problem_.nitsche_beta));
-  history_laws_ = mfree::has_history(problem_.material);
-  reference_tangent_ = mfree::tangent(problem_.material, Mat2::Identity());
-  const bool linear = is_linear(problem_.material);
-  const bool dead_pressure = is_small_strain(problem_.material);
+  const std::size_t regions = domain.regions().size();
+  if (!problem_.region_materials.empty() && problem_.region_materials.size() != regions)
+    throw Error(fmt::format("{} region materials for a domain of {} regions",
+                            problem_.region_materials.size(), regions));
+  const std::size_t laws = std::max<std::size_t>(1, problem_.region_materials.size());
+  // The law of each point: its region's (points on an interface lie a little into their side).
+  const auto law_at = [&](const std::vector<Vec2>& points, const char* kind) {
+    std::vector<int> law(points.size(), 0);
+    if (laws == 1) return law;
+    parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index begin, Index end) {
+      for (Index k = begin; k < end; ++k) law[k] = domain.region_at(points[k]);
+    });
+    for (std::size_t k = 0; k < law.size(); ++k)
+      if (law[k] < 0)
+        throw Error(fmt::format("{} point {} ({:.6g}, {:.6g}) lies in no region of the domain", kind, k,
+                                points[k].x(), points[k].y()));
+    return law;
+  };
+  law_of_point_ = law_at(q.points, "quadrature");
+  law_of_boundary_ = law_at(bq.samples, "boundary");  // on an interface, the side of the face
+  bool small_strain = true, symmetric_tangents = true;
+  for (std::size_t l = 0; l < laws; ++l) {
+    const Material& m = problem_.law(static_cast<int>(l));
+    history_laws_ = history_laws_ || mfree::has_history(m);
+    linear_ = linear_ && is_linear(m);
+    small_strain = small_strain && is_small_strain(m);
+    symmetric_tangents = symmetric_tangents && has_symmetric_tangent(m);
+    reference_tangents_.push_back(mfree::tangent(m, Mat2::Identity()));
+  }
+  const bool linear = linear_;
+  const bool dead_pressure = small_strain;
   traction_of_point_.assign(bq.size(), nullptr);
   follower_of_point_.assign(bq.size(), nullptr);
   reference_traction_.resize(at_boundary.nodes.size());
@@ -188,8 +217,37 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     const Vec2& n = bq.normals[p];
     nitsche_.push_back({p, c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(), c});
     for (Index s = at_boundary.row_begin(p); s < at_boundary.row_end(p); ++s)
-      reference_traction_[s] = traction_operator(reference_tangent_, at_boundary.grad[s], n);
+      reference_traction_[s] =
+          traction_operator(reference_tangents_[law_of_boundary_[p]], at_boundary.grad[s], n);
     couple_row(p);
+  }
+  // The ties: each interface point once, from its + face (the first of the pair). Their rows
+  // couple the functions of both faces.
+  for (Index p = 0; p < bq.size(); ++p) {
+    const Index q_twin = bq.twin.empty() ? -1 : bq.twin[p];
+    if (q_twin < 0) continue;
+    const Crack& crack = domain.cracks()[segments[bq.segment[p]].crack];
+    if (segments[bq.segment[p]].a != crack.points[segments[bq.segment[p]].edge]) continue;  // the - face
+    if (history_laws_)
+      throw InputError(
+          fmt::format("interface '{}': laws with history (J2, Drucker–Prager) are not tied across "
+                      "interfaces; use elastic laws or one region",
+                      crack.name));
+    ties_.push_back({p, q_twin});
+    for (const Index side : {p, q_twin}) {
+      const Vec2& n = bq.normals[p];
+      for (Index s = at_boundary.row_begin(side); s < at_boundary.row_end(side); ++s)
+        reference_traction_[s] =
+            traction_operator(reference_tangents_[law_of_boundary_[side]], at_boundary.grad[s], n);
+    }
+    std::vector<Index> row(at_boundary.nodes.begin() + at_boundary.row_begin(p),
+                           at_boundary.nodes.begin() + at_boundary.row_end(p));
+    row.insert(row.end(), at_boundary.nodes.begin() + at_boundary.row_begin(q_twin),
+               at_boundary.nodes.begin() + at_boundary.row_end(q_twin));
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    boundary_nodes_.insert(boundary_nodes_.end(), row.begin(), row.end());
+    boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
   }
   for (std::size_t c = 0; c < seen.size(); ++c)
     if (!seen[c])
@@ -202,10 +260,11 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   pattern_ = node_pattern(sets);
   // The domain blocks are summed for I >= J and copied, K_IJ = K_JI^T, only when that holds:
   // test = trial gradients and a tangent with major symmetry.
-  domain_symmetric_ = test_gradients == nullptr && has_symmetric_tangent(problem_.material);
+  domain_symmetric_ = test_gradients == nullptr && symmetric_tangents;
   // The algorithmic tangents of the plastic laws are not taken as symmetric (Drucker–Prager
   // with dilatancy below friction is not; J2's is only to round-off).
-  symmetric_ = domain_symmetric_ && follower_.empty() && (linear || (nitsche_.empty() && !history_laws_));
+  symmetric_ = domain_symmetric_ && follower_.empty() &&
+               (linear || (nitsche_.empty() && ties_.empty() && !history_laws_));
   if (history_laws_) {
     history_.domain.assign(q.size(), MaterialState{});
     history_.boundary.assign(nitsche_.size(), MaterialState{});
@@ -215,14 +274,15 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
 MaterialUpdate TotalLagrangian::domain_update(Index k, const Mat2& f, bool with_tangent) const {
   static const MaterialState none;
   return at_point("quadrature", q_.points, k, [&] {
-    return update(problem_.material, f, history_laws_ ? history_.domain[k] : none, with_tangent);
+    return update(problem_.law(law_of_point_[k]), f, history_laws_ ? history_.domain[k] : none, with_tangent);
   });
 }
 
 MaterialUpdate TotalLagrangian::boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const {
   static const MaterialState none;
   return at_point("boundary", bq_.points, nitsche_[b].point, [&] {
-    return update(problem_.material, f, history_laws_ ? history_.boundary[b] : none, with_tangent);
+    return update(problem_.law(law_of_boundary_[nitsche_[b].point]), f,
+                  history_laws_ ? history_.boundary[b] : none, with_tangent);
   });
 }
 
@@ -276,7 +336,7 @@ double TotalLagrangian::plastic_area() const {
 TotalLagrangian::PointResponse TotalLagrangian::response(Index k, const Eigen::VectorXd& d) const {
   const Mat2 f = deformation_gradient(k, d);
   const MaterialUpdate u = domain_update(k, f, false);
-  return {cauchy_stress(problem_.material, u.stress, f), u.stress_zz, u.state};
+  return {cauchy_stress(problem_.law(law_of_point_[k]), u.stress, f), u.stress_zz, u.state};
 }
 
 Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) const {
@@ -312,6 +372,7 @@ Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const 
           w * (-phi * v.traction - reference_traction_[s].transpose() * v.gap + penalty * phi * v.gap);
     }
   }
+  add_tie_force(d, f);
   // Follower pressures: -f_I = p int phi_I R x,S dS, x,S = T + sum_J d_J (grad phi_J . T).
   const Mat2 r = rotation_minus_90();
   for (const auto& [p, c] : follower_) {
@@ -334,6 +395,72 @@ TotalLagrangian::NitscheValues TotalLagrangian::nitsche_values(std::size_t b, co
   const Vec2 traction =
       p.projection * (boundary_update(b, boundary_deformation_gradient(p.point, d), false).stress * n);
   return {p.point, p.condition, traction, gap};
+}
+
+MaterialUpdate TotalLagrangian::tie_update(Index p, const Eigen::VectorXd& d, bool with_tangent) const {
+  static const MaterialState none;
+  return at_point("interface", bq_.points, p, [&] {
+    return update(problem_.law(law_of_boundary_[p]), boundary_deformation_gradient(p, d), none, with_tangent);
+  });
+}
+
+void TotalLagrangian::add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const {
+  // f_I = w [ -s_I phi_I {P} N - T0_I^T [[u]] / 2 + penalty s_I phi_I [[u]] ], s = +1 on the
+  // + face, -1 on the other.
+  const double penalty = nitsche_penalty();
+  for (const TiePoint& t : ties_) {
+    const Vec2& n = bq_.normals[t.plus];
+    const Vec2 mean = 0.5 * (tie_update(t.plus, d, false).stress + tie_update(t.minus, d, false).stress) * n;
+    Vec2 jump = Vec2::Zero();
+    for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}})
+      for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s)
+        jump += side.sign * at_boundary_.phi[s] * d.segment<2>(2 * at_boundary_.nodes[s]);
+    const double w = bq_.weights[t.plus];
+    for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}})
+      for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s) {
+        const double phi = side.sign * at_boundary_.phi[s];
+        f.segment<2>(2 * at_boundary_.nodes[s]) +=
+            w * (-phi * mean - 0.5 * reference_traction_[s].transpose() * jump + penalty * phi * jump);
+      }
+  }
+}
+
+void TotalLagrangian::add_tie_tangent(const Eigen::VectorXd& d, double* values) const {
+  // K_IJ = w [ -s_I phi_I T_J / 2 - s_J phi_J T0_I^T / 2 + penalty s_I s_J phi_I phi_J ],
+  // T_J = (A(F) : grad(phi_J e_k)) N of J's side.
+  const double penalty = nitsche_penalty();
+  std::vector<Mat2> traction;
+  std::vector<Index> slots;
+  std::vector<double> signs;
+  for (const TiePoint& t : ties_) {
+    const Vec2& n = bq_.normals[t.plus];
+    const double w = bq_.weights[t.plus];
+    traction.clear();
+    slots.clear();
+    signs.clear();
+    for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}}) {
+      const Tangent a = linear_ ? reference_tangents_[law_of_boundary_[side.point]]
+                                : tie_update(side.point, d, true).tangent;
+      for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s) {
+        traction.push_back(linear_ ? reference_traction_[s] : traction_operator(a, at_boundary_.grad[s], n));
+        slots.push_back(s);
+        signs.push_back(side.sign);
+      }
+    }
+    for (std::size_t a = 0; a < slots.size(); ++a) {
+      const Index i = at_boundary_.nodes[slots[a]];
+      const double phi_i = signs[a] * at_boundary_.phi[slots[a]];
+      for (std::size_t b = 0; b < slots.size(); ++b) {
+        const Index j = at_boundary_.nodes[slots[b]];
+        const double phi_j = signs[b] * at_boundary_.phi[slots[b]];
+        const Mat2 kij =
+            w * (-0.5 * phi_i * traction[b] - 0.5 * phi_j * reference_traction_[slots[a]].transpose() +
+                 penalty * phi_i * phi_j * Mat2::Identity());
+        for (int r = 0; r < 2; ++r)
+          for (int c = 0; c < 2; ++c) values[block_slot(pattern_, 2, i, j, r, c)] += kij(r, c);
+      }
+    }
+  }
 }
 
 Vec2 TotalLagrangian::follower_stretch(Index p, const Eigen::VectorXd& d) const {
@@ -378,10 +505,11 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
 
   // Domain: w_K A(F_K), then K_IJ(i, k) = t_I,M [w A_iMkL g_J,L].
   std::vector<Tangent> wa(q_.size());
-  const bool linear = is_linear(problem_.material);
+  const bool linear = linear_;
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
-      wa[p] = q_.weights[p] * (linear ? reference_tangent_ : domain_update(p, deformation_gradient(p, d), true).tangent);
+      wa[p] = q_.weights[p] * (linear ? reference_tangents_[law_of_point_[p]]
+                                      : domain_update(p, deformation_gradient(p, d), true).tangent);
   });
   add_column_blocks(q_, domain_rows_, pattern_, domain_symmetric_, values, [&](Index kk, Index slot_j) {
     const Vec2& g = q_.grad[slot_j];
@@ -402,8 +530,8 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   for (std::size_t b = 0; b < nitsche_.size(); ++b) {
     const NitschePoint& p = nitsche_[b];
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
-    const Tangent a =
-        linear ? reference_tangent_ : boundary_update(b, boundary_deformation_gradient(p.point, d), true).tangent;
+    const Tangent a = linear ? reference_tangents_[law_of_boundary_[p.point]]
+                             : boundary_update(b, boundary_deformation_gradient(p.point, d), true).tangent;
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     t.resize(m);
@@ -421,6 +549,8 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
       }
     }
   }
+
+  add_tie_tangent(d, values);
 
   // Follower pressures: K_IJ = w p phi_I (grad phi_J . T) R.
   for (const auto& [p, c] : follower_) {
@@ -443,7 +573,8 @@ double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
     double sum = 0.0;
     for (Index k = begin; k < end; ++k)
       sum += q_.weights[k] * at_point("quadrature", q_.points, k, [&] {
-               return energy(problem_.material, deformation_gradient(k, d), history_laws_ ? history_.domain[k] : MaterialState{});
+               return energy(problem_.law(law_of_point_[k]), deformation_gradient(k, d),
+                             history_laws_ ? history_.domain[k] : MaterialState{});
              });
     partial[thread] = sum;
   });

@@ -40,6 +40,12 @@ BoundarySelection select_part(const Domain& domain, const std::string& name) {
                                    : fmt::format("the domain has no boundary part '{}'; its parts are: {}", name,
                                                  fmt::join(names, ", ")));
   const int part = static_cast<int>(it - names.begin());
+  for (const Crack& c : domain.cracks())
+    if (c.interface() && c.name == name)
+      throw InputError(
+          fmt::format("'{}' is an interface between two regions: its faces are tied to each other "
+                      "and take no boundary condition",
+                      name));
   return whole_segments(domain, [&](const BoundarySegment& s) { return s.part == part; });
 }
 
@@ -64,6 +70,8 @@ BoundarySelection select_box(const Domain& domain, const Box& box) {
   BoundarySelection out;
   const auto& segments = domain.boundary();
   for (std::size_t s = 0; s < segments.size(); ++s) {
+    // The faces of an interface are tied to each other, not a boundary a condition holds on.
+    if (segments[s].crack >= 0 && domain.cracks()[segments[s].crack].interface()) continue;
     // Liang–Barsky: a + t d inside the box for t in [t0, t1].
     const Vec2 a = segments[s].a, d = segments[s].b - segments[s].a;
     double t0 = 0.0, t1 = 1.0;

@@ -23,8 +23,6 @@ std::vector<PointField> sampled_fields(const ElasticityScene& scene, const Elast
   const bool need_stress = o.wants("stress") || o.wants("von_mises");
   const GalerkinQuadrature sampled = given ? GalerkinQuadrature{} : sample_shape_functions(*r.trial, points, need_stress);
   const GalerkinQuadrature& at = given ? *given : sampled;
-  const LinearElastic& m = scene.settings.problem.material;
-  const Eigen::Matrix3d d = m.voigt_tangent();
   std::vector<PointField> f;
   if (o.wants("displacement") || o.wants("error")) {
     std::vector<Vec2> u(points.size());
@@ -43,7 +41,8 @@ std::vector<PointField> sampled_fields(const ElasticityScene& scene, const Elast
   if (need_stress) {
     std::vector<double> s, vm, se;
     for (Index k = 0; k < at.size(); ++k) {
-      const Eigen::Vector3d sk = d * strain_at(at, k, r.coefficients);
+      const LinearElastic& m = scene.settings.problem.law_at(scene.domain, points[k]);
+      const Eigen::Vector3d sk = m.voigt_tangent() * strain_at(at, k, r.coefficients);
       s.insert(s.end(), {sk[0], sk[1], sk[2]});
       vm.push_back(m.von_mises(sk));
       if (o.wants("error") && exact) {

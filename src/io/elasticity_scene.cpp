@@ -89,6 +89,25 @@ void check_sliver(const SceneTable& t, BoundaryCondition::Type type, const std::
 }
 
 /// No formula of a static run may use t: it would be evaluated at t = 0 only.
+/// [material] or one [[material]]: the law's keys, with the plane-strain bound on Poisson's
+/// ratio (allow_locking lifts it).
+MaterialSection read_plane_material(const SceneTable& t) {
+  const bool allow_locking = t.boolean_or("allow_locking", false);
+  const MaterialSection m = read_material_keys(t);
+  if (m.linear.model == PlaneModel::strain && m.linear.poisson_ratio > max_poisson_ratio && !allow_locking)
+    t.error("poisson_ratio",
+            fmt::format(
+                "{} is above {}, the largest Poisson's ratio of a plane-strain law this displacement "
+                "formulation is trusted with: near incompressibility (lambda / mu = {:.3g}) locks it, and "
+                "its stress error grows without bound (the report's stress test 'Near incompressibility'); "
+                "use nu <= {} or plane stress (allow_locking = true runs it anyway, for studies of locking)",
+                m.linear.poisson_ratio, max_poisson_ratio,
+                2 * m.linear.poisson_ratio / (1 - 2 * m.linear.poisson_ratio), max_poisson_ratio));
+  return m;
+}
+
+const NameTable<bool> interface_names{{"tied", true}, {"smooth", false}};
+
 void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics) {
   if (f.depends_on_time() && !dynamics)
     t.error(key, fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales loads by "
@@ -131,12 +150,21 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       const Box b = read_box(t, "rectangle");
       if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
       out.domain = Domain::rectangle(b.lo, b.hi);
+      for (const char* key : {"regions", "interfaces"})
+        if (t.has(key))
+          t.error(key, "regions are polygons of a mesh file (WKT or gmsh): a rectangle is one region");
     } else {
+      RegionOptions regions;
+      if (t.has("regions")) regions.names = t.names("regions");
+      regions.interfaces = read_choice_or(t, "interfaces", interface_names, true);
       try {
-        out.domain = Domain::from_file(root.folder() / t.string("mesh"));
+        out.domain = Domain::from_file(root.folder() / t.string("mesh"), regions);
       } catch (const InputError& e) {
         t.error("mesh", e.what());
       }
+      if (t.has("interfaces") && out.domain.regions().empty())
+        t.error("interfaces",
+                "the domain has one region (the file holds one polygon or one physical surface)");
     }
     t.finish();
   }
@@ -181,18 +209,52 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (t.has("gauss_points")) s.gauss_points = static_cast<int>(t.integer("gauss_points", 1, 12));
     t.finish();
   }
-  {
-    const SceneTable t = root.table("material");
-    const bool allow_locking = t.boolean_or("allow_locking", false);
-    const MaterialSection m = read_material_keys(t);
-    if (m.linear.model == PlaneModel::strain && m.linear.poisson_ratio > max_poisson_ratio && !allow_locking)
-      t.error("poisson_ratio",
-              fmt::format("{} is above {}, the largest Poisson's ratio of a plane-strain law this displacement "
-                          "formulation is trusted with: near incompressibility (lambda / mu = {:.3g}) locks it, and "
-                          "its stress error grows without bound (the report's stress test 'Near incompressibility'); "
-                          "use nu <= {} or plane stress (allow_locking = true runs it anyway, for studies of locking)",
-                          m.linear.poisson_ratio, max_poisson_ratio,
-                          2 * m.linear.poisson_ratio / (1 - 2 * m.linear.poisson_ratio), max_poisson_ratio));
+  if (root.is_array_of_tables("material")) {
+    // One law per region, each [[material]] naming the regions it fills.
+    const std::vector<Region>& regions = out.domain.regions();
+    std::vector<std::string> region_names;
+    for (const Region& r : regions) region_names.push_back(r.name);
+    const std::vector<SceneTable> tables = root.tables("material");
+    if (regions.empty())
+      tables.front().error("regions",
+                           "[[material]] tables give the regions of a domain their laws, and this domain "
+                           "has one region: use one [material] table");
+    std::vector<int> law_of(regions.size(), -1);
+    std::vector<std::string> names;
+    for (const SceneTable& t : tables) {
+      const std::string name = t.string("name");
+      if (std::find(names.begin(), names.end(), name) != names.end())
+        t.error("name", fmt::format("a second [[material]] named '{}'", name));
+      names.push_back(name);
+      for (const std::string& r : t.choices("regions", region_names)) {
+        const auto at = static_cast<std::size_t>(std::find(region_names.begin(), region_names.end(), r) -
+                                                 region_names.begin());
+        if (law_of[at] >= 0)
+          t.error("regions",
+                  fmt::format("region '{}' has a law already ([[material]] '{}')", r, names[law_of[at]]));
+        law_of[at] = static_cast<int>(names.size() - 1);
+      }
+      const MaterialSection m = read_plane_material(t);
+      if (!is_small_strain(m.material))
+        t.error("model", "several materials are for small-strain laws (plane_strain, plane_stress) for now");
+      if (names.size() > 1 && m.density != out.density)
+        t.error("density", "the [[material]] tables differ in density; give all the same, or none");
+      out.density = m.density;
+      out.material = m.material;
+      s.problem.region_materials.push_back(m.linear);
+    }
+    for (std::size_t r = 0; r < regions.size(); ++r)
+      if (law_of[r] < 0)
+        tables.back().error(
+            "regions",
+            fmt::format("region '{}' has no law: name it in the regions of a [[material]]", regions[r].name));
+    // Laws per region, in region order.
+    std::vector<LinearElastic> by_region;
+    for (int l : law_of) by_region.push_back(s.problem.region_materials[static_cast<std::size_t>(l)]);
+    s.problem.region_materials = std::move(by_region);
+    s.problem.material = s.problem.region_materials.front();
+  } else {
+    const MaterialSection m = read_plane_material(root.table("material"));
     s.problem.material = m.linear;
     out.material = m.material;
     out.density = m.density;
@@ -240,6 +302,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       }
       e.formulas = std::move(f);
     } else {
+      if (!s.problem.region_materials.empty())
+        t.error("solution",
+                "built-in solutions are posed on one material; give the exact solution of a domain of "
+                "several materials as formulas");
       e.builtin = read_builtin_solution(t, out.solution_setting(), dynamics);
     }
     // Errors are measured from the stress of F at their own points, which hold no history.
@@ -449,6 +515,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.study = st;
   }
+  if (!s.problem.region_materials.empty() && (out.dynamics || out.nonlinear()))
+    root.tables("material")
+        .front()
+        .error("name",
+               "several materials are solved in linear statics (mfree solve, "
+               "mfree converge) for now: remove [dynamics] and [newton]");
   check_scheme_keys(quadrature, s.scheme, out.study);
   root.finish();
   return out;
@@ -502,15 +574,15 @@ std::optional<ExactElasticity> ElasticityScene::exact() const {
   if (!exact_spec) return std::nullopt;
   if (const auto& f = exact_spec->formulas) {
     // Strain from the gradient, or from the stress by the compliance of the small-strain law.
-    const LinearElastic m = settings.problem.material;
     ExactElasticity e;
     e.displacement = [u = f->displacement](const Vec2& x) { return u(x); };
     if (!f->stress.empty())
       e.stress = [sg = f->stress](const Vec2& x) { return Eigen::Vector3d(sg[0](x), sg[1](x), sg[2](x)); };
     else
-      e.stress = [g = f->gradient, d = m.voigt_tangent()](const Vec2& x) {
+      e.stress = [g = f->gradient, p = settings.problem,
+                  at = std::make_shared<const Domain>(domain)](const Vec2& x) {
         const double a = g[0](x), b = g[1](x), c = g[2](x), dd = g[3](x);
-        return Eigen::Vector3d(d * Eigen::Vector3d(a, dd, b + c));
+        return Eigen::Vector3d(p.law_at(*at, x).voigt_tangent() * Eigen::Vector3d(a, dd, b + c));
       };
     e.body_force = static_body_force();
     if (!e.body_force) e.body_force = [](const Vec2&) { return Vec2::Zero(); };

@@ -207,6 +207,18 @@ std::string SceneTable::choice_or(std::string_view key, std::string fallback,
 
 std::vector<std::string> SceneTable::choices(std::string_view key,
                                              const std::vector<std::string>& allowed) const {
+  return string_list(key, &allowed);
+}
+
+std::vector<std::string> SceneTable::names(std::string_view key) const { return string_list(key, nullptr); }
+
+bool SceneTable::is_array_of_tables(std::string_view key) const {
+  const toml::node* n = table_->get(key);
+  return n && n->is_array_of_tables();
+}
+
+std::vector<std::string> SceneTable::string_list(std::string_view key,
+                                                 const std::vector<std::string>* allowed) const {
   const toml::node* n = get(key, true);
   const toml::array* a = n->as_array();
   if (!a || a->empty()) fail(n, key, "expected a non-empty array of strings");
@@ -214,8 +226,9 @@ std::vector<std::string> SceneTable::choices(std::string_view key,
   for (const toml::node& item : *a) {
     const auto v = item.value_exact<std::string>();
     if (!v) fail(&item, key, fmt::format("expected strings, got {}", type_name(item)));
-    if (std::find(allowed.begin(), allowed.end(), *v) == allowed.end())
-      fail(&item, key, fmt::format("'{}' is not one of: {}", *v, fmt::join(allowed, ", ")));
+    if (allowed && std::find(allowed->begin(), allowed->end(), *v) == allowed->end())
+      fail(&item, key, fmt::format("'{}' is not one of: {}", *v, fmt::join(*allowed, ", ")));
+    if (v->empty()) fail(&item, key, "expected a name, got an empty string");
     if (std::find(out.begin(), out.end(), *v) != out.end())
       fail(&item, key, fmt::format("'{}' is listed twice", *v));
     out.push_back(*v);

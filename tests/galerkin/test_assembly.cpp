@@ -60,7 +60,7 @@ struct Cantilever {
     trial = std::make_unique<RKShapeFunctions>(nodes, rk);
     q = direct_quadrature(*trial, gauss_cell_rule(domain, h, 3));
     bq = boundary_quadrature(domain, h, 2);
-    at_boundary = sample_shape_functions(*trial, bq.points, true);
+    at_boundary = boundary_functions(*trial, bq);
     problem.material = LinearElastic{3.0e7, 0.3, PlaneModel::stress};
     problem.spacing = h;
   }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "mfree/galerkin/exact_elasticity.hpp"
 #include "mfree/galerkin/interaction_integral.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/kernels/rk_shape_functions.hpp"
@@ -31,8 +32,9 @@ struct TipIntensity {
 
 /// K_I, K_II and J at every tip (in crack order, first end before last) for coefficients d of
 /// the trial functions; `h` the nodal spacing. Throws InputError when a tip has no room for
-/// an annulus of one spacing.
+/// an annulus of one spacing. The law is the tip's region's (the annulus stops short of other
+/// cracks and interfaces, so it lies in that region).
 std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
-                                                const Eigen::VectorXd& d, const LinearElastic& material, double h);
+                                                const Eigen::VectorXd& d, const LawAt& law_at, double h);
 
 }  // namespace mfree

@@ -31,9 +31,12 @@ struct ElasticErrors {
   double strain_energy = 0.0;    ///< 1/2 int eps^h D eps^h of the discrete solution
 };
 
-/// Errors of u^h = sum phi_I d_I (strain from the true gradients of phi_I) on the rule.
-ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorXd& d,
-                             const LinearElastic& material, const ExactElasticity& exact,
-                             const QuadratureRule& rule);
+/// The small-strain law at a point (of its region).
+using LawAt = std::function<const LinearElastic&(const Vec2&)>;
+
+/// Errors of u^h = sum phi_I d_I (strain from the true gradients of phi_I) on the rule, the
+/// energy and the stress of the error by the law at each point.
+ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorXd& d, const LawAt& law_at,
+                             const ExactElasticity& exact, const QuadratureRule& rule);
 
 }  // namespace mfree

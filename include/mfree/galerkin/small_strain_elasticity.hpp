@@ -33,14 +33,26 @@ namespace mfree {
 using VectorField = std::function<Vec2(const Vec2&)>;
 
 struct ElasticityProblem {
-  LinearElastic material;
+  LinearElastic material;  ///< the law everywhere, unless region_materials are given
+  /// For a domain of several regions (Domain::regions()), the law of each, in their order;
+  /// empty: `material` in every region.
+  std::vector<LinearElastic> region_materials;
   VectorField body_force;  ///< b(x), force per volume; empty: none
   std::vector<BoundaryCondition> conditions;
   double nitsche_beta = 100.0;  ///< penalty beta M / h (dimensionless beta)
   double spacing = 1.0;         ///< h in the penalty: nodal spacing
+
+  /// The law of region r.
+  [[nodiscard]] const LinearElastic& law(int region) const {
+    return region_materials.empty() ? material : region_materials[static_cast<std::size_t>(region)];
+  }
+  /// The law at x of the domain (its region's).
+  [[nodiscard]] const LinearElastic& law_at(const Domain& domain, const Vec2& x) const {
+    return region_materials.empty() ? material : law(domain.region_at(x));
+  }
 };
-/// The same problem as the total-Lagrangian solver takes it, with the small-strain law (a
-/// caller may swap in another Material) and the penalty modulus M of that law.
+/// The same problem as the total-Lagrangian solver takes it, with the small-strain laws (a
+/// caller may swap in other Materials) and the penalty modulus M, the largest of the laws'.
 SolidProblem solid_problem(const ElasticityProblem& problem);
 
 struct ElasticitySystem {

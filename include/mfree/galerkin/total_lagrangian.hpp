@@ -17,11 +17,23 @@
 //   N(u; v) = - int Pi v . P(F) N  -  int Pi (C : grad v) N . (u - ubar)
 //             + (beta M / h) int Pi v . (u - ubar),
 //
-// C = A(I) the reference tangent, M = C_xxxx its P-wave modulus (p_wave_modulus(), materials/). The first term is the traction of the current state, so the
-// form is consistent at any deformation; the second, with the constant C, makes it the
-// symmetric Nitsche form of SPEC section 4 for small strain (one Newton step then solves a
-// linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is
-// not symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
+// C = A(I) the reference tangent, M = C_xxxx its P-wave modulus (p_wave_modulus(), materials/). The first
+// term is the traction of the current state, so the form is consistent at any deformation; the second, with
+// the constant C, makes it the symmetric Nitsche form of SPEC section 4 for small strain (one Newton step
+// then solves a linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is not
+// symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
+//
+// Interfaces between regions (Domain::regions(); Crack::interface()) are tied by Nitsche's
+// method (Nitsche 1971; for bonded interfaces e.g. Annavarapu, Hautefeuille, Dolbow 2012):
+// with [[u]] = u+ - u- the jump from the face on the interface's left (+, normal N pointing
+// into the right region) to the other, and {P} N = (P+ N + P- N) / 2 the mean traction,
+//
+//   T(u; v) = - int [[v]] . {P(F)} N  -  int [[u]] . {C : grad v} N  +  (beta M / h) int [[u]] . [[v]],
+//
+// consistent (a bonded solution makes [[u]] = 0 and the tractions equal) and, for small
+// strain, symmetric; M the largest P-wave modulus of the laws. The strain may jump across
+// the interface: the supports end there (the interface is a crack to them) and nodes on it
+// are split, so each side has functions of its own. Laws with history are not tied (refused).
 //
 // Laws with history (J2, Drucker–Prager; materials/material_state.hpp): every quadrature
 // point and every Nitsche point holds a MaterialState, the committed state_n. The forces and
@@ -99,12 +111,20 @@ struct PointHistory {
 };
 
 struct SolidProblem {
-  Material material = LinearElastic{};
+  Material material = LinearElastic{};  ///< the law everywhere, unless region_materials are given
+  /// For a domain of several regions (Domain::regions()), the law of each, in their order;
+  /// empty: `material` in every region.
+  std::vector<Material> region_materials;
   BodyForce body_force;                       ///< empty: none
   std::vector<BoundaryCondition> conditions;  ///< on disjoint parts of the boundary; the rest is traction free
   double nitsche_beta = 100.0;                ///< dimensionless beta of the penalty beta M / h
-  double penalty_modulus = 1.0;               ///< M of the penalty [Pa]: the law's P-wave modulus
+  double penalty_modulus = 1.0;  ///< M of the penalty [Pa]: the largest P-wave modulus of the laws
   double spacing = 1.0;                       ///< h of the penalty: nodal spacing
+
+  /// The law of region r.
+  [[nodiscard]] const Material& law(int region) const {
+    return region_materials.empty() ? material : region_materials[static_cast<std::size_t>(region)];
+  }
 };
 
 class TotalLagrangian {
@@ -206,6 +226,16 @@ class TotalLagrangian {
     Mat2 projection;        ///< Pi
     const BoundaryCondition* condition;
   };
+  /// A point of an interface: the same point on its two faces.
+  struct TiePoint {
+    Index plus;   ///< on the face whose material is on the interface's left (normal into the right)
+    Index minus;  ///< on the other face
+  };
+  /// One side of a tie point's row: the functions there, with the sign of their jump.
+  struct TieSide {
+    Index point;
+    double sign;
+  };
 
   /// The update at quadrature point k (or Nitsche point b) from its committed state.
   [[nodiscard]] MaterialUpdate domain_update(Index k, const Mat2& f, bool with_tangent) const;
@@ -218,6 +248,11 @@ class TotalLagrangian {
   [[nodiscard]] Vec2 follower_stretch(Index p, const Eigen::VectorXd& d) const;
   /// F at Nitsche point p (the trial functions of at_boundary).
   [[nodiscard]] Mat2 boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
+  /// The tie's terms at its points: forces added to f, and with k the tangent added to k's values.
+  void add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const;
+  void add_tie_tangent(const Eigen::VectorXd& d, double* values) const;
+  /// P(F) N at boundary point p with its law (no history).
+  [[nodiscard]] MaterialUpdate tie_update(Index p, const Eigen::VectorXd& d, bool with_tangent) const;
 
   SolidProblem problem_;
   bool history_laws_ = false;
@@ -229,13 +264,17 @@ class TotalLagrangian {
   const GalerkinQuadrature& at_boundary_;
   std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
   std::vector<NitschePoint> nitsche_;
+  std::vector<TiePoint> ties_;
+  std::vector<int> law_of_point_;            ///< per quadrature point, its region's law
+  std::vector<int> law_of_boundary_;         ///< per boundary point
+  std::vector<Tangent> reference_tangents_;  ///< per law, C = A(I)
+  bool linear_ = true;                       ///< every law linear
   std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures
   std::vector<const BoundaryCondition*> follower_of_point_;           ///< per boundary point; null if none
   std::vector<Index> boundary_offsets_{0}, boundary_nodes_;
   RowIncidence domain_rows_;
   RowIncidence boundary_rows_;
   NodePattern pattern_;
-  Tangent reference_tangent_;
   /// Per slot of a Nitsche point's row in at_boundary: (C : grad(phi_I e_i)) N as the columns
   /// i of a 2 x 2 matrix, the traction of a test function in the symmetrising term.
   std::vector<Mat2> reference_traction_;

@@ -11,6 +11,8 @@
 //           i + 1 of the ring as written (WKT) or built
 //   box     the parts of the segments inside a closed axis-aligned box: a segment is clipped
 //           to the box, so a segment half inside counts half
+// The faces of an interface between regions (Crack::interface()) are tied to each other:
+// a box passes them by and naming one is an error.
 // A selection may be empty; the caller decides that this is an error (it is, in scenes).
 
 #include <string>

@@ -42,6 +42,10 @@ class SceneTable {
                         const std::vector<std::string>& choices) const;
   /// Non-empty list of distinct members of `choices`.
   std::vector<std::string> choices(std::string_view key, const std::vector<std::string>& choices) const;
+  /// Non-empty list of distinct non-empty strings (names the scene chooses).
+  std::vector<std::string> names(std::string_view key) const;
+  /// True when the key holds an array of tables ([[name]] sections).
+  bool is_array_of_tables(std::string_view key) const;
   std::string string(std::string_view key) const;
   /// Array of numbers, of length `size` (any length >= 1 when size is 0), each in [lo, hi].
   std::vector<double> numbers(std::string_view key, std::size_t size, double lo, double hi) const;
@@ -83,6 +87,8 @@ class SceneTable {
   SceneTable(const toml::table* t, std::string prefix, std::shared_ptr<const std::string> file,
              std::shared_ptr<const std::filesystem::path> folder);
   const toml::node* get(std::string_view key, bool required) const;
+  /// choices() with `allowed`, names() without.
+  std::vector<std::string> string_list(std::string_view key, const std::vector<std::string>* allowed) const;
   [[noreturn]] void fail(const toml::node* at, std::string_view key, const std::string& what) const;
   /// The scene file, or the --set override a value came from.
   [[nodiscard]] const std::string& origin_of(const toml::source_region& region) const;

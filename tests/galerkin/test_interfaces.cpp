@@ -1,0 +1,139 @@
+// Regions tied along interfaces (Domain::from_regions, TotalLagrangian's ties): patch tests
+// across the tie for one material (two parts of an assembly) and for two (a bimaterial with a
+// piecewise-linear exact field, which the tie reproduces and a smooth approximation does not).
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include "../test_support.hpp"
+#include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/problems/polynomial_fields.hpp"
+
+using namespace mfree;
+
+namespace {
+
+const LinearElastic steel{2.0e5, 0.3, PlaneModel::strain};
+const LinearElastic resin{0.5e5, 0.2, PlaneModel::strain};
+
+/// The law everywhere, or one per region.
+struct Laws {
+  LinearElastic material;
+  std::vector<LinearElastic> regions;
+};
+
+/// Two parts that share a kinked edge: [0, 2] x [0, 1] cut along (1, 0) - (1.2, 0.5) - (0.9, 1).
+Domain two_parts(bool interfaces) {
+  const std::vector<std::vector<Ring>> parts{
+      {{Vec2(0, 0), Vec2(1, 0), Vec2(1.2, 0.5), Vec2(0.9, 1), Vec2(0, 1)}},
+      {{Vec2(1, 0), Vec2(2, 0), Vec2(2, 1), Vec2(0.9, 1), Vec2(1.2, 0.5)}}};
+  return Domain::from_regions(parts, {{"left", "right"}, interfaces}, "two parts");
+}
+
+/// Two materials side by side, the interface x = 1 straight.
+Domain bimaterial(bool interfaces) {
+  const std::vector<std::vector<Ring>> parts{{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}},
+                                             {{Vec2(1, 0), Vec2(2, 0), Vec2(2, 1), Vec2(1, 1)}}};
+  return Domain::from_regions(parts, {{"steel", "resin"}, interfaces}, "bimaterial");
+}
+
+/// The exact field prescribed by Nitsche on x < 0.3, its traction elsewhere; max over the
+/// nodes of |u^h - u| / max |u|.
+double tied_patch_error(const Domain& domain, const Laws& laws, const ExactElasticity& exact, CloudKind kind,
+                        RKOrder order, SupportRule rule) {
+  ElasticitySettings s;
+  s.support_rule = rule;
+  s.nodes.kind = kind;
+  s.nodes.spacing = 1.0 / 8.0;
+  s.nodes.perturbation = 0.4;
+  s.nodes.seed = 7;
+  s.order = order;
+  s.support_factor = order == RKOrder::linear ? 2.0 : 3.0;
+  s.problem.material = laws.material;
+  s.problem.region_materials = laws.regions;
+  s.problem.body_force = exact.body_force;
+  const Box box = domain.bounding_box();
+  const Box left{box.lo - Vec2(1, 1), Vec2(0.3, box.hi.y() + 1)};
+  const Box right{Vec2(0.3, box.lo.y() - 1), box.hi + Vec2(1, 1)};
+  s.problem.conditions = {
+      {BoundaryCondition::Type::displacement, select_box(domain, left),
+       [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "left"},
+      {BoundaryCondition::Type::traction, select_box(domain, right),
+       [&](const Vec2& x, const Vec2& n, double) { return exact.traction(x, n); }, "right"}};
+  const ElasticityResult r = solve_elasticity(domain, s, nullptr);
+  const std::vector<Vec2> uh = r.displacement(r.nodes);
+  double err = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+    const Vec2 u = exact.displacement(r.nodes[i]);
+    err = std::max(err, (uh[i] - u).norm());
+    scale = std::max(scale, u.norm());
+  }
+  return err / scale;
+}
+
+}  // namespace
+
+TEST_CASE("two parts tied along a kinked edge reproduce linear and quadratic fields of one part",
+          "[galerkin][regions]") {
+  Mat2 g, h0, h1;
+  g << 1e-3, 2e-3, -0.5e-3, 1.5e-3;
+  h0 << 0.8e-3, -0.3e-3, -0.3e-3, 0.5e-3;
+  h1 << -0.4e-3, 0.6e-3, 0.6e-3, 1.1e-3;
+  const Domain tied = two_parts(true);
+  REQUIRE(tied.cracks().size() == 1);
+  CHECK(tied.cracks()[0].name == "left/right");
+  for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
+    for (const SupportRule rule : {SupportRule::geodesic, SupportRule::visibility}) {
+      const double linear = tied_patch_error(tied, {steel, {}}, linear_field(Vec2(0.01, -0.02), g, steel),
+                                             kind, RKOrder::linear, rule);
+      const double quadratic =
+          tied_patch_error(tied, {steel, {}}, quadratic_field(Vec2(0.01, -0.02), g, h0, h1, steel), kind,
+                           RKOrder::quadratic, rule);
+      INFO("cloud " << static_cast<int>(kind) << ", rule " << static_cast<int>(rule));
+      CHECK(linear < 1e-10);
+      CHECK(quadratic < 1e-10);
+    }
+}
+
+TEST_CASE(
+    "a bimaterial tied at its interface reproduces the piecewise-linear field; a smooth approximation does "
+    "not",
+    "[galerkin][regions]") {
+  // Left (steel) gradient G1; right (resin) gradient G2 with the same du/dy (continuity along
+  // x = 1) and the same traction sigma e_x: two equations for dux/dx, duy/dx of G2.
+  Mat2 g1;
+  g1 << 1e-3, 0.4e-3, -0.3e-3, -0.2e-3;
+  const auto voigt = [](const Mat2& g) { return Eigen::Vector3d(g(0, 0), g(1, 1), g(0, 1) + g(1, 0)); };
+  const Eigen::Vector3d s1 = steel.voigt_tangent() * voigt(g1);
+  const Eigen::Matrix3d d2 = resin.voigt_tangent();
+  // sigma_xx = d2(0,0) a + d2(0,1) g1(1,1) + d2(0,2) (g1(0,1) + c), sigma_xy likewise, with
+  // a = dux/dx and c = duy/dx on the right.
+  Eigen::Matrix2d m;
+  m << d2(0, 0), d2(0, 2), d2(2, 0), d2(2, 2);
+  const Eigen::Vector2d rhs(s1[0] - d2(0, 1) * g1(1, 1) - d2(0, 2) * g1(0, 1),
+                            s1[2] - d2(2, 1) * g1(1, 1) - d2(2, 2) * g1(0, 1));
+  const Eigen::Vector2d ac = m.lu().solve(rhs);
+  Mat2 g2 = g1;
+  g2(0, 0) = ac[0];
+  g2(1, 0) = ac[1];
+  const Vec2 a(0.01, -0.02);
+  ExactElasticity exact;
+  exact.displacement = [=](const Vec2& x) -> Vec2 {
+    const Vec2 at_interface = a + g1 * Vec2(1.0, x.y());
+    return x.x() <= 1.0 ? Vec2(a + g1 * x) : Vec2(at_interface + g2 * Vec2(x.x() - 1.0, 0.0));
+  };
+  exact.stress = [=](const Vec2& x) -> Eigen::Vector3d {
+    return x.x() <= 1.0 ? s1 : Eigen::Vector3d(resin.voigt_tangent() * voigt(g2));
+  };
+  exact.body_force = [](const Vec2&) { return Vec2::Zero(); };
+  REQUIRE((g2 - g1).norm() > 0.5 * g1.norm());  // the strain jumps
+
+  const Domain tied = bimaterial(true), smooth = bimaterial(false);
+  for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
+    INFO("cloud " << static_cast<int>(kind));
+    CHECK(tied_patch_error(tied, {steel, {steel, resin}}, exact, kind, RKOrder::linear,
+                           SupportRule::geodesic) < 1e-10);
+    CHECK(tied_patch_error(smooth, {steel, {steel, resin}}, exact, kind, RKOrder::linear,
+                           SupportRule::geodesic) > 1e-4);
+  }
+}
