@@ -6,21 +6,28 @@ namespace mfree {
 
 namespace {
 
-/// The unit normal (left of a -> b) of the crack segment x lies on, within `tolerance` and
-/// not within it of a tip; zero when there is none.
-Vec2 crack_normal_at(const Domain& domain, const Vec2& x, double tolerance) {
+/// Where a point lies on a crack: the unit normal of its segment (left of a -> b) and the
+/// unit direction from the nearer end of the segment into it; zero normal when off every
+/// crack (beyond `tolerance`) or at a tip.
+struct OnCrack {
+  Vec2 normal = Vec2::Zero();
+  Vec2 inward = Vec2::Zero();
+};
+
+OnCrack crack_at(const Domain& domain, const Vec2& x, double tolerance) {
   for (const Crack& c : domain.cracks()) {
     if ((c.tip[0] && (x - c.points.front()).norm() <= tolerance) ||
         (c.tip[1] && (x - c.points.back()).norm() <= tolerance))
-      return Vec2::Zero();
+      return {};
     for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
       const Vec2 &a = c.points[i], &b = c.points[i + 1];
       const Vec2 d = b - a;
       const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      if ((a + t * d - x).norm() <= tolerance) return Vec2(-d.y(), d.x()).normalized();
+      if ((a + t * d - x).norm() <= tolerance)
+        return {Vec2(-d.y(), d.x()).normalized(), (t < 0.5 ? 1.0 : -1.0) * d.normalized()};
     }
   }
-  return Vec2::Zero();
+  return {};
 }
 
 }  // namespace
@@ -31,11 +38,16 @@ std::vector<Vec2> split_on_cracks(const Domain& domain, const std::vector<Vec2>&
   out.reserve(points.size());
   if (origin) origin->clear();
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec2 n = domain.cracks().empty() ? Vec2(Vec2::Zero())
-                                           : crack_normal_at(domain, points[i], crack_tolerance * h);
-    const int copies = n.isZero() ? 1 : 2;
+    const OnCrack on = domain.cracks().empty() ? OnCrack{} : crack_at(domain, points[i], crack_tolerance * h);
+    const int copies = on.normal.isZero() ? 1 : 2;
     for (int k = 0; k < copies; ++k) {
-      out.push_back(copies == 1 ? points[i] : Vec2(points[i] + (k == 0 ? 1.0 : -1.0) * crack_offset * h * n));
+      Vec2 x =
+          copies == 1 ? points[i] : Vec2(points[i] + (k == 0 ? 1.0 : -1.0) * crack_offset * h * on.normal);
+      // At a mouth where the crack meets the boundary at a slant, the offset across the crack
+      // can leave the domain on one side: that copy steps along the crack into the domain.
+      for (int step = 1; copies == 2 && step <= 64 && !domain.contains(x); step *= 2)
+        x += step * crack_offset * h * on.inward;
+      out.push_back(x);
       if (origin) origin->push_back(static_cast<Index>(i));
     }
   }

@@ -506,3 +506,28 @@ TEST_CASE("crack plate, edge crack a/w = 0.5: K_I approaches the handbook's 2.82
   CHECK(errors[1] <= 0.035);
   CHECK(errors[1] <= 0.7 * errors[0]);  // measured 0.48
 }
+
+TEST_CASE("tied parts scene: two parts tied along a wavy edge with unmatched vertices pass the patch test",
+          "[io][problems][regions]") {
+  // verification/tied-parts: the linear field with linear RK and the quadratic one with
+  // quadratic RK, every cloud and both rules that respect the interface: errors at round-off.
+  const std::vector<std::string> quadratic{"kernel.order=\"quadratic\"", "exact.solution=\"quadratic\"",
+                                           "exact.hessian_x=[[0.8e-3, -0.3e-3], [-0.3e-3, 0.5e-3]]",
+                                           "exact.hessian_y=[[-0.4e-3, 0.6e-3], [0.6e-3, 1.1e-3]]"};
+  for (const char* cloud : {"lattice", "perturbed", "random"})
+    for (const char* rule : {"geodesic", "visibility"})
+      for (const bool second : {false, true}) {
+        std::vector<std::string> sets{std::string("nodes.cloud=\"") + cloud + "\"",
+                                      std::string("kernel.support_rule=\"") + rule + "\""};
+        if (second) sets.insert(sets.end(), quadratic.begin(), quadratic.end());
+        const ElasticityScene scene = verification_scene("tied-parts/tied_parts.toml", sets);
+        REQUIRE(scene.domain.regions().size() == 2);
+        REQUIRE(scene.domain.cracks().size() == 1);
+        REQUIRE(scene.domain.cracks()[0].points.size() == 17);  // the finer part's vertices
+        const ExactElasticity exact = *scene.exact();
+        const ElasticErrors e = *solve_elasticity(scene.domain, scene.settings, &exact).errors;
+        CAPTURE(cloud, rule, second, e.l2_displacement, e.energy);
+        CHECK(e.l2_displacement <= 1e-10);
+        CHECK(e.energy <= 1e-9);
+      }
+}

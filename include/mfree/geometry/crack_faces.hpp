@@ -4,7 +4,9 @@
 // offset (a fraction 1e-7 of the nodal spacing, far below any length the method resolves),
 // so that supports that respect the domain (kernels/support_paths.hpp) tell the two
 // faces apart. A point at a crack tip stays one point: it belongs to the material around
-// the tip. Boundary points of a crack face are moved the same way into the face's side.
+// the tip. At a mouth that meets the boundary at a slant, a copy that the offset would take
+// out of the domain steps along the crack back into it. Boundary points of a crack face are
+// moved the same way into the face's side.
 
 #include <vector>
 
