@@ -529,6 +529,81 @@ Domain Domain::from_rings(std::vector<Ring> rings, std::vector<std::vector<int>>
 
 namespace {
 
+/// The ring clipped to the box `window` (Sutherland and Hodgman, double precision): the edges
+/// inside the window as they are, the parts outside replaced by paths along its boundary.
+/// Empty when no part of the ring's interior is in the window.
+Ring clip_to_window(const Ring& ring, const Box& window) {
+  Ring out = ring;
+  for (int side = 0; side < 4 && !out.empty(); ++side) {
+    const int axis = side % 2;
+    const bool low = side < 2;
+    const double at = low ? window.lo[axis] : window.hi[axis];
+    const auto inside = [&](const Vec2& x) { return low ? x[axis] >= at : x[axis] <= at; };
+    Ring in = std::move(out);
+    out.clear();
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const Vec2 &a = in[i], &b = in[(i + 1) % in.size()];
+      if (inside(a)) out.push_back(a);
+      if (inside(a) != inside(b)) {
+        Vec2 x = a + (at - a[axis]) / (b[axis] - a[axis]) * (b - a);
+        x[axis] = at;
+        out.push_back(x);
+      }
+    }
+  }
+  // Drop repeated vertices (a vertex on the window's boundary comes twice).
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  return out.size() >= 3 ? out : Ring{};
+}
+
+/// box ∩ the polygon of `rings` (outer ring first, holes after, oriented like rings()), as rings
+/// oriented the same way; `outer_box` bounds the outer ring.
+std::vector<Ring> clip_rings(const Box& box, const std::vector<Ring>& rings, const Box& outer_box) {
+  if (!interiors_overlap(box, outer_box)) return {};
+  // The exact intersection sweeps every edge of its polygons: a ring of thousands of edges
+  // (a curved boundary from gmsh) costs a second a cell. Only the part of the polygon in a
+  // window around the box matters: the outer ring is cut to the window first (holes that
+  // reach out of the window leave the polygon whole), unless that leaves a ring that touches
+  // itself (the polygon is in several pieces there).
+  const Box window{box.lo - box.size(), box.hi + box.size()};
+  std::vector<Ring> local{rings[0]};
+  if (rings[0].size() > 32) {
+    local[0] = clip_to_window(rings[0], window);
+    if (local[0].empty()) return {};
+  }
+  bool whole = local[0].size() > 3 && !fast_polygon(local[0]).is_simple();
+  for (std::size_t k = 1; k < rings.size() && !whole; ++k) {
+    const Box hole = ring_bounding_box(rings[k]);
+    if (!interiors_overlap(window, hole)) continue;
+    if (window.contains(hole.lo) && window.contains(hole.hi))
+      local.push_back(rings[k]);
+    else
+      whole = true;
+  }
+  if (whole) local = rings;
+  // The exact polygons are built per call from the double rings, so concurrent calls share
+  // no CGAL object. Holes whose boxes miss the box's interior cannot change the
+  // (regularised) intersection and are left out of the sweep.
+  ExactPolygonWithHoles omega(exact_polygon(local[0]));
+  for (std::size_t k = 1; k < local.size(); ++k)
+    if (interiors_overlap(box, ring_bounding_box(local[k]))) omega.add_hole(exact_polygon(local[k]));
+  ExactPolygon cell;
+  cell.push_back(Epeck::Point_2(box.lo.x(), box.lo.y()));
+  cell.push_back(Epeck::Point_2(box.hi.x(), box.lo.y()));
+  cell.push_back(Epeck::Point_2(box.hi.x(), box.hi.y()));
+  cell.push_back(Epeck::Point_2(box.lo.x(), box.hi.y()));
+  std::vector<ExactPolygonWithHoles> pieces;
+  CGAL::intersection(omega, cell, std::back_inserter(pieces));
+  // CGAL returns outer boundaries counter-clockwise and holes clockwise, as rings() does.
+  std::vector<Ring> out;
+  for (const ExactPolygonWithHoles& piece : pieces) {
+    out.push_back(to_ring(piece.outer_boundary()));
+    for (auto h = piece.holes_begin(); h != piece.holes_end(); ++h) out.push_back(to_ring(*h));
+  }
+  return out;
+}
+
 /// A piece of an edge two regions share, oriented along the edge of the first region (which
 /// lies on its left).
 struct SharedPiece {
@@ -791,6 +866,7 @@ const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->seg
 const std::vector<std::string>& Domain::part_names() const { return impl_->part_names; }
 const std::vector<Crack>& Domain::cracks() const { return impl_->cracks; }
 const std::vector<Region>& Domain::regions() const { return impl_->regions; }
+bool Domain::boundary_near(const Box& box) const { return impl_->grid.may_touch(box); }
 
 int Domain::region_at(const Vec2& x) const {
   const Impl& d = *impl_;
@@ -807,8 +883,13 @@ int Domain::region_at(const Vec2& x) const {
   return -1;
 }
 
-std::vector<Ring> Domain::clip(const Box& box) const {
+std::vector<Ring> Domain::clip(const Box& box, int region) const {
   const Impl& d = *impl_;
+  if (region >= 0) {
+    const std::size_t r = static_cast<std::size_t>(region);
+    if (r >= d.regions.size()) throw Error(fmt::format("Domain::clip: no region {}", region));
+    return clip_rings(box, d.regions[r].rings, d.region_boxes[r]);
+  }
   if (!interiors_overlap(box, d.box)) return {};
   if (box.contains(d.box.lo) && box.contains(d.box.hi)) return d.rings;
   // A box the boundary cannot reach is wholly inside or wholly outside (segment_grid.hpp).
@@ -816,30 +897,7 @@ std::vector<Ring> Domain::clip(const Box& box) const {
     if (!contains(0.5 * (box.lo + box.hi))) return {};
     return {Ring{box.lo, Vec2(box.hi.x(), box.lo.y()), box.hi, Vec2(box.lo.x(), box.hi.y())}};
   }
-
-  // The exact polygons are built per call from the double rings, so concurrent calls share
-  // no CGAL object. Holes whose boxes miss the box's interior cannot change the
-  // (regularised) intersection and are left out of the sweep.
-  ExactPolygonWithHoles omega(exact_polygon(d.rings[0]));
-  for (std::size_t k = 1; k < d.rings.size(); ++k) {
-    if (interiors_overlap(box, d.ring_boxes[k])) omega.add_hole(exact_polygon(d.rings[k]));
-  }
-  ExactPolygon window;
-  window.push_back(Epeck::Point_2(box.lo.x(), box.lo.y()));
-  window.push_back(Epeck::Point_2(box.hi.x(), box.lo.y()));
-  window.push_back(Epeck::Point_2(box.hi.x(), box.hi.y()));
-  window.push_back(Epeck::Point_2(box.lo.x(), box.hi.y()));
-
-  std::vector<ExactPolygonWithHoles> pieces;
-  CGAL::intersection(omega, window, std::back_inserter(pieces));
-
-  // CGAL returns outer boundaries counter-clockwise and holes clockwise, as rings() does.
-  std::vector<Ring> out;
-  for (const ExactPolygonWithHoles& piece : pieces) {
-    out.push_back(to_ring(piece.outer_boundary()));
-    for (auto h = piece.holes_begin(); h != piece.holes_end(); ++h) out.push_back(to_ring(*h));
-  }
-  return out;
+  return clip_rings(box, d.rings, d.box);
 }
 
 }  // namespace mfree

@@ -12,7 +12,7 @@ usage (from the repository root; `bash verification/report/run.sh` builds mfree 
                                                                DIR/REPORT.md, DIR/figures/, DIR/runs/
     --mfree PATH                                               the program (default build/mfree)
 
-Sections: the convergence studies (studies.py), then stability (stability.py) and performance
+Sections: the convergence studies (studies.py), cracks and interfaces (cracks.py), then stability (stability.py) and performance
 (performance.py); each module's sections(ctx) returns a list of common.Section.
 
 Exits with status 1 when an mfree call that should have succeeded failed, a study could not be
@@ -37,6 +37,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 
+import cracks  # noqa: E402
 import performance  # noqa: E402
 import plasticity  # noqa: E402
 import stability  # noqa: E402
@@ -53,6 +54,7 @@ def main() -> int:
     print(f"mfree verification report ({'quick' if ctx.quick else 'full'} mode): runs in {ctx.work}", flush=True)
 
     sections = studies.sections(ctx)
+    sections += module_sections(ctx, "Cracks and interfaces", cracks)
     sections += module_sections(ctx, "Plasticity", plasticity)
     sections += module_sections(ctx, "Stability", stability)
     sections += module_sections(ctx, "Performance", performance)

@@ -126,6 +126,9 @@ class Domain {
   [[nodiscard]] Box bounding_box() const;
   /// Outer ring (counter-clockwise) then holes (clockwise).
   [[nodiscard]] const std::vector<Ring>& rings() const;
+  /// Whether a boundary segment (ring edge, crack or interface face) may meet the box: false
+  /// means the box lies wholly inside or wholly outside one region (a conservative test).
+  [[nodiscard]] bool boundary_near(const Box& box) const;
   /// The cracks, in the order given, and the interfaces between regions.
   [[nodiscard]] const std::vector<Crack>& cracks() const;
   /// The regions of a domain built from several; empty for one polygon.
@@ -141,8 +144,9 @@ class Domain {
   [[nodiscard]] const std::vector<std::string>& part_names() const;
   /// The part of the box inside Omega, as rings oriented like rings(): counter-clockwise
   /// outer rings and clockwise holes, so Green's-theorem integrals over all returned rings
-  /// add up to integrals over box ∩ Omega. Empty when they do not overlap.
-  [[nodiscard]] std::vector<Ring> clip(const Box& box) const;
+  /// add up to integrals over box ∩ Omega. Empty when they do not overlap. With region >= 0:
+  /// the part of the box inside that region (regions()).
+  [[nodiscard]] std::vector<Ring> clip(const Box& box, int region = -1) const;
 
  private:
   struct Impl;

@@ -1,0 +1,128 @@
+#include "mfree/quadrature/polygon_quadrature.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Partition_traits_2.h>
+#include <CGAL/partition_2.h>
+
+#include <cmath>
+#include <iterator>
+#include <list>
+
+#include "mfree/geometry/polygon_integrals.hpp"
+
+namespace mfree {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Traits = CGAL::Partition_traits_2<Kernel>;
+using Piece = Traits::Polygon_2;
+
+double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 ab = b - a, ac = c - a;
+  return ab.x() * ac.y() - ab.y() * ac.x();
+}
+
+/// The collapsed product rule on triangle (a, b, c).
+void add_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const GaussLegendre1D& g,
+                  QuadratureRule& rule) {
+  const Vec2 ab = b - a, bc = c - b;
+  const double det = std::abs(twice_area(a, b, c));
+  if (det == 0.0) return;
+  for (std::size_t i = 0; i < g.points.size(); ++i)
+    for (std::size_t j = 0; j < g.points.size(); ++j) {
+      const double u = g.points[i], v = g.points[j];
+      rule.points.push_back(a + u * (ab + v * bc));
+      rule.weights.push_back(g.weights[i] * g.weights[j] * u * det);
+    }
+}
+
+/// Marks in `keep` the vertices of the chain first..last (indices into p, first < last) that
+/// lie more than `tolerance` from the chord of the kept ones around them (Douglas–Peucker).
+void keep_corners(const std::vector<Vec2>& p, std::size_t first, std::size_t last, double tolerance,
+                  std::vector<bool>& keep) {
+  if (last <= first + 1) return;
+  const Vec2 d = p[last] - p[first];
+  const double length = d.norm();
+  std::size_t far = first;
+  double distance = 0.0;
+  for (std::size_t k = first + 1; k < last; ++k) {
+    const double e =
+        length > 0.0 ? std::abs(twice_area(p[first], p[last], p[k])) / length : (p[k] - p[first]).norm();
+    if (e > distance) {
+      distance = e;
+      far = k;
+    }
+  }
+  if (distance <= tolerance) return;
+  keep[far] = true;
+  keep_corners(p, first, far, tolerance, keep);
+  keep_corners(p, far, last, tolerance, keep);
+}
+
+/// The rule on one convex piece (counter-clockwise vertices).
+void add_convex_piece(const std::vector<Vec2>& p, const GaussLegendre1D& g, double tolerance,
+                      QuadratureRule& rule) {
+  const std::size_t n = p.size();
+  // Corners: the vertex farthest from vertex 0 and vertex 0 split the ring into two chains.
+  std::size_t opposite = 1;
+  for (std::size_t k = 2; k < n; ++k)
+    if ((p[k] - p[0]).squaredNorm() > (p[opposite] - p[0]).squaredNorm()) opposite = k;
+  std::vector<Vec2> closed(p);
+  closed.push_back(p[0]);
+  std::vector<bool> keep(n + 1, false);
+  keep[0] = keep[opposite] = keep[n] = true;
+  keep_corners(closed, 0, opposite, tolerance, keep);
+  keep_corners(closed, opposite, n, tolerance, keep);
+  std::vector<std::size_t> corners;
+  for (std::size_t k = 0; k < n; ++k)
+    if (keep[k]) corners.push_back(k);
+  // The corners' polygon, fanned.
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+    add_triangle(p[corners[0]], p[corners[k]], p[corners[k + 1]], g, rule);
+  // The caps between consecutive corners a, b and the edges from a to b: a centroid per fan
+  // triangle (a, k, k + 1).
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const std::size_t a = corners[c], b = c + 1 < corners.size() ? corners[c + 1] : n;
+    for (std::size_t k = a + 1; k < b; ++k) {
+      const double area = 0.5 * twice_area(closed[a], closed[k], closed[k + 1]);
+      if (!(area > 0.0)) continue;
+      rule.points.push_back((closed[a] + closed[k] + closed[k + 1]) / 3.0);
+      rule.weights.push_back(area);
+    }
+  }
+}
+
+}  // namespace
+
+bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule& rule) {
+  for (const Ring& ring : rings)
+    if (ring_area(ring) < -1e-14 * size * size) return false;
+  const GaussLegendre1D g = gauss_legendre(m);
+  std::vector<std::list<Piece>> partitions;
+  for (const Ring& ring : rings) {
+    // A sliver of no area (the exact intersection touching the cell at a point or along an
+    // edge, rounded) holds nothing to integrate.
+    if (ring.size() < 3 || ring_area(ring) <= 1e-14 * size * size) continue;
+    Piece polygon;
+    for (std::size_t k = 0; k < ring.size(); ++k)  // vertices that rounding made equal, once
+      if (ring[k] != ring[(k + 1) % ring.size()])
+        polygon.push_back(Traits::Point_2(ring[k].x(), ring[k].y()));
+    if (!polygon.is_simple()) return false;  // rounding made it touch itself
+    std::list<Piece>& pieces = partitions.emplace_back();
+    if (polygon.is_convex())
+      pieces.push_back(polygon);
+    else
+      CGAL::approx_convex_partition_2(polygon.vertices_begin(), polygon.vertices_end(),
+                                      std::back_inserter(pieces));
+  }
+  for (const std::list<Piece>& pieces : partitions)
+    for (const Piece& piece : pieces) {
+      std::vector<Vec2> p;
+      for (auto v = piece.vertices_begin(); v != piece.vertices_end(); ++v) p.emplace_back(v->x(), v->y());
+      if (p.size() >= 3) add_convex_piece(p, g, size / 20.0, rule);
+    }
+  return true;
+}
+
+}  // namespace mfree
