@@ -752,7 +752,7 @@ Domain Domain::from_file(const std::filesystem::path& path, const RegionOptions&
           fmt::format("mesh file '{}': a gmsh file names its regions (physical surfaces); "
                       "region names are for WKT files",
                       path.string()));
-    return read_gmsh_domain(path);
+    return read_gmsh_domain(path, default_gmsh_reader_limits(), regions.interfaces);
   }
   if (extension != ".wkt") {
     std::string accepted = ".wkt";
