@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -697,6 +698,14 @@ Domain Domain::from_regions(std::vector<std::vector<Ring>> polygons, const Regio
   double area = 0.0;
   std::vector<SharedPiece> parted;  // region edges with a part, oriented
   std::vector<int> parted_as;       // and their parts
+  // Every region edge's part (-1: none) by its ends, the lesser (x, then y) first.
+  using EdgeKey = std::array<double, 4>;
+  const auto edge_key = [](const Vec2& a, const Vec2& b) {
+    const bool a_first = a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    const Vec2 &p = a_first ? a : b, &q = a_first ? b : a;
+    return EdgeKey{p.x(), p.y(), q.x(), q.y()};
+  };
+  std::map<EdgeKey, int> part_of_edge;
   for (std::size_t r = 0; r < polygons.size(); ++r) {
     std::vector<bool> reversed;
     Region region{names[r],
@@ -710,6 +719,7 @@ Domain Domain::from_regions(std::vector<std::vector<Ring>> polygons, const Regio
         if (part < -1 || part >= static_cast<int>(part_names.size()))
           throw InputError(fmt::format("{}: edge part {} is not a named part (there are {})", source, part,
                                        part_names.size()));
+        part_of_edge.emplace(edge_key(ring[i], ring[(i + 1) % n]), part);
         if (part < 0) continue;
         parted.push_back({ring[i], ring[(i + 1) % n]});
         parted_as.push_back(part);
@@ -729,13 +739,24 @@ Domain Domain::from_regions(std::vector<std::vector<Ring>> polygons, const Regio
                     regions.size(), joined.size()));
   std::vector<Ring> rings{to_ring(joined[0].outer_boundary())};
   for (auto h = joined[0].holes_begin(); h != joined[0].holes_end(); ++h) rings.push_back(to_ring(*h));
-  // Each edge of the union lies along an edge of a region: it takes that edge's part.
+  // Each edge of the union lies along an edge of a region: it takes that edge's part. Most are
+  // a region's edge itself; the others (pieces of one, split where another region's vertex
+  // touches it) are sought among the edges with a part.
   std::vector<std::vector<int>> union_parts;
   for (const Ring& ring : rings) {
     std::vector<int>& parts = union_parts.emplace_back(ring.size(), -1);
     for (std::size_t i = 0; i < ring.size() && !parted.empty(); ++i) {
+      const Vec2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
+      if (const auto same = part_of_edge.find(edge_key(a, b)); same != part_of_edge.end()) {
+        parts[i] = same->second;
+        continue;
+      }
+      const Box box{a.cwiseMin(b), a.cwiseMax(b)};
       for (std::size_t e = 0; e < parted.size(); ++e) {
-        const Vec2 &a = ring[i], &b = ring[(i + 1) % ring.size()], &c = parted[e].a, &d = parted[e].b;
+        const Vec2 &c = parted[e].a, &d = parted[e].b;
+        if (box.lo.x() < std::min(c.x(), d.x()) || box.hi.x() > std::max(c.x(), d.x()) ||
+            box.lo.y() < std::min(c.y(), d.y()) || box.hi.y() > std::max(c.y(), d.y()))
+          continue;  // a -> b does not lie within c -> d's box
         if (CGAL::collinear(fast_point(c), fast_point(d), fast_point(a)) &&
             CGAL::collinear(fast_point(c), fast_point(d), fast_point(b)) && (a - c).dot(d - c) >= 0.0 &&
             (b - c).dot(d - c) >= 0.0 && (a - d).dot(c - d) >= 0.0 && (b - d).dot(c - d) >= 0.0) {
@@ -827,7 +848,7 @@ Domain Domain::from_file(const std::filesystem::path& path, const RegionOptions&
           fmt::format("mesh file '{}': a gmsh file names its regions (physical surfaces); "
                       "region names are for WKT files",
                       path.string()));
-    return read_gmsh_domain(path);
+    return read_gmsh_domain(path, default_gmsh_reader_limits(), regions.interfaces);
   }
   if (extension != ".wkt") {
     std::string accepted = ".wkt";

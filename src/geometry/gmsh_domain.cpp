@@ -29,11 +29,13 @@ namespace mfree {
 
 namespace {
 
-/// One line element of the boundary: its end nodes (gmsh node tags) and its part.
+/// One line element of the boundary of the domain or of a region: its end nodes (gmsh node
+/// tags), its part and its region. An element two regions share appears once for each.
 struct BoundaryEdge {
   std::size_t a;
   std::size_t b;
-  int part;  // index into BoundaryMesh::part_names, -1: none
+  int part;    // index into BoundaryMesh::part_names, -1: none (and on an interface)
+  int region;  // index into BoundaryMesh::region_names, -1: the file has no physical surface
 };
 
 /// One line element of a crack curve: its end nodes, its curve (gmsh tag) and its name.
@@ -44,12 +46,13 @@ struct CrackEdge {
   int name;  // index into BoundaryMesh::crack_names, -1: the curve is in no physical group
 };
 
-/// What is read from gmsh: the line elements of the boundary and of the crack curves, and the
-/// coordinates of their nodes.
+/// What is read from gmsh: the line elements of the boundary (of each region, when the file
+/// has physical surfaces) and of the crack curves, and the coordinates of their nodes.
 struct BoundaryMesh {
   std::vector<BoundaryEdge> edges;
   std::unordered_map<std::size_t, Vec2> nodes;
   std::vector<std::string> part_names;
+  std::vector<std::string> region_names;  // the physical surfaces, by group tag
   std::vector<CrackEdge> crack_edges;    // per crack curve, its elements in the curve's order
   std::vector<std::string> crack_names;  // physical names of the crack curves, by group tag
 };
@@ -63,6 +66,22 @@ std::string accepted_extensions() {
   std::string list;
   for (const std::string_view e : gmsh_extensions) list += fmt::format("{}{}", list.empty() ? "" : ", ", e);
   return list;
+}
+
+/// "curve 5" or "curves 5, 6 and 9" for kind "curve".
+std::string tag_list(std::string_view kind, const std::vector<int>& tags) {
+  std::string out = fmt::format("{}{} ", kind, tags.size() == 1 ? "" : "s");
+  for (std::size_t i = 0; i < tags.size(); ++i)
+    out += fmt::format("{}{}", i == 0 ? "" : (i + 1 == tags.size() ? " and " : ", "), tags[i]);
+  return out;
+}
+
+/// "'a'" or "'a', 'b' and 'c'".
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += fmt::format("{}'{}'", i == 0 ? "" : (i + 1 == names.size() ? " and " : ", "), names[i]);
+  return out;
 }
 
 /// One gmsh session: initialised quietly (no configuration files, nothing on the terminal),
@@ -122,13 +141,10 @@ std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::
     std::sort(names.begin(), names.end());
     names.erase(std::unique(names.begin(), names.end()), names.end());
     if (names.size() > 1) {
-      std::string list;
-      for (std::size_t i = 0; i < names.size(); ++i)
-        list += fmt::format("{}'{}'", i == 0 ? "" : (i + 1 == names.size() ? " and " : ", "), names[i]);
       throw InputError(
           fmt::format("{}: {} {} belongs to the physical curves {}; a {} belongs to one "
                       "named part only",
-                      source, kind, curve, list, kind));
+                      source, kind, curve, quoted_list(names), kind));
     }
     group_of_curve[curve] = groups.empty() ? 0 : groups.front();
     if (!groups.empty()) used[groups.front()] = names.front();
@@ -141,6 +157,55 @@ std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::
   }
   std::map<int, int> out;
   for (const auto& [curve, group] : group_of_curve) out[curve] = group == 0 ? -1 : part_of_group[group];
+  return out;
+}
+
+/// The regions of the model: its dim-2 physical groups ("Physical Surface"), named by group
+/// (by number for a group without a name) and numbered by group tag; groups of one name are
+/// one region. Returns the surfaces of each region, none when the model has no physical
+/// surface. Throws InputError when a surface is in no group, or in groups of two names.
+std::vector<gmsh::vectorpair> surface_regions(const gmsh::vectorpair& surfaces,
+                                              std::vector<std::string>& region_names,
+                                              const std::string& source) {
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 2);
+  std::map<int, std::string> name_of_group;  // ordered by tag
+  for (const auto& [dim, group] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(2, group, name);
+    name_of_group[group] = name.empty() ? std::to_string(group) : name;
+  }
+  for (const auto& [group, name] : name_of_group)
+    if (std::find(region_names.begin(), region_names.end(), name) == region_names.end())
+      region_names.push_back(name);
+  std::vector<gmsh::vectorpair> out(region_names.size());
+  if (out.empty()) return out;
+  std::vector<int> orphans;
+  for (const auto& [dim, surface] : surfaces) {
+    std::vector<int> tags;
+    gmsh::model::getPhysicalGroupsForEntity(2, surface, tags);
+    std::vector<std::string> names;
+    for (int g : tags) names.push_back(name_of_group.at(g));
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    if (names.empty()) {
+      orphans.push_back(surface);
+      continue;
+    }
+    if (names.size() > 1)
+      throw InputError(
+          fmt::format("{}: surface {} belongs to the physical surfaces {}; a surface belongs to "
+                      "one region (physical surface) only",
+                      source, surface, quoted_list(names)));
+    out[std::find(region_names.begin(), region_names.end(), names[0]) - region_names.begin()].emplace_back(
+        2, surface);
+  }
+  if (!orphans.empty())
+    throw InputError(fmt::format(
+        "{}: {} belong{} to no physical surface; the physical surfaces ({}) are the regions of the "
+        "domain and every surface belongs to one: add {} to one",
+        source, tag_list("surface", orphans), orphans.size() == 1 ? "s" : "", quoted_list(region_names),
+        orphans.size() == 1 ? "it" : "them"));
   return out;
 }
 
@@ -221,16 +286,33 @@ BoundaryMesh read_boundary(const std::string& file) {
 
   BoundaryMesh mesh;
   const std::map<int, int> part = curve_parts(boundary, mesh.part_names, file, "boundary curve");
+  // With physical surfaces, the boundary of each region (its curves bounding exactly one of its
+  // surfaces): the domain's boundary curves with their parts, and the interfaces, which two
+  // regions share and which carry no part.
+  const std::vector<gmsh::vectorpair> regions = surface_regions(surfaces, mesh.region_names, file);
+  std::vector<gmsh::vectorpair> region_boundaries;
+  if (regions.empty()) region_boundaries.push_back(boundary);
+  for (const gmsh::vectorpair& region : regions)
+    gmsh::model::getBoundary(region, region_boundaries.emplace_back(), /*combined=*/true, /*oriented=*/false,
+                             /*recursive=*/false);
   const bool is_msh = lower_case(std::filesystem::path(file).extension().string()) == ".msh";
-  for (const auto& [dim, curve] : boundary) {
-    const auto elements = curve_elements(curve);
-    for (const auto& [a, b] : elements) mesh.edges.push_back(BoundaryEdge{a, b, part.at(curve)});
-    if (elements.empty()) {
-      throw InputError(fmt::format(
-          "{}: boundary curve {} has no 1D mesh elements{}", file, curve,
-          is_msh ? " (a .msh file holds only the elements of physical groups unless written with "
-                   "Mesh.SaveAll = 1: put every boundary curve in a physical curve)"
-                 : ""));
+  for (std::size_t r = 0; r < region_boundaries.size(); ++r) {
+    const int region = regions.empty() ? -1 : static_cast<int>(r);
+    for (const auto& [dim, curve] : region_boundaries[r]) {
+      const auto on_boundary = part.find(curve);
+      const int curve_part = on_boundary == part.end() ? -1 : on_boundary->second;
+      const auto elements = curve_elements(curve);
+      for (const auto& [a, b] : elements) mesh.edges.push_back(BoundaryEdge{a, b, curve_part, region});
+      if (elements.empty()) {
+        const std::string_view kind = on_boundary == part.end() ? "interface curve" : "boundary curve";
+        throw InputError(fmt::format(
+            "{}: {} {} has no 1D mesh elements{}", file, kind, curve,
+            is_msh
+                ? fmt::format(" (a .msh file holds only the elements of physical groups unless written with "
+                              "Mesh.SaveAll = 1: put every {} in a physical curve)",
+                              kind)
+                : ""));
+      }
     }
   }
   const gmsh::vectorpair cracks = crack_curves(surfaces, curves);
@@ -262,8 +344,9 @@ BoundaryMesh read_boundary(const std::string& file) {
 }
 
 // The boundary mesh through a pipe from the child process that read it: 'M' and the mesh
-// (nodes: tag, x, y; edges: a, b, part; part names; crack edges: a, b, curve, name; crack
-// names), or 'E' and an error message. Counts are std::size_t, names their length and bytes.
+// (nodes: tag, x, y; edges: a, b, part, region; part names; region names; crack edges: a, b,
+// curve, name; crack names), or 'E' and an error message. Counts are std::size_t, names their
+// length and bytes.
 
 template <class T>
 void put(std::string& out, const T& value) {
@@ -288,6 +371,7 @@ std::string serialise(const BoundaryMesh& mesh) {
     }
   };
   put_names(mesh.part_names);
+  put_names(mesh.region_names);
   put(out, mesh.crack_edges.size());
   for (const CrackEdge& e : mesh.crack_edges) put(out, e);
   put_names(mesh.crack_names);
@@ -326,10 +410,16 @@ BoundaryMesh deserialise(const std::string& bytes, const std::string& file) {
     }
   };
   take_names(mesh.part_names);
+  take_names(mesh.region_names);
   mesh.crack_edges.resize(count());
   for (CrackEdge& e : mesh.crack_edges) take(&e, sizeof e);
   take_names(mesh.crack_names);
-  if (at != bytes.size()) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
+  const int regions = static_cast<int>(mesh.region_names.size());
+  const bool regions_known = std::all_of(mesh.edges.begin(), mesh.edges.end(), [&](const BoundaryEdge& e) {
+    return regions == 0 ? e.region == -1 : e.region >= 0 && e.region < regions;
+  });
+  if (at != bytes.size() || !regions_known)
+    throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
   return mesh;
 }
 
@@ -403,21 +493,22 @@ BoundaryMesh read_isolated(const std::string& file, const GmshReaderLimits& limi
   return deserialise(out.output, file);
 }
 
-/// Closed rings from the boundary edges: every node must end exactly two edges. Returns the
+/// Closed rings from boundary edges: every node must end exactly two edges. Returns the
 /// rings (vertices in chain order) and, per ring, the part of edge i (vertex i to i + 1).
-std::pair<std::vector<Ring>, std::vector<std::vector<int>>> chain_rings(const BoundaryMesh& mesh,
-                                                                          const std::string& source) {
+std::pair<std::vector<Ring>, std::vector<std::vector<int>>> chain_rings(
+    const std::vector<BoundaryEdge>& edges, const std::unordered_map<std::size_t, Vec2>& nodes,
+    const std::string& source) {
   std::unordered_map<std::size_t, std::vector<std::size_t>> edges_at;  // node -> its edges
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    edges_at[mesh.edges[e].a].push_back(e);
-    edges_at[mesh.edges[e].b].push_back(e);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    edges_at[edges[e].a].push_back(e);
+    edges_at[edges[e].b].push_back(e);
   }
   // Report the lowest offending node, so that the message does not depend on hash order.
   std::size_t worst = 0;
   for (const auto& [node, at] : edges_at)
     if (at.size() != 2 && (worst == 0 || node < worst)) worst = node;
   if (worst != 0) {
-    const Vec2& x = mesh.nodes.at(worst);
+    const Vec2& x = nodes.at(worst);
     const std::size_t n = edges_at.at(worst).size();
     if (n == 1) {
       throw InputError(fmt::format("{}: a boundary ring does not close: it ends at ({}, {}) (node {})", source,
@@ -430,18 +521,18 @@ std::pair<std::vector<Ring>, std::vector<std::vector<int>>> chain_rings(const Bo
 
   std::vector<Ring> rings;
   std::vector<std::vector<int>> parts;
-  std::vector<bool> used(mesh.edges.size(), false);
-  for (std::size_t first = 0; first < mesh.edges.size(); ++first) {
+  std::vector<bool> used(edges.size(), false);
+  for (std::size_t first = 0; first < edges.size(); ++first) {
     if (used[first]) continue;
     Ring ring;
     std::vector<int> ring_parts;
-    const std::size_t start = mesh.edges[first].a;
+    const std::size_t start = edges[first].a;
     std::size_t node = start;
     std::size_t edge = first;
     do {
       used[edge] = true;
-      const BoundaryEdge& e = mesh.edges[edge];
-      ring.push_back(mesh.nodes.at(node));
+      const BoundaryEdge& e = edges[edge];
+      ring.push_back(nodes.at(node));
       ring_parts.push_back(e.part);
       node = e.a == node ? e.b : e.a;
       const std::vector<std::size_t>& at = edges_at.at(node);
@@ -471,9 +562,11 @@ std::string describe(const Ring& ring) {
   return fmt::format("[{}, {}] x [{}, {}]", b.lo.x(), b.hi.x(), b.lo.y(), b.hi.y());
 }
 
-/// Puts the outer ring first. A ring inside an even number of others bounds a region from
-/// outside; there must be exactly one such ring (one connected domain).
-void outer_ring_first(std::vector<Ring>& rings, std::vector<std::vector<int>>& parts, const std::string& source) {
+/// Puts the outer ring first. A ring inside an even number of others bounds a piece from
+/// outside; there must be exactly one such ring (one connected domain, or region when
+/// `region`).
+void outer_ring_first(std::vector<Ring>& rings, std::vector<std::vector<int>>& parts,
+                      const std::string& source, bool region) {
   std::vector<std::size_t> outer;
   for (std::size_t i = 0; i < rings.size(); ++i) {
     int depth = 0;
@@ -483,12 +576,43 @@ void outer_ring_first(std::vector<Ring>& rings, std::vector<std::vector<int>>& p
   if (outer.size() != 1) {
     std::string found;
     for (std::size_t i : outer) found += fmt::format("{}{}", found.empty() ? "" : ", ", describe(rings[i]));
-    throw InputError(fmt::format("{}: the surfaces form {} disconnected regions, with outer boundaries in "
-                                 "the boxes {}; mfree reads one connected domain (holes allowed)",
-                                 source, outer.size(), found));
+    throw InputError(
+        region
+            ? fmt::format("{}: its surfaces form {} disconnected pieces, with outer boundaries in the boxes "
+                          "{}; a physical surface is one connected region (holes allowed): give each "
+                          "piece a physical surface of its own",
+                          source, outer.size(), found)
+            : fmt::format("{}: the surfaces form {} disconnected regions, with outer boundaries in "
+                          "the boxes {}; mfree reads one connected domain (holes allowed)",
+                          source, outer.size(), found));
   }
   std::swap(rings[0], rings[outer[0]]);
   std::swap(parts[0], parts[outer[0]]);
+}
+
+/// The domain of a file without physical surfaces: the polygon of its boundary.
+Domain one_polygon(const BoundaryMesh& mesh, const std::string& source) {
+  auto [rings, parts] = chain_rings(mesh.edges, mesh.nodes, source);
+  outer_ring_first(rings, parts, source, /*region=*/false);
+  return Domain::from_rings(std::move(rings), std::move(parts), mesh.part_names, source);
+}
+
+/// The domain of a file with physical surfaces: the union of its regions (Domain::from_regions),
+/// the polygon of each chained from the line elements of its boundary.
+Domain union_of_regions(const BoundaryMesh& mesh, const std::string& source, bool interfaces) {
+  std::vector<std::vector<BoundaryEdge>> edges(mesh.region_names.size());
+  for (const BoundaryEdge& e : mesh.edges) edges[e.region].push_back(e);
+  std::vector<std::vector<Ring>> polygons;
+  std::vector<std::vector<std::vector<int>>> parts;
+  for (std::size_t r = 0; r < edges.size(); ++r) {
+    const std::string where = fmt::format("{}, physical surface '{}'", source, mesh.region_names[r]);
+    auto [rings, ring_parts] = chain_rings(edges[r], mesh.nodes, where);
+    outer_ring_first(rings, ring_parts, where, /*region=*/true);
+    polygons.push_back(std::move(rings));
+    parts.push_back(std::move(ring_parts));
+  }
+  return Domain::from_regions(std::move(polygons), RegionOptions{mesh.region_names, interfaces}, source,
+                              std::move(parts), mesh.part_names);
 }
 
 /// A crack chained from the line elements of its curves: its vertices in order, its name and
@@ -498,14 +622,6 @@ struct CrackChain {
   std::string name;
   std::vector<int> curves;
 };
-
-/// "curve 5" or "curves 5, 6 and 9".
-std::string curve_list(const std::vector<int>& curves) {
-  std::string out = curves.size() == 1 ? "curve " : "curves ";
-  for (std::size_t i = 0; i < curves.size(); ++i)
-    out += fmt::format("{}{}", i == 0 ? "" : (i + 1 == curves.size() ? " and " : ", "), curves[i]);
-  return out;
-}
 
 /// The crack edges of one connected set of crack curves, and its end nodes (the nodes that end
 /// one edge; none for a closed loop).
@@ -534,7 +650,7 @@ std::vector<CrackComponent> crack_components(const BoundaryMesh& mesh, const std
         "{}: embedded {}: a branch point at ({}, {}) (node {}, where {} of their line elements end); "
         "a crack is one unbranched line and cracks do not touch: make the branches separate cracks that "
         "do not meet",
-        source, curve_list({curves.begin(), curves.end()}), x.x(), x.y(), node, at.size()));
+        source, tag_list("curve", {curves.begin(), curves.end()}), x.x(), x.y(), node, at.size()));
   }
   std::vector<CrackComponent> out;
   std::vector<bool> seen(edges.size(), false);
@@ -606,7 +722,7 @@ std::vector<CrackChain> chain_cracks(const BoundaryMesh& mesh, const std::string
           "{}: embedded {}: a closed loop through ({}, {}); a crack is an open line with two ends. "
           "An inner boundary is a hole: put its curve loop in the surface (Plane Surface(s) = {{outer, "
           "hole}};) instead of embedding it",
-          source, curve_list(c.curves), x.x(), x.y()));
+          source, tag_list("curve", c.curves), x.x(), x.y()));
     }
     std::set<int> names;
     for (std::size_t e : c.edges) {
@@ -623,14 +739,15 @@ std::vector<CrackChain> chain_cracks(const BoundaryMesh& mesh, const std::string
       throw InputError(
           fmt::format("{}: embedded {}: one line in the physical curves '{}' and '{}'; "
                       "a crack has one name: put its curves in one physical curve",
-                      source, curve_list(c.curves), mesh.crack_names[*names.begin()],
+                      source, tag_list("curve", c.curves), mesh.crack_names[*names.begin()],
                       mesh.crack_names[*std::next(names.begin())]));
     const int name = *names.begin();
     if (const auto other = by_name.find(name); other != by_name.end())
-      throw InputError(fmt::format(
-          "{}: the physical curve '{}' holds two separate lines (embedded {} and {}); "
-          "a crack is one line: give each its own physical curve",
-          source, mesh.crack_names[name], curve_list(other->second.curves), curve_list(c.curves)));
+      throw InputError(
+          fmt::format("{}: the physical curve '{}' holds two separate lines (embedded {} and {}); "
+                      "a crack is one line: give each its own physical curve",
+                      source, mesh.crack_names[name], tag_list("curve", other->second.curves),
+                      tag_list("curve", c.curves)));
     by_name[name] = CrackChain{walk(mesh, c), mesh.crack_names[name], c.curves};
   }
   std::vector<CrackChain> out;
@@ -655,7 +772,7 @@ Domain with_gmsh_cracks(const Domain& domain, std::vector<CrackChain> chains, co
       if (message.find(fmt::format("crack '{}'", c.name)) != std::string::npos ||
           message.find(fmt::format("crack name '{}'", c.name)) != std::string::npos)
         curves += fmt::format("{}crack '{}' is the embedded {}", curves.empty() ? "" : ", ", c.name,
-                              curve_list(c.curves));
+                              tag_list("curve", c.curves));
     throw InputError(curves.empty() ? message : fmt::format("{} ({})", message, curves));
   }
 }
@@ -673,7 +790,7 @@ GmshReaderLimits default_gmsh_reader_limits() {
                           static_cast<std::size_t>(std::min(cap, 0.5 * available_memory().bytes))};
 }
 
-Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimits& limits) {
+Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimits& limits, bool interfaces) {
   const std::string source = file.string();
   if (!is_gmsh_file(file)) {
     throw InputError(fmt::format("{}: unknown extension '{}' for a gmsh file; gmsh files end in {}", source,
@@ -687,9 +804,8 @@ Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimit
   if (!std::ifstream(file)) throw InputError(fmt::format("cannot read mesh file '{}'", source));
 
   BoundaryMesh mesh = read_isolated(source, limits);
-  auto [rings, parts] = chain_rings(mesh, source);
-  outer_ring_first(rings, parts, source);
-  Domain domain = Domain::from_rings(std::move(rings), std::move(parts), std::move(mesh.part_names), source);
+  Domain domain =
+      mesh.region_names.empty() ? one_polygon(mesh, source) : union_of_regions(mesh, source, interfaces);
   std::vector<CrackChain> cracks = chain_cracks(mesh, source);
   if (cracks.empty()) return domain;
   return with_gmsh_cracks(domain, std::move(cracks), source);

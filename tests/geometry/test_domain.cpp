@@ -382,6 +382,20 @@ TEST_CASE("regions: the union of polygons that share edges, interfaces along the
   CHECK(smooth.regions()[0].name == "region1");
   CHECK(smooth.boundary().size() >= 4);
 
+  // Parts pass from the region edges to the union's edges along them, also to a piece of one:
+  // the top of the lower rectangle is split at (1, 1), where the upper square starts.
+  const Domain parted = Domain::from_regions({{{Vec2(0, 0), Vec2(2, 0), Vec2(2, 1), Vec2(0, 1)}},
+                                              {{Vec2(1, 1), Vec2(2, 1), Vec2(2, 2), Vec2(1, 2)}}},
+                                             {{}, false}, "parted", {{{0, 1, 2, -1}}, {{-1, 1, 2, -1}}},
+                                             {"bottom", "right", "top"});
+  std::vector<double> part_lengths(4, 0.0);  // bottom, right, top, none
+  for (const mfree::BoundarySegment& s : parted.boundary())
+    if (s.ring == 0) part_lengths[s.part < 0 ? 3 : s.part] += s.length;
+  CHECK(part_lengths == std::vector<double>{2.0, 2.0, 2.0, 2.0});
+  for (const mfree::BoundarySegment& s : parted.boundary())
+    if (s.ring == 0 && s.a.y() == 1 && s.b.y() == 1)
+      CHECK((s.part >= 0 && parted.part_names()[s.part] == "top"));
+
   // Refusals: apart, overlapping, an inclusion, a crack across the interface.
   const auto refusal = [](const std::string& text) {
     return input_error_message([&] { (void)Domain::from_wkt(text, "regions.wkt"); });

@@ -679,3 +679,264 @@ TEST_CASE("gmsh cracks: embedded curves that are not cracks are InputErrors nami
                             Contains("crack 'edge' is the embedded curve 5"));
   }
 }
+
+namespace {
+
+/// The area of each region of the domain (its rings' signed areas added).
+std::vector<double> region_areas(const Domain& d) {
+  std::vector<double> out;
+  for (const mfree::Region& r : d.regions()) {
+    double area = 0.0;
+    for (const mfree::Ring& ring : r.rings) area += mfree::ring_area(ring);
+    out.push_back(area);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("gmsh regions: physical surfaces are the regions, the curve they share an interface",
+          "[geometry][gmsh][regions]") {
+  const mfree::testing::ScratchFolder folder("gmsh_regions");
+  // core [0, 1] x [0, 1] and shell [1, 3] x [0, 1] share curve 7 (x = 1, in no physical curve);
+  // the outer curves are named, bottom and top in two pieces each; element size 0.25.
+  const std::string rectangles = R"(
+    h = 0.25;
+    Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h}; Point(3) = {3, 0, 0, h};
+    Point(4) = {3, 1, 0, h}; Point(5) = {1, 1, 0, h}; Point(6) = {0, 1, 0, h};
+    Line(1) = {1, 2}; Line(2) = {3, 2}; Line(3) = {3, 4}; Line(4) = {4, 5};
+    Line(5) = {6, 5}; Line(6) = {6, 1}; Line(7) = {5, 2};
+    Curve Loop(1) = {1, -7, -5, 6}; Plane Surface(1) = {1};
+    Curve Loop(2) = {-2, 3, 4, 7}; Plane Surface(2) = {2};
+    Physical Surface("core") = {1};
+    Physical Surface("shell") = {2};
+    Physical Curve("bottom") = {1, 2};
+    Physical Curve("right") = {3};
+    Physical Curve("top") = {4, 5};
+    Physical Curve("left") = {6};
+  )";
+  const std::string path = write_file(folder, "two_rectangles.geo", rectangles);
+  const Domain d = Domain::from_file(path);
+  REQUIRE(d.regions().size() == 2);
+  CHECK(d.regions()[0].name == "core");
+  CHECK(d.regions()[1].name == "shell");
+  const std::vector<double> areas = region_areas(d);
+  CHECK(areas[0] == Approx(1.0).epsilon(1e-15));
+  CHECK(areas[1] == Approx(2.0).epsilon(1e-15));
+  CHECK(std::abs(areas[0] + areas[1] - d.area()) <= 1e-14 * d.area());
+  CHECK(d.area() == Approx(3.0).epsilon(1e-15));
+  // The union's ring keeps every node of the boundary curves: 12 + 4 + 12 + 4.
+  REQUIRE(d.rings().size() == 1);
+  CHECK(d.rings()[0].size() == 32);
+
+  // The interface: curve 7, oriented along core's counter-clockwise boundary (core on its left).
+  REQUIRE(d.cracks().size() == 1);
+  const mfree::Crack& c = d.cracks()[0];
+  CHECK(c.name == "core/shell");
+  CHECK(c.interface());
+  CHECK(c.left == 0);
+  CHECK(c.right == 1);
+  CHECK(!c.tip[0]);
+  CHECK(!c.tip[1]);
+  REQUIRE(c.points.size() == 5);
+  CHECK(c.points.front() == Vec2(1, 0));
+  CHECK(c.points.back() == Vec2(1, 1));
+  for (const Vec2& x : c.points) CHECK(x.x() == 1.0);
+  CHECK(d.region_at(Vec2(0.5, 0.5)) == 0);
+  CHECK(d.region_at(Vec2(2.0, 0.5)) == 1);
+  CHECK(d.region_at(Vec2(-0.5, 0.5)) == -1);
+
+  // The physical curves name the union's edges; the interface carries none of them.
+  const std::map<std::string, PartSum> parts = part_sums(d);
+  CHECK(parts.at("bottom").length == Approx(3.0).epsilon(1e-15));
+  CHECK(parts.at("bottom").segments == 12);
+  CHECK(parts.at("top").length == Approx(3.0).epsilon(1e-15));
+  CHECK(parts.at("right").length == Approx(1.0).epsilon(1e-15));
+  CHECK(parts.at("left").length == Approx(1.0).epsilon(1e-15));
+  CHECK(parts.at("left").segments == 4);
+  CHECK(parts.count("<none>") == 0);
+  for (const BoundarySegment& s : d.boundary()) {
+    if (s.ring < 0) continue;
+    INFO("segment " << s.edge << " from (" << s.a.x() << ", " << s.a.y() << ")");
+    REQUIRE(s.part >= 0);
+    CHECK((d.part_names()[s.part] == "left") == (s.a.x() == 0 && s.b.x() == 0));
+    CHECK((d.part_names()[s.part] == "right") == (s.a.x() == 3 && s.b.x() == 3));
+    CHECK((d.part_names()[s.part] == "bottom") == (s.a.y() == 0 && s.b.y() == 0));
+  }
+
+  // Without interfaces: the same regions and parts, curve 7 inside the domain.
+  const Domain smooth = Domain::from_file(path, mfree::RegionOptions{{}, false});
+  REQUIRE(smooth.regions().size() == 2);
+  CHECK(smooth.regions()[1].name == "shell");
+  CHECK(smooth.cracks().empty());
+  CHECK(smooth.area() == Approx(3.0).epsilon(1e-15));
+  CHECK(smooth.rings() == d.rings());
+  CHECK(smooth.region_at(Vec2(2.0, 0.5)) == 1);
+
+  // An embedded crack in the shell comes on top of the interface.
+  const std::string cracked = write_file(folder, "cracked.geo", rectangles + R"(
+    Point(7) = {2, 0.25, 0, h}; Point(8) = {2, 0.75, 0, h};
+    Line(8) = {7, 8};
+    Curve{8} In Surface{2};
+    Physical Curve("crack") = {8};
+  )");
+  const Domain with_crack = Domain::from_file(cracked);
+  REQUIRE(with_crack.cracks().size() == 2);
+  CHECK(with_crack.cracks()[0].name == "core/shell");
+  CHECK(with_crack.cracks()[1].name == "crack");
+  CHECK(!with_crack.cracks()[1].interface());
+  CHECK(with_crack.cracks()[1].tip[0]);
+  CHECK(with_crack.cracks()[1].tip[1]);
+  CHECK(with_crack.cracks()[1].points.front() == Vec2(2, 0.25));
+  CHECK(with_crack.cracks()[1].points.back() == Vec2(2, 0.75));
+}
+
+TEST_CASE("gmsh regions: a quarter annulus in two layers (OpenCASCADE), the interface an arc",
+          "[geometry][gmsh][regions]") {
+  const mfree::testing::ScratchFolder folder("gmsh_layers");
+  // The quarter annulus 1 <= r <= 2 split by the arc r = 1.5 (a fragment); the inner layer is the
+  // surface within the box [0, 1.5]^2.
+  const std::string path = write_file(folder, "layers.geo", R"(
+    SetFactory("OpenCASCADE");
+    Mesh.MeshSizeMin = 0.05; Mesh.MeshSizeMax = 0.05;
+    Disk(1) = {0, 0, 0, 2};
+    Disk(2) = {0, 0, 0, 1};
+    Rectangle(3) = {0, 0, 0, 2, 2};
+    BooleanDifference(4) = {Surface{1}; Delete;}{Surface{2}; Delete;};
+    BooleanIntersection(5) = {Surface{4}; Delete;}{Surface{3}; Delete;};
+    Circle(20) = {0, 0, 0, 1.5, 0, Pi / 2};
+    BooleanFragments{Surface{5}; Delete;}{Curve{20}; Delete;}
+    inner() = Surface In BoundingBox{-0.1, -0.1, -0.1, 1.6, 1.6, 0.1};
+    outer() = Surface{:};
+    outer() -= inner();
+    Physical Surface("inner") = inner();
+    Physical Surface("outer") = outer();
+  )");
+  const Domain d = Domain::from_file(path);
+  REQUIRE(d.regions().size() == 2);
+  CHECK(d.regions()[0].name == "inner");
+  CHECK(d.regions()[1].name == "outer");
+  const std::vector<double> areas = region_areas(d);
+  CHECK(std::abs(areas[0] + areas[1] - d.area()) <= 1e-14 * d.area());
+  // Inscribed in the curved layers: within 0.1 % of pi (c^2 - a^2) / 4 and pi (b^2 - c^2) / 4.
+  CHECK(areas[0] == Approx(pi * (1.5 * 1.5 - 1) / 4).epsilon(1e-3));
+  CHECK(areas[1] == Approx(pi * (4 - 1.5 * 1.5) / 4).epsilon(1e-3));
+
+  // The interface runs along the inner layer's counter-clockwise boundary, from the x axis to
+  // the y axis, its vertices on r = 1.5.
+  REQUIRE(d.cracks().size() == 1);
+  const mfree::Crack& c = d.cracks()[0];
+  CHECK(c.name == "inner/outer");
+  CHECK(c.left == 0);
+  CHECK(c.right == 1);
+  CHECK(!c.tip[0]);
+  CHECK(!c.tip[1]);
+  CHECK(c.points.size() >= 40);
+  for (const Vec2& x : c.points) CHECK(x.norm() == Approx(1.5).epsilon(1e-12));
+  CHECK(c.points.front().x() == Approx(1.5).epsilon(1e-12));
+  CHECK(std::abs(c.points.front().y()) < 1e-12);
+  CHECK(std::abs(c.points.back().x()) < 1e-12);
+  CHECK(c.points.back().y() == Approx(1.5).epsilon(1e-12));
+
+  // Either side of the arc, on the diagonal and near the axes; outside the annulus.
+  for (const double t : {0.05, pi / 4, pi / 2 - 0.05}) {
+    INFO("theta " << t);
+    const Vec2 e(std::cos(t), std::sin(t));
+    CHECK(d.region_at(1.45 * e) == 0);
+    CHECK(d.region_at(1.55 * e) == 1);
+    CHECK(d.region_at(1.2 * e) == 0);
+    CHECK(d.region_at(1.9 * e) == 1);
+    CHECK(d.region_at(0.5 * e) == -1);
+  }
+}
+
+TEST_CASE("gmsh regions: surfaces in no physical surface or two, a disconnected region, an inclusion",
+          "[geometry][gmsh][regions]") {
+  using Catch::Contains;
+  const mfree::testing::ScratchFolder folder("gmsh_region_errors");
+  // Three unit squares in a row, surfaces 1, 2 and 3.
+  const std::string squares = R"(
+    Point(1) = {0, 0, 0, 0.5}; Point(2) = {1, 0, 0, 0.5}; Point(3) = {2, 0, 0, 0.5}; Point(4) = {3, 0, 0, 0.5};
+    Point(5) = {0, 1, 0, 0.5}; Point(6) = {1, 1, 0, 0.5}; Point(7) = {2, 1, 0, 0.5}; Point(8) = {3, 1, 0, 0.5};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4};
+    Line(4) = {5, 6}; Line(5) = {6, 7}; Line(6) = {7, 8};
+    Line(7) = {1, 5}; Line(8) = {2, 6}; Line(9) = {3, 7}; Line(10) = {4, 8};
+    Curve Loop(1) = {1, 8, -4, -7}; Plane Surface(1) = {1};
+    Curve Loop(2) = {2, 9, -5, -8}; Plane Surface(2) = {2};
+    Curve Loop(3) = {3, 10, -6, -9}; Plane Surface(3) = {3};
+  )";
+  const std::string orphans =
+      write_file(folder, "orphans.geo", squares + "Physical Surface(\"core\") = {2};\n");
+  CHECK_THAT(input_error_message(orphans), Contains(orphans) &&
+                                               Contains("surfaces 1 and 3 belong to no physical "
+                                                        "surface") &&
+                                               Contains("('core')"));
+  const std::string twice =
+      write_file(folder, "twice.geo",
+                 squares + "Physical Surface(\"a\") = {1, 2};\nPhysical Surface(\"b\") = {2, 3};\n");
+  CHECK_THAT(input_error_message(twice),
+             Contains(twice) && Contains("surface 2 belongs to the physical surfaces 'a' and 'b'"));
+  const std::string apart = write_file(
+      folder, "apart.geo", squares + "Physical Surface(\"ends\") = {1, 3};\nPhysical Surface(7) = {2};\n");
+  CHECK_THAT(input_error_message(apart), Contains(apart + ", physical surface 'ends': its surfaces form 2 "
+                                                          "disconnected pieces"));
+  // An unnamed group is named by its number; regions come in the order of their groups' tags.
+  const Domain numbered = Domain::from_file(
+      write_file(folder, "numbered.geo",
+                 squares + "Physical Surface(\"two\", 8) = {1, 2};\nPhysical Surface(7) = {3};\n"));
+  REQUIRE(numbered.regions().size() == 2);
+  CHECK(numbered.regions()[0].name == "7");
+  CHECK(numbered.regions()[1].name == "two");
+  CHECK(region_areas(numbered)[0] == Approx(1.0).epsilon(1e-15));
+  CHECK(region_areas(numbered)[1] == Approx(2.0).epsilon(1e-15));
+  REQUIRE(numbered.cracks().size() == 1);
+  CHECK(numbered.cracks()[0].name == "7/two");
+  CHECK(numbered.cracks()[0].points.front() == Vec2(2, 1));  // along region 7's edge x = 2, downwards
+
+  // A disk inside a square with a hole: the interface is a closed loop.
+  const std::string inclusion = write_file(folder, "inclusion.geo", R"(
+    Point(1) = {-1, -1, 0, 0.2}; Point(2) = {1, -1, 0, 0.2}; Point(3) = {1, 1, 0, 0.2}; Point(4) = {-1, 1, 0, 0.2};
+    Point(5) = {0, 0, 0, 0.1}; Point(6) = {0.5, 0, 0, 0.1}; Point(7) = {-0.5, 0, 0, 0.1};
+    Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+    Circle(5) = {6, 5, 7}; Circle(6) = {7, 5, 6};
+    Curve Loop(1) = {1, 2, 3, 4}; Curve Loop(2) = {5, 6};
+    Plane Surface(1) = {1, 2}; Plane Surface(2) = {2};
+    Physical Surface("matrix") = {1};
+    Physical Surface("inclusion") = {2};
+  )");
+  CHECK_THAT(input_error_message(inclusion),
+             Contains(inclusion) && Contains("the interface 'matrix/inclusion' closes on itself"));
+  // Without interfaces the inclusion is a region like any other.
+  const Domain smooth = Domain::from_file(inclusion, mfree::RegionOptions{{}, false});
+  REQUIRE(smooth.regions().size() == 2);
+  CHECK(smooth.rings().size() == 1);
+  CHECK(smooth.area() == Approx(4.0).epsilon(1e-15));
+  CHECK(smooth.region_at(Vec2(0, 0)) == 1);
+  CHECK(smooth.region_at(Vec2(0.8, 0.8)) == 0);
+}
+
+TEST_CASE("gmsh regions: meshes/two_layer_cylinder.geo", "[geometry][gmsh][regions]") {
+  const Domain d = mesh("two_layer_cylinder.geo");
+  REQUIRE(d.regions().size() == 2);
+  CHECK(d.regions()[0].name == "inner");
+  CHECK(d.regions()[1].name == "outer");
+  REQUIRE(d.cracks().size() == 1);
+  const mfree::Crack& c = d.cracks()[0];
+  CHECK(c.name == "inner/outer");
+  CHECK(c.points.size() == 49);  // 48 pieces on r = 1.5
+  for (const Vec2& x : c.points) CHECK(x.norm() == Approx(1.5).epsilon(1e-14));
+  // The element size of quarter_annulus.geo: 32 pieces on the bore, 64 outside, and the same
+  // polygon.
+  const std::map<std::string, PartSum> parts = part_sums(d);
+  CHECK(parts.at("bore").segments == 32);
+  CHECK(parts.at("outside").segments == 64);
+  CHECK(parts.at("x_axis").length == Approx(1.0).epsilon(1e-14));
+  CHECK(parts.at("y_axis").length == Approx(1.0).epsilon(1e-14));
+  CHECK(parts.at("outside").length == Approx(quarter_chords(2, 64)).epsilon(1e-13));
+  CHECK(d.area() == Approx(quarter_fan_area(2, 64) - quarter_fan_area(1, 32)).epsilon(1e-13));
+  CHECK(d.area() == Approx(mesh("quarter_annulus.geo").area()).epsilon(1e-13));
+  const std::vector<double> areas = region_areas(d);
+  CHECK(areas[0] == Approx(quarter_fan_area(1.5, 48) - quarter_fan_area(1, 32)).epsilon(1e-13));
+  CHECK(areas[1] == Approx(quarter_fan_area(2, 64) - quarter_fan_area(1.5, 48)).epsilon(1e-13));
+  CHECK(std::abs(areas[0] + areas[1] - d.area()) <= 1e-14 * d.area());
+}

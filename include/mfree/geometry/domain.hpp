@@ -107,8 +107,10 @@ class Domain {
                                    const std::string& source) const;
   /// Reads a domain file by its extension (case aside): .wkt as WKT (from_wkt), the gmsh
   /// extensions (.geo, .msh, .step, .stp, .brep, .iges, .igs) with read_gmsh_domain
-  /// (gmsh_domain.hpp), which also names the boundary parts. A missing or unreadable file, or
-  /// another extension (the message lists the accepted ones), is an InputError naming the path.
+  /// (gmsh_domain.hpp), which also names the boundary parts and takes the regions from the
+  /// physical surfaces (regions.names must be empty; regions.interfaces applies). A missing or
+  /// unreadable file, or another extension (the message lists the accepted ones), is an
+  /// InputError naming the path.
   static Domain from_file(const std::filesystem::path& path, const RegionOptions& regions = {});
 
   Domain(const Domain&);

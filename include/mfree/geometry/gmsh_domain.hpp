@@ -4,7 +4,8 @@
 //
 // The domain is the union of the file's surfaces (its 2D entities), which must lie in the
 // plane z = 0 and form one connected region, with or without holes. Its boundary is the set of
-// curves that bound exactly one surface (curves shared by two surfaces are interior), taken as
+// curves that bound exactly one surface (curves shared by two surfaces are interior, or
+// interfaces between regions: see below), taken as
 // polygons from gmsh's 1D mesh: the end nodes of the line elements on those curves, chained
 // into closed rings whatever the curves' orientations. The polygon is inscribed in a curved
 // boundary (its vertices lie on the curves, its edges are chords), so areas and lengths
@@ -20,6 +21,21 @@
 // Named boundary parts: every boundary edge carries the name of the dim-1 physical group
 // ("Physical Curve") of its curve, -1 for curves in none; a group without a name is named by
 // its number ("7"). Domain::part_names() lists the groups on the boundary, by group tag.
+//
+// Regions (Domain::from_regions): when the model has dim-2 physical groups ("Physical
+// Surface"), each is a region of the domain, named by its group (by its number for a group
+// without a name; groups of one name are one region), in the order of the group tags. Every
+// surface then belongs to exactly one of them. A region is one connected polygon with holes:
+// the curves bounding exactly one of its surfaces, taken from the 1D mesh and chained into
+// rings as the domain's boundary is, each edge with the part of its curve on the domain's
+// boundary (none on an interface). The domain is their union; a curve that two regions share
+// is an interface between them ("inner/outer", a Crack with left and right), both regions'
+// polygons running through the same nodes along it, unless read_gmsh_domain's `interfaces` is
+// false (Domain::from_file passes RegionOptions::interfaces), when it stays inside the domain.
+// from_regions's rules apply: an interface runs from boundary to boundary, so a region
+// enclosed by another (an inclusion) is refused unless interfaces are off. Without physical
+// surfaces the domain has no regions. Cracks (below) come on top of the regions and their
+// interfaces, which they may not meet. meshes/two_layer_cylinder.geo is an example.
 //
 // Cracks (Domain::with_cracks): curves embedded in a surface (Curve{c} In Surface{s}; or an
 // OpenCASCADE BooleanFragments of a surface and a line) that belong to a physical curve. The
@@ -39,7 +55,8 @@
 // along the boundary), whose message is followed by the curves of the cracks it names.
 //
 // gmsh runs in a child process of its own for every read (a gmsh session there: initialise,
-// read, finalise), which sends the boundary and the crack curves back through a pipe: gmsh's
+// read, finalise), which sends the boundary (of each region) and the crack curves back through
+// a pipe: gmsh's
 // global state never enters this process (reads from several threads, or beside a program's
 // own gmsh session, are safe), and a file that crashes libgmsh (tests/fuzz/known_crashes) ends
 // as an InputError naming the file and the signal instead of a crash. gmsh prints nothing; OpenCASCADE's STEP
@@ -80,16 +97,21 @@ struct GmshReaderLimits {
 /// 60 s, and the lesser of 2 GiB and half of available_memory() (mfree/core/memory.hpp) now.
 [[nodiscard]] GmshReaderLimits default_gmsh_reader_limits();
 
-/// Reads the domain of a gmsh file (see above). Throws InputError naming the file when the
-/// extension is not one of gmsh_extensions, the file is missing or unreadable, gmsh reports an
-/// error (its messages are quoted), the model has no surface or has volumes, a node lies off the
-/// plane z = 0, a boundary curve has no 1D elements, a curve belongs to two physical groups,
-/// the boundary does not close into rings (or meets itself), the surfaces form more than one
-/// connected region, the rings fail Domain::from_rings's checks, the embedded curves are not
-/// cracks (see above), gmsh crashes on the file, or
-/// gmsh exceeds a limit (naming it). Throws Error when the reader process is killed from
-/// outside (as by the system's out-of-memory killer) or fails.
+/// Reads the domain of a gmsh file (see above); `interfaces` false leaves the curves that
+/// regions share inside the domain instead of making them interfaces. Throws InputError naming
+/// the file when the extension is not one of gmsh_extensions, the file is missing or
+/// unreadable, gmsh reports an error (its messages are quoted), the model has no surface or has
+/// volumes, a node lies off the plane z = 0, a boundary or interface curve has no 1D elements,
+/// a curve belongs to two physical groups, the boundary does not close into rings (or meets
+/// itself), the surfaces form more than one connected region, the rings fail
+/// Domain::from_rings's checks; with physical surfaces, when a surface is in none of them or in
+/// two, a region's boundary does not close into rings (or meets itself), a region's surfaces
+/// form more than one connected piece, or the regions fail Domain::from_regions's checks; when
+/// the embedded curves are not cracks (see above), gmsh crashes on the file, or gmsh exceeds a
+/// limit (naming it). Throws Error when the reader process is killed from outside (as by the
+/// system's out-of-memory killer) or fails.
 [[nodiscard]] Domain read_gmsh_domain(const std::filesystem::path& file,
-                                      const GmshReaderLimits& limits = default_gmsh_reader_limits());
+                                      const GmshReaderLimits& limits = default_gmsh_reader_limits(),
+                                      bool interfaces = true);
 
 }  // namespace mfree
