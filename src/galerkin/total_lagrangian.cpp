@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <tuple>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -157,11 +158,13 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   const auto law_at = [&](const std::vector<Vec2>& points, const char* kind) {
     std::vector<int> law(points.size(), 0);
     if (laws == 1) return law;
+    const double tolerance = 1e-9 * domain.bounding_box().size().norm();
+    std::vector<double> off(points.size(), 0.0);
     parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index begin, Index end) {
-      for (Index k = begin; k < end; ++k) law[k] = domain.region_at(points[k]);
+      for (Index k = begin; k < end; ++k) std::tie(law[k], off[k]) = domain.nearest_region(points[k]);
     });
     for (std::size_t k = 0; k < law.size(); ++k)
-      if (law[k] < 0)
+      if (law[k] < 0 || off[k] > tolerance)
         throw Error(fmt::format("{} point {} ({:.6g}, {:.6g}) lies in no region of the domain", kind, k,
                                 points[k].x(), points[k].y()));
     return law;

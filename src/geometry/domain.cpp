@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -887,6 +888,19 @@ const std::vector<BoundarySegment>& Domain::boundary() const { return impl_->seg
 const std::vector<std::string>& Domain::part_names() const { return impl_->part_names; }
 const std::vector<Crack>& Domain::cracks() const { return impl_->cracks; }
 const std::vector<Region>& Domain::regions() const { return impl_->regions; }
+std::pair<int, double> Domain::nearest_region(const Vec2& x) const {
+  if (const int r = region_at(x); r >= 0) return {r, 0.0};
+  std::pair<int, double> best{-1, std::numeric_limits<double>::infinity()};
+  for (std::size_t r = 0; r < impl_->regions.size(); ++r)
+    for (const Ring& ring : impl_->regions[r].rings)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Vec2 &a = ring[i], d = ring[(i + 1) % ring.size()] - a;
+        const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        if (const double e = (a + t * d - x).norm(); e < best.second) best = {static_cast<int>(r), e};
+      }
+  return best;
+}
+
 bool Domain::boundary_near(const Box& box) const { return impl_->grid.may_touch(box); }
 
 int Domain::region_at(const Vec2& x) const {

@@ -19,6 +19,19 @@ void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend
   o.b.push_back(b);
 }
 
+Vec2 unit_or_zero(const Vec2& v) {
+  const double n = v.norm();
+  return n > 0.0 ? Vec2(v / n) : Vec2(Vec2::Zero());
+}
+
+/// A corner at x; with `sides`, reached only from those sides of `vertex` (SupportObstacles).
+void add_corner(SupportObstacles& o, const Vec2& x, const Vec2& vertex = Vec2::Zero(),
+                const std::array<Vec2, 2>& sides = {Vec2::Zero(), Vec2::Zero()}) {
+  o.corners.push_back(x);
+  o.corner_vertex.push_back(vertex);
+  o.corner_sides.push_back(sides);
+}
+
 /// The vertices of a polyline (closed: a ring) without those where it runs straight on
 /// (turn below 1e-12 of the product of the two edges' lengths): a straight side meshed into
 /// many elements is one obstacle, and no corner. The ends of an open polyline stay.
@@ -67,7 +80,7 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
     std::vector<double> turn(n);
     for (std::size_t i = 0; i < n; ++i) turn[i] = orientation(r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
     for (std::size_t i = 0; i < n; ++i) {
-      if (turn[i] < 0.0) out.corners.push_back(r[i]);
+      if (turn[i] < 0.0) add_corner(out, r[i]);
       const Vec2 &a = r[i], &b = r[(i + 1) % n];
       if (separates(a, b)) add_segment(out, a, b, turn[i] > 0.0, turn[(i + 1) % n] > 0.0);
     }
@@ -75,9 +88,22 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
   for (const Crack& c : domain.cracks()) {
     const std::vector<Vec2> p = without_straight_vertices(c.points, false);
     const std::size_t n = p.size();
-    for (std::size_t i = 0; i < n; ++i)
-      if ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1]) || (i > 0 && i + 1 < n))
-        out.corners.push_back(p[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1])) add_corner(out, p[i]);  // paths go round a tip
+      if (i == 0 || i + 1 == n) continue;
+      // An inner vertex is a corner on its reflex face, a little off the crack along the
+      // bisector (1e-3 of the shorter segment: far above the round-off tolerance of the
+      // crossing test, so that a path from the other face to it, nearly along the bisector,
+      // still crosses a segment): a path that bends there stays on that face (through the
+      // vertex itself it would pass from one face to the other).
+      const Vec2 n1 = unit_or_zero(Vec2(p[i - 1].y() - p[i].y(), p[i].x() - p[i - 1].x()));
+      const Vec2 n2 = unit_or_zero(Vec2(p[i].y() - p[i + 1].y(), p[i + 1].x() - p[i].x()));
+      // Only the face on which the crack turns away (the reflex one) bends paths.
+      const double offset = 1e-3 * std::min((p[i] - p[i - 1]).norm(), (p[i + 1] - p[i]).norm());
+      const Vec2 side = offset * unit_or_zero(n1 + n2);
+      const double sign = orientation(p[i - 1], p[i], p[i + 1]) > 0.0 ? -1.0 : 1.0;
+      add_corner(out, p[i] + sign * side, p[i], {sign * n1, sign * n2});
+    }
     for (std::size_t i = 0; i + 1 < n; ++i)
       add_segment(out, p[i], p[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]));
   }

@@ -164,7 +164,7 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
   std::vector<char> done(n, 0);
   for (std::size_t c = 0; c < n; ++c) {
     const Vec2& p = obstacles_.corners[s.corners[c]];
-    if (visible(x, p, s)) {
+    if (obstacles_.reaches(x, s.corners[c]) && visible(x, p, s)) {
       s.to_x[c] = (p - x).norm();
       s.last[c] = p;
     }
@@ -180,7 +180,8 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
       if (done[c]) continue;
       const Vec2& q = obstacles_.corners[s.corners[c]];
       const double through = s.to_x[best] + (q - p).norm();
-      if (through < s.to_x[c] && through < reach_ && visible(p, q, s)) {
+      if (through < s.to_x[c] && through < reach_ && obstacles_.reaches(q, s.corners[best]) &&
+          obstacles_.reaches(p, s.corners[c]) && visible(p, q, s)) {
         s.to_x[c] = through;
         s.last[c] = s.last[best];
       }
@@ -207,7 +208,7 @@ double SupportPaths::distance(const Vec2& xi, const Vec2& x, const PathScratch& 
     if (!(s.to_x[c] < reach_)) continue;
     const Vec2& p = obstacles_.corners[s.corners[c]];
     const double d = s.to_x[c] + (p - xi).norm();
-    if (d < best && d < reach_ && visible(xi, p, s)) {
+    if (d < best && d < reach_ && obstacles_.reaches(xi, s.corners[c]) && visible(xi, p, s)) {
       best = d;
       gradient = unit_or_zero(x - s.last[c]);
     }

@@ -137,3 +137,68 @@ TEST_CASE(
                            SupportRule::geodesic) > 1e-4);
   }
 }
+
+TEST_CASE("two layers under their weight: quadratic RK tied at the interface reproduces the kinked field",
+          "[galerkin][regions]") {
+  // sigma_yy = rho g (1 - y), sigma_xx = sigma_xy = 0 in both layers (plane stress, lateral
+  // edges free); with nu / E equal in the layers the field is continuous:
+  //   u_x = -(nu / E) sigma_yy x,  u_y = int_0^y sigma_yy / E - (nu rho g / (2 E)) x^2,
+  // quadratic in each layer, its strain eps_yy jumping at y = 1/2 (E differs 4 x).
+  const LinearElastic lower{1000.0, 0.3, PlaneModel::stress}, upper{250.0, 0.075, PlaneModel::stress};
+  const double rho_g = 2.0;
+  const auto law = [&](double y) -> const LinearElastic& { return y <= 0.5 ? lower : upper; };
+  const auto uy_axis = [&](double y) {  // int_0^y rho g (1 - s) / E(s) ds
+    const auto part = [&](double a, double b, double e) {
+      return rho_g * ((b - a) - 0.5 * (b * b - a * a)) / e;
+    };
+    return y <= 0.5 ? part(0, y, 1000.0) : part(0, 0.5, 1000.0) + part(0.5, y, 250.0);
+  };
+  ExactElasticity exact;
+  exact.displacement = [&](const Vec2& x) -> Vec2 {
+    const LinearElastic& m = law(x.y());
+    const double s = rho_g * (1 - x.y()), k = m.poisson_ratio / m.youngs_modulus;
+    return {-k * s * x.x(), uy_axis(x.y()) - 0.5 * k * rho_g * x.x() * x.x()};
+  };
+  exact.stress = [&](const Vec2& x) -> Eigen::Vector3d { return {0.0, rho_g * (1 - x.y()), 0.0}; };
+  exact.body_force = [&](const Vec2&) { return Vec2(0.0, rho_g); };  // div sigma + b = 0
+  const std::vector<std::vector<Ring>> layers{{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 0.5), Vec2(0, 0.5)}},
+                                              {{Vec2(0, 0.5), Vec2(1, 0.5), Vec2(1, 1), Vec2(0, 1)}}};
+  for (const bool tied : {true, false}) {
+    const Domain d = Domain::from_regions(layers, {{"lower", "upper"}, tied}, "layers");
+    const double e = tied_patch_error(d, {lower, {lower, upper}}, exact, CloudKind::lattice,
+                                      RKOrder::quadratic, SupportRule::geodesic);
+    INFO((tied ? "tied " : "smooth ") << e);
+    CHECK((tied ? e < 1e-10 : e > 1e-4));
+  }
+}
+
+TEST_CASE("supports end at a curved interface: no function of one layer is nonzero in the other",
+          "[galerkin][regions]") {
+  // The two-layer cylinder's interface, r = 1.5 in 768 pieces: lattice nodes on the diagonal
+  // line up with the interface's vertex at 45 degrees, where a path bending at the vertex
+  // itself (not on its reflex face) passed from one layer to the other.
+  const Domain d = Domain::from_file(testing::source_dir() +
+                                     "/verification/two-material-cylinder/two_layer_cylinder_768.geo");
+  REQUIRE(d.regions().size() == 2);
+  for (const char* rule : {"geodesic", "visibility"}) {
+    ElasticitySettings s;
+    s.nodes.kind = CloudKind::lattice;
+    s.nodes.spacing = 0.025;
+    s.order = RKOrder::quadratic;
+    s.support_factor = 3.5;
+    s.support_rule = std::string(rule) == "geodesic" ? SupportRule::geodesic : SupportRule::visibility;
+    StageTimer timer;
+    const Discretisation disc = discretise(d, s, timer);
+    int leaks = 0, checked = 0;
+    for (double t = 0.005; t < 1.57; t += 0.01)
+      for (double r : {1.45, 1.49, 1.4999, 1.5001, 1.51, 1.55}) {
+        const Vec2 x(r * std::cos(t), r * std::sin(t));
+        const GalerkinQuadrature at = sample_shape_functions(*disc.trial, {x}, false);
+        for (Index k = at.row_begin(0); k < at.row_end(0); ++k, ++checked)
+          if (at.phi[k] != 0.0 && d.region_at(disc.nodes[at.nodes[k]]) != d.region_at(x)) ++leaks;
+      }
+    CAPTURE(rule, checked);
+    CHECK(checked > 10000);
+    CHECK(leaks == 0);
+  }
+}

@@ -531,3 +531,34 @@ TEST_CASE("tied parts scene: two parts tied along a wavy edge with unmatched ver
         CHECK(e.energy <= 1e-9);
       }
 }
+
+TEST_CASE(
+    "two-material cylinder: tied layers converge at the optimal rates, the smooth approximation does not",
+    "[io][problems][study][regions]") {
+  // verification/two-material-cylinder at h = 0.05 and 0.025 (README): tied, linear RK
+  // L2 rate 2.1, energy 1.35; quadratic RK energy 2.3; smooth (no tie) energy 0.62 (linear).
+  const auto errors_of = [](const std::vector<std::string>& extra) {
+    std::vector<ElasticErrors> errors;
+    for (const char* h : {"0.05", "0.025"}) {
+      std::vector<std::string> sets = extra;
+      sets.push_back(std::string("nodes.spacing=") + h);
+      const ElasticityScene scene = verification_scene("two-material-cylinder/two_layer_cylinder.toml", sets);
+      const ExactElasticity exact = *scene.exact();
+      errors.push_back(*solve_elasticity(scene.domain, scene.settings, &exact).errors);
+    }
+    return errors;
+  };
+  const auto rate = [](double coarse, double fine) { return std::log(coarse / fine) / std::log(2.0); };
+  const std::vector<ElasticErrors> tied = errors_of({});
+  const std::vector<ElasticErrors> smooth = errors_of({"domain.interfaces=\"smooth\""});
+  const std::vector<ElasticErrors> quadratic = errors_of({"kernel.order=\"quadratic\"", "kernel.factor=3.5"});
+  INFO("tied L2 " << tied[0].l2_displacement << " " << tied[1].l2_displacement << ", energy "
+                  << tied[0].energy << " " << tied[1].energy);
+  INFO("smooth energy " << smooth[0].energy << " " << smooth[1].energy);
+  INFO("quadratic energy " << quadratic[0].energy << " " << quadratic[1].energy);
+  CHECK(rate(tied[0].l2_displacement, tied[1].l2_displacement) >= 1.9);
+  CHECK(rate(tied[0].energy, tied[1].energy) >= 1.2);
+  CHECK(rate(smooth[0].energy, smooth[1].energy) <= 0.8);
+  CHECK(tied[1].energy <= 0.5 * smooth[1].energy);
+  CHECK(rate(quadratic[0].energy, quadratic[1].energy) >= 2.0);
+}

@@ -46,9 +46,9 @@ struct ElasticityProblem {
   [[nodiscard]] const LinearElastic& law(int region) const {
     return region_materials.empty() ? material : region_materials[static_cast<std::size_t>(region)];
   }
-  /// The law at x of the domain (its region's).
+  /// The law at x of the domain (its region's; on the boundary, the nearest region's).
   [[nodiscard]] const LinearElastic& law_at(const Domain& domain, const Vec2& x) const {
-    return region_materials.empty() ? material : law(domain.region_at(x));
+    return region_materials.empty() ? material : law(domain.nearest_region(x).first);
   }
 };
 /// The same problem as the total-Lagrangian solver takes it, with the small-strain laws (a

@@ -138,6 +138,9 @@ class Domain {
   /// The region holding x (on an edge two regions share: the first); 0 for a domain
   /// without regions; -1 outside every region.
   [[nodiscard]] int region_at(const Vec2& x) const;
+  /// region_at(x), or for a point outside every region (a point of the boundary, off its
+  /// edge by round-off) the region whose rings pass nearest, with that distance.
+  [[nodiscard]] std::pair<int, double> nearest_region(const Vec2& x) const;
   /// Every boundary edge with its outward normal, ring by ring in ring order, then the faces
   /// of each crack: per crack segment a -> b, the face a -> b (the material on its left;
   /// normal to the right) and then the face b -> a.

@@ -6,7 +6,10 @@
 //              boundary vertex within `reach` of it lies strictly on its outer side (the
 //              walls of a notch, a slot or a hole; never an edge of a convex outer ring);
 //   corners    the reflex vertices of the rings (the domain turns right there), crack tips
-//              and the inner vertices of cracks: where shortest paths in the domain bend.
+//              and the inner vertices of cracks, these on the face where the crack turns
+//              away (1e-3 of the shorter segment off the crack along the bisector, so that a
+//              path bending there does not pass from one face to the other): where shortest
+//              paths bend.
 // Vertices where the boundary or a crack runs straight on are dropped first (a straight side
 // meshed into many elements is one obstacle). An obstacle's end at a convex vertex or at a crack's mouth is
 // moved out by 1e-9 of the segment's length, so no path along the boundary slips past it through the outside.

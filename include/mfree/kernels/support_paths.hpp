@@ -34,6 +34,7 @@
 // Everything here is per point: prepare() collects the obstacles near one point into a
 // scratch the caller owns (one per thread), distance() reads them.
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -59,7 +60,18 @@ inline double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
 struct SupportObstacles {
   std::vector<Vec2> a, b;  ///< segment k runs from a[k] to b[k]
   std::vector<Vec2> corners;
+  /// Per corner (or empty: none guarded), the side a path must come from: a corner at a
+  /// crack's inner vertex v is reached from x only when (x - v) . m > 0 for one of the two
+  /// normals m (of its segments, into its reflex face); m zero: from anywhere.
+  std::vector<Vec2> corner_vertex;
+  std::vector<std::array<Vec2, 2>> corner_sides;
   [[nodiscard]] bool empty() const { return a.empty(); }
+  /// Whether a path from x may bend at corner c (x on the corner's side).
+  [[nodiscard]] bool reaches(const Vec2& x, std::size_t c) const {
+    if (corner_sides.empty() || corner_sides[c][0].isZero()) return true;
+    const Vec2 d = x - corner_vertex[c];
+    return d.dot(corner_sides[c][0]) > 0.0 || d.dot(corner_sides[c][1]) > 0.0;
+  }
 };
 
 /// What prepare() collects for one point x: the obstacles and corners within the reach of
