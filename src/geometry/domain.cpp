@@ -450,8 +450,13 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
             // Segments not on one line meet at one point: allowed when it is a mouth.
             const bool mouth_here = (i == 0 && !crack.tip[0] && edge.has_on(seg.source())) ||
                                     (i + 2 == line.size() && !crack.tip[1] && edge.has_on(seg.target()));
-            const bool along = CGAL::collinear(edge.source(), edge.target(), seg.source()) &&
-                               CGAL::collinear(edge.source(), edge.target(), seg.target());
+            // On one line with the edge: allowed when they share the mouth only (the boundary
+            // runs straight on past an interface's end, as beside a lap joint).
+            const Epick::Point_2 mouth = edge.has_on(seg.source()) ? seg.source() : seg.target();
+            const bool along =
+                CGAL::collinear(edge.source(), edge.target(), seg.source()) &&
+                CGAL::collinear(edge.source(), edge.target(), seg.target()) &&
+                (!(edge.source() == mouth || edge.target() == mouth) || overlap_beyond(edge, seg, mouth));
             if (!mouth_here || along)
               throw InputError(fmt::format(
                   "{}: crack '{}', segment {} (from ({}, {}) to ({}, {})) meets the boundary of the "

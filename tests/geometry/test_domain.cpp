@@ -411,3 +411,20 @@ TEST_CASE("regions: the union of polygons that share edges, interfaces along the
                      " LINESTRING(0.5 0.5, 1.5 0.5))"),
              Contains("meets the interface 'region1/region2'"));
 }
+
+TEST_CASE("regions: an interface may end where the boundary runs straight on past it (a lap joint)",
+          "[geometry][regions]") {
+  const Domain d = Domain::from_wkt(
+      "MULTIPOLYGON(((0 0, 1.2 0, 1.2 0.5, 0 0.5)), ((0.8 0.5, 2 0.5, 2 1, 0.8 1)))", "lap.wkt");
+  REQUIRE(d.cracks().size() == 1);
+  CHECK(d.cracks()[0].points.size() == 2);
+  CHECK(!d.cracks()[0].tip[0]);
+  CHECK(!d.cracks()[0].tip[1]);
+  CHECK(d.area() == Approx(1.2).epsilon(1e-15));
+  // A crack along the boundary beyond its mouth is still refused.
+  CHECK_THAT(input_error_message([] {
+               (void)Domain::from_wkt(
+                   "GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1, 0 1)), LINESTRING(0 0, 1 0))", "edge");
+             }),
+             Catch::Matchers::Contains("meets the boundary"));
+}

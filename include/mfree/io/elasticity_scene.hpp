@@ -2,7 +2,10 @@
 // Elasticity scenes: one TOML file describes a run (see verification/cantilever/*.toml).
 //
 //   [domain]      rectangle = [[x0, y0], [x1, y1]]  or  mesh = "path/to.wkt" or a gmsh file
-//                 (.geo, .msh, .step, ...; relative to the scene)
+//                 (.geo, .msh, .step, ...; relative to the scene); for a mesh of several
+//                 regions (Domain::from_regions): regions = ["a", "b"] (names of a WKT file's
+//                 polygons), interfaces = "tied" (default: the edges regions share are tied
+//                 interfaces) | "smooth" (one set of functions across them)
 //   [nodes]       cloud (lattice | perturbed | random), spacing, perturbation, seed
 //   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor
 //   [quadrature]  (optional) scheme (gauss_cells | projected | nodal; default gauss_cells), ratio, cloud
@@ -13,7 +16,10 @@
 //                 cell, default 3 for linear RK and 4 for quadratic: default_gauss_points)
 //   [material]    model (plane_stress | plane_strain | neo_hookean | st_venant_kirchhoff),
 //                 youngs_modulus, poisson_ratio (at most 0.49 in plane strain: max_poisson_ratio,
-//                 galerkin/total_lagrangian.hpp; allow_locking = true lifts that), density (dynamics)
+//                 galerkin/total_lagrangian.hpp; allow_locking = true lifts that), density (dynamics);
+//                 or [[material]] tables, one law per region: name, regions = ["a", ...]
+//                 (every region in exactly one), and the keys of [material] (small-strain
+//                 laws, linear statics)
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy] (per unit volume; numbers or formulas in X, Y, t),
 //                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
