@@ -528,7 +528,8 @@ TEST_CASE("tied parts scene: two parts tied along a wavy edge with unmatched ver
         const ElasticErrors e = *solve_elasticity(scene.domain, scene.settings, &exact).errors;
         CAPTURE(cloud, rule, second, e.l2_displacement, e.energy);
         CHECK(e.l2_displacement <= 1e-10);
-        CHECK(e.energy <= 1e-9);
+        // Quadratic RK on the random cloud: 2.7e-10 (Release), 2.3e-9 (the checked build, no FMA).
+        CHECK(e.energy <= (second ? 1e-8 : 1e-9));
       }
 }
 
