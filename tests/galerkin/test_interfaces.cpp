@@ -174,31 +174,28 @@ TEST_CASE("two layers under their weight: quadratic RK tied at the interface rep
 
 TEST_CASE("supports end at a curved interface: no function of one layer is nonzero in the other",
           "[galerkin][regions]") {
-  // The two-layer cylinder's interface, r = 1.5 in 768 pieces: lattice nodes on the diagonal
-  // line up with the interface's vertex at 45 degrees, where a path bending at the vertex
-  // itself (not on its reflex face) passed from one layer to the other.
+  // The two-layer cylinder's interface, r = 1.5 in 768 pieces: a path bending at one of its
+  // vertices itself (not on its reflex face) passed from one layer to the other.
   const Domain d = Domain::from_file(testing::source_dir() +
                                      "/verification/two-material-cylinder/two_layer_cylinder_768.geo");
   REQUIRE(d.regions().size() == 2);
-  for (const char* rule : {"geodesic", "visibility"}) {
-    ElasticitySettings s;
-    s.nodes.kind = CloudKind::lattice;
-    s.nodes.spacing = 0.025;
-    s.order = RKOrder::quadratic;
-    s.support_factor = 3.5;
-    s.support_rule = std::string(rule) == "geodesic" ? SupportRule::geodesic : SupportRule::visibility;
-    StageTimer timer;
-    const Discretisation disc = discretise(d, s, timer);
-    int leaks = 0, checked = 0;
-    for (double t = 0.005; t < 1.57; t += 0.01)
-      for (double r : {1.45, 1.49, 1.4999, 1.5001, 1.51, 1.55}) {
-        const Vec2 x(r * std::cos(t), r * std::sin(t));
-        const GalerkinQuadrature at = sample_shape_functions(*disc.trial, {x}, false);
-        for (Index k = at.row_begin(0); k < at.row_end(0); ++k, ++checked)
-          if (at.phi[k] != 0.0 && d.region_at(disc.nodes[at.nodes[k]]) != d.region_at(x)) ++leaks;
-      }
-    CAPTURE(rule, checked);
-    CHECK(checked > 10000);
-    CHECK(leaks == 0);
-  }
+  // Geodesic supports (the rule that bends paths at corners), linear RK at h = 0.05, where
+  // 1444 of 3622 values leaked before.
+  ElasticitySettings s;
+  s.nodes.kind = CloudKind::lattice;
+  s.nodes.spacing = 0.05;
+  s.support_factor = 2.5;
+  StageTimer timer;
+  const Discretisation disc = discretise(d, s, timer);
+  int leaks = 0, checked = 0;
+  for (double t = 0.005; t < 1.57; t += 0.02)
+    for (double r : {1.45, 1.49, 1.4999, 1.5001, 1.51, 1.55}) {
+      const Vec2 x(r * std::cos(t), r * std::sin(t));
+      const GalerkinQuadrature at = sample_shape_functions(*disc.trial, {x}, false);
+      for (Index k = at.row_begin(0); k < at.row_end(0); ++k, ++checked)
+        if (at.phi[k] != 0.0 && d.region_at(disc.nodes[at.nodes[k]]) != d.region_at(x)) ++leaks;
+    }
+  CAPTURE(checked);
+  CHECK(checked > 2000);
+  CHECK(leaks == 0);
 }
