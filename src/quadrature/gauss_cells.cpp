@@ -16,8 +16,9 @@ namespace {
 
 /// Points on the part of `cell` in the domain (in `region` when >= 0): a polygon rule of
 /// degree 2 n on the clipped cell; a clipped piece with a hole is cut into four first.
-void add_cut_cell(const Domain& domain, const Box& cell, int region, int n, int depth, QuadratureRule& rule) {
-  const std::vector<Ring> rings = domain.clip(cell, region);
+void add_cut_cell(const Domain& domain, const Box& cell, int region, int n, int depth, QuadratureRule& rule,
+                  const std::vector<Ring>* clipped = nullptr) {
+  const std::vector<Ring> rings = clipped ? *clipped : domain.clip(cell, region);
   if (rings.empty() || add_polygon_rule(rings, n + 1, cell.size().maxCoeff(), rule)) return;
   if (depth == 8)
     throw Error(fmt::format("Gauss cells: the cell [{}, {}] x [{}, {}] cannot be cut into simple pieces",
@@ -60,8 +61,8 @@ QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
         } else if (regions > 0) {  // each region's part: the law and the functions jump between them
           for (int r = 0; r < regions; ++r) add_cut_cell(domain, cell, r, n, 0, row);
           continue;
-        } else if (!is_box(domain.clip(cell), cell)) {  // cut by the boundary
-          add_cut_cell(domain, cell, -1, n, 0, row);
+        } else if (const std::vector<Ring> inside = domain.clip(cell); !is_box(inside, cell)) {  // cut by the boundary
+          add_cut_cell(domain, cell, -1, n, 0, row, &inside);
           continue;
         }
         for (int j = 0; j < n; ++j)
