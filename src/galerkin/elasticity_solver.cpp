@@ -25,6 +25,10 @@ std::string_view to_string(QuadratureScheme s) { return scheme_names().name(s); 
 
 int default_gauss_points(RKOrder order) { return order == RKOrder::linear ? 3 : 4; }
 
+double default_quadrature_factor(RKOrder quadrature_order, const Domain& domain) {
+  return (quadrature_order == RKOrder::linear ? 2.0 : 3.0) + (domain.cracks().empty() ? 0.0 : 0.5);
+}
+
 Consistency default_consistency(QuadratureScheme s) {
   switch (s) {
     case QuadratureScheme::projected: return Consistency::symmetric;
@@ -72,10 +76,13 @@ RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, Cl
 double memory_lower_bound(const Domain& domain, const ElasticitySettings& s) {
   const double n = domain.area() / (s.nodes.spacing * s.nodes.spacing);
   const double f = s.support_factor, pi = std::numbers::pi;
-  const double lattice = s.scheme == QuadratureScheme::projected
-                             ? s.quadrature_ratio * s.lattice_refinement * s.lattice_refinement * pi *
-                                   s.quadrature_factor * s.quadrature_factor * 28.0
-                             : 0.0;
+  const double lattice =
+      s.scheme == QuadratureScheme::projected
+          ? s.quadrature_ratio * s.lattice_refinement * s.lattice_refinement * pi *
+                std::pow(s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain)),
+                         2) *
+                28.0
+          : 0.0;
   return n * (16.0 + s.quadrature_ratio * pi * f * f * 28.0 + lattice + 2.0 * 2.0 * pi * 4.0 * f * f * 12.0);
 }
 
@@ -106,11 +113,11 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
 
   check_memory(memory_lower_bound(domain, s), fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
                                                           domain.area() / (h * h)));
-  if (!domain.cracks().empty() && s.scheme != QuadratureScheme::gauss_cells)
+  if (!domain.cracks().empty() && s.scheme == QuadratureScheme::nodal)
     throw InputError(
-        fmt::format("the {} scheme does not integrate cracked domains yet: use scheme = \"gauss_cells\" "
-                    "(domain with crack '{}')",
-                    to_string(s.scheme), domain.cracks().front().name));
+        fmt::format("the nodal scheme does not integrate cracked domains yet (its Voronoi cells do not "
+                    "respect cracks): use scheme = \"projected\" or \"gauss_cells\" (domain with crack '{}')",
+                    domain.cracks().front().name));
   if (!domain.cracks().empty() && s.support_rule == SupportRule::plain)
     throw InputError(
         fmt::format("crack '{}': plain supports reach across cracks and would join their faces (the crack "
@@ -128,10 +135,13 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
       case QuadratureScheme::projected: {
         CloudSettings qc = s.nodes;
         if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
-        const std::vector<Vec2> xq = make_quadrature_cloud(domain, qc, s.quadrature_ratio);
         const double hq = h / std::sqrt(s.quadrature_ratio);
+        const std::vector<Vec2> xq =
+            split_on_cracks(domain, make_quadrature_cloud(domain, qc, s.quadrature_ratio), hq);
         const RKShapeFunctions quad(
-            xq, rk_settings(domain, xq, qc.kind, hq, s.quadrature_order, s, s.quadrature_factor));
+            xq,
+            rk_settings(domain, xq, qc.kind, hq, s.quadrature_order, s,
+                        s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain))));
         const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
         return projected_quadrature(*res.trial, quad, lattice);
       }

@@ -203,7 +203,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
     s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
     s.quadrature_order = read_choice_or(t, "order", order_names(), RKOrder::linear);
-    s.quadrature_factor = t.number_or("factor", s.quadrature_order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
+    if (t.has("factor")) s.quadrature_factor = t.number("factor", 0.5, 10.0);
     s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
     if (t.has("consistency")) s.consistency = read_choice(t, "consistency", consistency_names());
     if (t.has("gauss_points")) s.gauss_points = static_cast<int>(t.integer("gauss_points", 1, 12));

@@ -1,15 +1,18 @@
 #include "mfree/quadrature/background_lattice.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
+#include "mfree/quadrature/polygon_quadrature.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
+#include "mfree/quadrature/rule_on_cracks.hpp"
 
 namespace mfree {
 
@@ -169,16 +172,19 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
 
   // Cells that a boundary segment's bounding box touches may be cut; the rest are wholly
   // inside or outside, decided by their centre.
-  std::vector<char> maybe_cut(static_cast<std::size_t>(ncx) * ncy, 0);
+  // A cell that an interface's bounding box touches may hold two regions' parts.
+  enum : char { whole = 0, cut = 1, interface = 2 };
+  std::vector<char> maybe_cut(static_cast<std::size_t>(ncx) * ncy, whole);
   const double pad = 1e-9 * side;
   for (const BoundarySegment& s : domain.boundary()) {
+    const char mark = s.crack >= 0 && domain.cracks()[s.crack].interface() ? interface : cut;
     const Vec2 lo = s.a.cwiseMin(s.b).array() - pad, hi = s.a.cwiseMax(s.b).array() + pad;
     const auto cell = [&](double v, double o, Index n) {
       return std::clamp<Index>(static_cast<Index>(std::floor((v - o) / side)), 0, n - 1);
     };
     for (Index cj = cell(lo.y(), origin.y(), ncy); cj <= cell(hi.y(), origin.y(), ncy); ++cj)
       for (Index ci = cell(lo.x(), origin.x(), ncx); ci <= cell(hi.x(), origin.x(), ncx); ++ci)
-        maybe_cut[static_cast<std::size_t>(cj) * ncx + ci] = 1;
+        maybe_cut[static_cast<std::size_t>(cj) * ncx + ci] |= mark;
   }
 
   const int n = order + 1;
@@ -204,6 +210,17 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
     for (Index cell = begin; cell < end; ++cell) {
       const Index ci = cell % ncx, cj = cell / ncx;
       const Vec2 lo = cell_lo(ci, cj);
+      if (maybe_cut[cell] & interface) {
+        // Each region's part apart, by interior points (polygon_quadrature.hpp, degree 2 order):
+        // no point straddles the interface, where the functions and the law jump.
+        QuadratureRule parts;
+        for (int r = 0; r < static_cast<int>(domain.regions().size()); ++r)
+          add_cut_cell_rule(domain, Box{lo, lo + Vec2(side, side)}, r, order + 1, parts);
+        cut_points[t].insert(cut_points[t].end(), parts.points.begin(), parts.points.end());
+        cut_weights[t].insert(cut_weights[t].end(), parts.weights.begin(), parts.weights.end());
+        ++cut_count[t];
+        continue;
+      }
       if (maybe_cut[cell]) {
         const std::vector<Ring> inside = domain.clip(Box{lo, lo + Vec2(side, side)});
         if (inside.empty()) continue;
@@ -238,6 +255,10 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
     points_.insert(points_.end(), cut_points[t].begin(), cut_points[t].end());
     weights_.insert(weights_.end(), cut_weights[t].begin(), cut_weights[t].end());
   }
+  QuadratureRule split =
+      split_rule_on_cracks(domain, QuadratureRule{std::move(points_), std::move(weights_)}, spacing);
+  points_ = std::move(split.points);
+  weights_ = std::move(split.weights);
   cells_ = ncells;
 }
 

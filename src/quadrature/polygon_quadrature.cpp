@@ -3,11 +3,13 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Partition_traits_2.h>
 #include <CGAL/partition_2.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <iterator>
 #include <list>
 
+#include "mfree/core/error.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
 
 namespace mfree {
@@ -123,6 +125,19 @@ bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, Quadra
       if (p.size() >= 3) add_convex_piece(p, g, size / 20.0, rule);
     }
   return true;
+}
+
+void add_cut_cell_rule(const Domain& domain, const Box& cell, int region, int m, QuadratureRule& rule,
+                       const std::vector<Ring>* clipped, int depth) {
+  const std::vector<Ring> rings = clipped ? *clipped : domain.clip(cell, region);
+  if (rings.empty() || add_polygon_rule(rings, m, cell.size().maxCoeff(), rule)) return;
+  if (depth == 8)
+    throw Error(fmt::format("cut cell: the cell [{}, {}] x [{}, {}] cannot be cut into simple pieces",
+                            cell.lo.x(), cell.hi.x(), cell.lo.y(), cell.hi.y()));
+  const Vec2 mid = 0.5 * (cell.lo + cell.hi);
+  for (const Box& quarter : {Box{cell.lo, mid}, Box{Vec2(mid.x(), cell.lo.y()), Vec2(cell.hi.x(), mid.y())},
+                             Box{Vec2(cell.lo.x(), mid.y()), Vec2(mid.x(), cell.hi.y())}, Box{mid, cell.hi}})
+    add_cut_cell_rule(domain, quarter, region, m, rule, nullptr, depth + 1);
 }
 
 }  // namespace mfree

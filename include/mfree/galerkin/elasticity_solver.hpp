@@ -48,6 +48,12 @@ Consistency default_consistency(QuadratureScheme s);
 /// L2 rate near 2 (cantilever lattice: 1.83 at h = 0.375 with quadratic VCI); 4 x 4 with the
 /// quadratic VCI gives 3.3 (verification/cantilever/README.md).
 int default_gauss_points(RKOrder order);
+/// The projected scheme's quadrature-cloud support / its spacing when a scene names none: 2
+/// for a linear quadrature cloud, 3 for a quadratic one, and half a spacing more on a domain
+/// with cracks or interfaces. A slanted crack mouth leaves a wedge of the domain where a
+/// lattice vertex sees two quadrature points within 2 spacings (the kinked edge crack of the
+/// patch tests: its 68-degree mouth); 2.5 passes the patch tests there on every cloud.
+double default_quadrature_factor(RKOrder quadrature_order, const Domain& domain);
 
 struct ElasticitySettings {
   CloudSettings nodes;
@@ -68,7 +74,8 @@ struct ElasticitySettings {
   /// cloud's kind. Irregular quadrature clouds give quadratic RK negative weights (SPEC 3).
   bool quadrature_lattice = true;
   RKOrder quadrature_order = RKOrder::linear;
-  double quadrature_factor = 2.0;       ///< quadrature-cloud support / its spacing
+  /// Quadrature-cloud support / its spacing; nullopt: default_quadrature_factor.
+  std::optional<double> quadrature_factor;
   int lattice_refinement = 2;           ///< lattice spacing = quadrature spacing / this
   std::optional<Consistency> consistency;  ///< nullopt: default_consistency(scheme)
   std::optional<int> gauss_points;         ///< per direction per cell; nullopt: default_gauss_points(order)

@@ -18,6 +18,12 @@
 // linear reproduction give sum_K w_K = sum_v c_v = |Omega| and sum_K w_K x_K = integral of x
 // to round-off, and each phi_K(x_v) is evaluated once for all K instead of once per window.
 // Every point lies in the closed domain, where the quadrature-cloud functions are defined.
+// A cell near an interface is integrated region by region, by the interior points of
+// polygon_quadrature.hpp (degree 2 order), so that no point straddles the interface where the
+// functions and the law jump. A point on a crack or an interface is two, one on each face with half its
+// weight (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy. A cell that a
+// crack crosses keeps its Newton–Cotes weights: its integrals of functions that jump across the crack are
+// first-order there, and the solver's consistency correction restores the patch test.
 
 #include <vector>
 
@@ -33,7 +39,8 @@ class BackgroundLattice {
 
   [[nodiscard]] double spacing() const { return spacing_; }
   [[nodiscard]] int order() const { return order_; }
-  /// Lattice vertices with a non-zero weight, in lattice order, then the cut cells' points.
+  /// Lattice vertices with a non-zero weight, in lattice order, then the cut cells' points
+  /// (each on a crack as its two face copies).
   [[nodiscard]] const std::vector<Vec2>& points() const { return points_; }
   /// The weight of each of points(); cut cells' weights may be negative.
   [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
