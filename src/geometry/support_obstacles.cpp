@@ -11,18 +11,22 @@ namespace {
 
 constexpr double end_extension = 1e-9;  ///< of a segment's length, at ends that are not corners
 
-void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend_b) {
+void add_segment(SupportObstacles& o, Vec2 a, Vec2 b, bool extend_a, bool extend_b, bool one_sided) {
   const Vec2 d = end_extension * (b - a);
   if (extend_a) a -= d;
   if (extend_b) b += d;
   o.a.push_back(a);
   o.b.push_back(b);
+  o.one_sided.push_back(one_sided);
 }
 
 Vec2 unit_or_zero(const Vec2& v) {
   const double n = v.norm();
   return n > 0.0 ? Vec2(v / n) : Vec2(Vec2::Zero());
 }
+
+/// The unit normal of edge a -> b into the domain (on its left).
+Vec2 inward_normal(const Vec2& a, const Vec2& b) { return unit_or_zero(Vec2(a.y() - b.y(), b.x() - a.x())); }
 
 /// A corner at x; with `sides`, reached only from those sides of `vertex` (SupportObstacles).
 void add_corner(SupportObstacles& o, const Vec2& x, const Vec2& vertex = Vec2::Zero(),
@@ -80,9 +84,13 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
     std::vector<double> turn(n);
     for (std::size_t i = 0; i < n; ++i) turn[i] = orientation(r[(i + n - 1) % n], r[i], r[(i + 1) % n]);
     for (std::size_t i = 0; i < n; ++i) {
-      if (turn[i] < 0.0) add_corner(out, r[i]);
+      // A reflex vertex is reached from the domain's side of either edge only: a path from the
+      // vertex into the outside wedge (across a slot to a point on its far wall) crosses no
+      // obstacle, since it touches them only at its ends.
+      if (turn[i] < 0.0)
+        add_corner(out, r[i], r[i], {inward_normal(r[(i + n - 1) % n], r[i]), inward_normal(r[i], r[(i + 1) % n])});
       const Vec2 &a = r[i], &b = r[(i + 1) % n];
-      if (separates(a, b)) add_segment(out, a, b, turn[i] > 0.0, turn[(i + 1) % n] > 0.0);
+      if (separates(a, b)) add_segment(out, a, b, turn[i] > 0.0, turn[(i + 1) % n] > 0.0, true);
     }
   }
   for (const Crack& c : domain.cracks()) {
@@ -105,7 +113,7 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
       add_corner(out, p[i] + sign * side, p[i], {sign * n1, sign * n2});
     }
     for (std::size_t i = 0; i + 1 < n; ++i)
-      add_segment(out, p[i], p[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]));
+      add_segment(out, p[i], p[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]), false);
   }
   return out;
 }

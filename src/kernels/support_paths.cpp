@@ -39,6 +39,18 @@ bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double 
   return (o3 > pq && o4 < -pq) || (o3 < -pq && o4 > pq);
 }
 
+/// Whether the segment p q starts on the open edge a b (to `tolerance`, away from its ends,
+/// where the other edge of the vertex decides) and leaves it to the right, the outside of a
+/// ring edge: from a point on one face of a re-entrant corner to a point on the other, the
+/// segment runs outside and touches the edges only at its ends.
+bool leaves_outside(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double tolerance) {
+  const Vec2 e = b - a;
+  const double length = e.norm(), along = (p - a).dot(e);
+  if (!(std::abs(orientation(a, b, p)) <= tolerance * length)) return false;
+  if (!(along > tolerance * length && along < (length - tolerance) * length)) return false;
+  return orientation(a, b, q) < -tolerance * length;
+}
+
 Vec2 unit_or_zero(const Vec2& v) {
   const double n = v.norm();
   return n > 0.0 ? Vec2(v / n) : Vec2(Vec2::Zero());
@@ -191,8 +203,13 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
 }
 
 bool SupportPaths::visible(const Vec2& p, const Vec2& q, const PathScratch& s) const {
-  for (const int k : s.segments)
-    if (crosses(p, q, obstacles_.a[k], obstacles_.b[k], tolerance_)) return false;
+  for (const int k : s.segments) {
+    const Vec2 &a = obstacles_.a[k], &b = obstacles_.b[k];
+    if (crosses(p, q, a, b, tolerance_)) return false;
+    if (!obstacles_.one_sided.empty() && obstacles_.one_sided[k] &&
+        (leaves_outside(p, q, a, b, tolerance_) || leaves_outside(q, p, a, b, tolerance_)))
+      return false;
+  }
   return true;
 }
 

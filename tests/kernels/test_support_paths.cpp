@@ -37,12 +37,14 @@ TEST_CASE("support paths: a point on a corner face with round-off in its coordin
     CHECK(path_distance(rule, node, on_face) == Approx((on_face - node).norm()).epsilon(1e-14));
     CHECK(path_distance(rule, on_face, node) == Approx((on_face - node).norm()).epsilon(1e-14));
   }
-  // A point a thousandth above the face is across it: visibility cuts it off, geodesic goes
-  // round the corner (0, 0): |(0.1, -0.1)| + |(0.075, 0.001)|.
+  // A point a thousandth above the face is outside: no path in the domain reaches it (the
+  // corner (0, 0) is reached from the domain's side of its edges only).
   const Vec2 across(0.075, 1e-3);
   CHECK(path_distance(SupportRule::visibility, node, across) == std::numeric_limits<double>::infinity());
-  CHECK(path_distance(SupportRule::geodesic, node, across) ==
-        Approx(node.norm() + across.norm()).epsilon(1e-14));
+  CHECK(path_distance(SupportRule::geodesic, node, across) == std::numeric_limits<double>::infinity());
+  // Inside, beyond the corner's other face x = 0, the path bends at the corner.
+  const Vec2 beyond(-1e-3, 0.075);
+  CHECK(path_distance(SupportRule::geodesic, node, beyond) == Approx(node.norm() + beyond.norm()).epsilon(1e-14));
   CHECK(path_distance(SupportRule::plain, node, across) == Approx((across - node).norm()).epsilon(1e-14));
 }
 
@@ -143,4 +145,50 @@ TEST_CASE("support paths: across a slot the path bends twice, and plain supports
   // Around the L's re-entrant corner a path is at most sqrt(2) the straight one: no bridge.
   const SupportObstacles corner = support_obstacles(l_shape(), 0.3);
   CHECK(!find_bridge({Vec2(0.05, -0.01)}, {Vec2(-0.01, 0.05)}, corner, 0.3));
+}
+
+TEST_CASE("support paths: a path from a crack tip runs along the face to the crack's kink and bends there",
+          "[kernels][crack]") {
+  // An edge crack from the mouth (1.2, 0) kinked at (1.3, 0.25) to its tip (1.2, 0.45): from
+  // above the tip to just right of the lower segment below the kink, the shortest path goes round
+  // the tip, along the upper segment's right face to the kink, and round it. Its leg from the
+  // tip lies on the segment's line: the tip is on neither side of it.
+  const Domain d = Domain::from_wkt(
+      "GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1, 0 1, 0 0)), LINESTRING(1.2 0, 1.3 0.25, 1.2 0.45))");
+  const Vec2 node(1.17600645, 0.493429895), x(1.296875, 0.234375), tip(1.2, 0.45), kink(1.3, 0.25);
+  REQUIRE(orientation(Vec2(1.2, 0), kink, x) < 0.0);  // right of the lower segment
+  Vec2 g;
+  for (SupportRule rule : {SupportRule::geodesic}) {
+    const double dist = distance_in(d, rule, 0.35, node, x, g);
+    // The corner is 1e-3 of the shorter segment off the kink on its reflex face.
+    CHECK(dist == Approx((tip - node).norm() + (kink - tip).norm() + (x - kink).norm()).epsilon(1e-3));
+  }
+  // A point of the left face beside the upper segment is still not reached through the kink.
+  const Vec2 left_face = kink + 0.5 * (tip - kink) + 1e-7 * Vec2(-0.2, -0.1).normalized();
+  CHECK(distance_in(d, SupportRule::geodesic, 0.35, x, left_face, g) > (x - kink).norm() + (left_face - kink).norm());
+}
+
+TEST_CASE("support paths: a path from a slot's corner does not cut across the slot to its far wall",
+          "[kernels]") {
+  // The slot of cracked_square(): walls x = 0.78 and 0.82 down to y = 0.3. From a node right of
+  // the slot to a point on the left wall the path passes under the slot and bends at its left
+  // corner (before: straight from the right corner across the slot, 0.1168).
+  const Vec2 node(0.86, 0.28), wall(0.78, 0.36), left(0.78, 0.3);
+  Vec2 g;
+  CHECK(distance_in(cracked_square(), SupportRule::geodesic, 0.3, node, wall, g) ==
+        Approx((left - node).norm() + (wall - left).norm()).epsilon(1e-12));
+  CHECK(std::isinf(distance_in(cracked_square(), SupportRule::visibility, 0.3, node, wall, g)));
+}
+
+TEST_CASE("support paths: from one face of a re-entrant corner to the other the path bends at the corner",
+          "[kernels]") {
+  // (0, 0.1) on the face x = 0 and (0.15, 0) on the face y = 0 of the L: the straight segment
+  // runs outside and touches the boundary at its ends only (the projected scheme's lattice
+  // joined such a node to quadrature points it does not reach).
+  const Vec2 upper(0.0, 0.1), lower(0.15, 0.0);
+  CHECK(std::isinf(path_distance(SupportRule::visibility, upper, lower)));
+  CHECK(path_distance(SupportRule::geodesic, upper, lower) == Approx(0.25).epsilon(1e-14));
+  CHECK(path_distance(SupportRule::geodesic, lower, upper) == Approx(0.25).epsilon(1e-14));
+  // Along a face the segment stays on it.
+  CHECK(path_distance(SupportRule::visibility, lower, Vec2(0.05, 0.0)) == Approx(0.1).epsilon(1e-14));
 }

@@ -59,18 +59,26 @@ inline double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
 /// Segments no path crosses and the corners where paths bend.
 struct SupportObstacles {
   std::vector<Vec2> a, b;  ///< segment k runs from a[k] to b[k]
+  /// Per segment (or empty: none), whether the domain lies on its left only (a ring edge; a
+  /// crack has the domain on both sides): a path from a point on it must leave to the left.
+  std::vector<char> one_sided;
   std::vector<Vec2> corners;
   /// Per corner (or empty: none guarded), the side a path must come from: a corner at a
   /// crack's inner vertex v is reached from x only when (x - v) . m > 0 for one of the two
-  /// normals m (of its segments, into its reflex face); m zero: from anywhere.
+  /// normals m (of its segments, into its reflex face), a reflex vertex of a ring when x is on
+  /// the domain's side of one of its edges (m their inward normals); m zero: from anywhere.
   std::vector<Vec2> corner_vertex;
   std::vector<std::array<Vec2, 2>> corner_sides;
   [[nodiscard]] bool empty() const { return a.empty(); }
-  /// Whether a path from x may bend at corner c (x on the corner's side).
+  /// Whether a path from x may bend at corner c (x on the corner's side). A point on the
+  /// line of one of the corner's segments (to 1e-10 of its distance: a crack tip, from which a
+  /// path runs along the face) reaches it too; face copies lie 1e-7 h off the line
+  /// (crack_faces.hpp), far outside that tolerance.
   [[nodiscard]] bool reaches(const Vec2& x, std::size_t c) const {
     if (corner_sides.empty() || corner_sides[c][0].isZero()) return true;
     const Vec2 d = x - corner_vertex[c];
-    return d.dot(corner_sides[c][0]) > 0.0 || d.dot(corner_sides[c][1]) > 0.0;
+    const double on_line = -1e-10 * d.norm();
+    return d.dot(corner_sides[c][0]) >= on_line || d.dot(corner_sides[c][1]) >= on_line;
   }
 };
 
