@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <numeric>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
@@ -128,6 +129,44 @@ std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
   return test;
 }
 
+namespace {
+
+/// Three nodes spanning a large triangle in each set of nodes that the rows join (union-find
+/// over the rows): the pins of the symmetric correction's null space.
+std::vector<Index> pinned_nodes(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes) {
+  const Index n = static_cast<Index>(nodes.size());
+  std::vector<Index> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](Index i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (Index k = 0; k < q.size(); ++k)
+    for (Index s = q.row_begin(k) + 1; s < q.row_end(k); ++s) {
+      const Index a = root(q.nodes[q.row_begin(k)]), b = root(q.nodes[s]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::vector<Index>> sets(n);
+  for (Index i = 0; i < n; ++i) sets[root(i)].push_back(i);
+  std::vector<Index> pins;
+  for (const std::vector<Index>& set : sets) {
+    if (set.empty()) continue;
+    Index p0 = set.front(), p1 = p0, p2 = p0;
+    for (Index i : set)
+      if ((nodes[i] - nodes[p0]).squaredNorm() > (nodes[p1] - nodes[p0]).squaredNorm()) p1 = i;
+    double best = 0.0;
+    for (Index i : set) {
+      const Vec2 e1 = nodes[p1] - nodes[p0], e2 = nodes[i] - nodes[p0];
+      const double area = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+      if (area > best) best = area, p2 = i;
+    }
+    pins.insert(pins.end(), {p0, p1, p2});
+  }
+  return pins;
+}
+
+}  // namespace
+
 SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
                                               const std::vector<Vec2>& residuals, const SolverSettings& settings) {
   const Index nk = q.size();
@@ -162,18 +201,11 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
 
   // A = diag(sum_K w_K^2 [I in row K]) - V U^T with U_{I,3K+j} = w_K P_K(I, j) and
   // V = U blockdiag(M_K): the rank-3 projector of each row, assembled by one sparse product.
-  // The null space span{1, x, y} is removed by pinning lambda at three nodes spanning a
-  // large triangle: the pinned equations then hold too, since r and A lambda are both
-  // orthogonal to that null space.
-  Index p0 = 0, p1 = 0, p2 = 0;
-  for (Index i = 0; i < n; ++i)
-    if ((nodes[i] - nodes[p0]).squaredNorm() > (nodes[p1] - nodes[p0]).squaredNorm()) p1 = i;
-  double best = 0.0;
-  for (Index i = 0; i < n; ++i) {
-    const Vec2 e1 = nodes[p1] - nodes[p0], e2 = nodes[i] - nodes[p0];
-    const double area = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-    if (area > best) best = area, p2 = i;
-  }
+  // The null space is span{1, x, y} on each set of nodes the rows join (the whole cloud, or
+  // each part of a domain that interfaces cut through): it is removed by pinning lambda at
+  // three nodes of each set spanning a large triangle; the pinned equations then hold too,
+  // since r and A lambda are both orthogonal to that null space.
+  const std::vector<Index> pins = pinned_nodes(q, nodes);
 
   // A_IJ = sum over rows K holding I and J of w_K^2 (d_IJ - P_K(I)^T M_K P_K(J)), on the
   // node-to-node pattern of the rows, column by column: each thread owns whole columns and
@@ -212,7 +244,7 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
     }
   });
   // The pinned equations, after the copy: their rows and columns of the identity.
-  for (Index pin : {p0, p1, p2})
+  for (Index pin : pins)
     for (std::int64_t e = pattern.offsets[pin]; e < pattern.offsets[pin + 1]; ++e) {
       const Index i = pattern.nodes[e];
       values[e] = i == pin ? 1.0 : 0.0;
@@ -227,7 +259,7 @@ SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::
   for (int c = 0; c < 2; ++c) {
     Eigen::VectorXd r(n);
     for (Index i = 0; i < n; ++i) r[i] = residuals[i][c];
-    for (Index i : {p0, p1, p2}) r[i] = 0.0;
+    for (Index i : pins) r[i] = 0.0;
     const Eigen::VectorXd lambda = solver->solve(r);
     const double rn = r.norm();
     if (rn > 0.0) report.residual = std::max(report.residual, (a * lambda - r).norm() / rn);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
@@ -86,20 +87,33 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   // circular supports, the same in the max-norm when either is a square (a circle of radius a
   // lies in the square of half-width a). phi_I(x_K) where the node covers x_K, else 0.
   // The rows set the stiffness pattern: the circular test keeps it ~1.6x sparser.
+  // Where supports respect the domain the distance is the path's in the domain (a path in
+  // the domain joins the nodes of two supports that meet, under either rule): a node across an
+  // interface or a crack is not in the row, so the symmetric correction's projector
+  // (consistency.hpp) takes the linear fields of the nodes K sees, and a piecewise-linear field
+  // stays exact.
   GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
   const double trial_max = trial.max_support_radius();
   const CellList node_cells(trial.nodes(), trial_max);
   const bool circular = trial.settings().support == SupportShape::circular &&
                         quadrature_functions.settings().support == SupportShape::circular;
+  const std::shared_ptr<const SupportObstacles>& obstacles = trial.settings().obstacles;
+  std::optional<SupportPaths> paths;
+  if (trial.settings().rule != SupportRule::plain && obstacles && !obstacles->empty())
+    paths.emplace(*obstacles, SupportRule::geodesic, trial_max + quadrature_functions.max_support_radius());
   std::vector<std::vector<Index>> row_nodes(nq);
   parallel_blocks(nq, 512, [&](Index b, Index e) {
+    PathScratch scratch;
+    Vec2 unused;
     for (Index k = b; k < e; ++k) {
       const double ak = quadrature_functions.support_radius(k);
+      const bool near_obstacles = paths && paths->prepare(q.points[k], scratch);
       node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Vec2& p) {
         const double reach = ak + trial.support_radius(i);
         const Vec2 d = p - q.points[k];
-        if (circular ? d.squaredNorm() < reach * reach : d.cwiseAbs().maxCoeff() < reach)
-          row_nodes[k].push_back(i);
+        if (circular ? d.squaredNorm() >= reach * reach : d.cwiseAbs().maxCoeff() >= reach) return;
+        if (near_obstacles && !(paths->distance(p, q.points[k], scratch, unused) < reach)) return;
+        row_nodes[k].push_back(i);
       });
       std::sort(row_nodes[k].begin(), row_nodes[k].end());
     }
@@ -127,6 +141,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   // Each sum is so taken in one fixed order: a run gives the same numbers bit for bit, on
   // any number of threads. Chunks bound the memory of the stored evaluations.
   std::vector<double> w(nq, 0.0);
+  std::vector<Index> missing(nq, 0);
   std::vector<Vec2> moment(nq, Vec2::Zero());
   const auto& lp = lattice.points();
   const auto& lc = lattice.weights();
@@ -165,6 +180,10 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
           const ShapeValues& gi = phii[v];
           for (std::size_t i = 0; i < gi.size(); ++i) {
             const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
+            if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below
+              ++missing[k];
+              continue;
+            }
             q.grad[static_cast<std::size_t>(it - q.nodes.begin())] += c * gi.grad[i];
           }
         }
@@ -172,6 +191,12 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
     });
   }
   for (Index k = 0; k < nq; ++k) {
+    if (missing[k] > 0)
+      throw NumericalError(fmt::format(
+          "quadrature point {} at ({:.6g}, {:.6g}): {} gradient term(s) of nodes whose supports meet its own "
+          "though no path in the domain joins them within the two radii (the rows of the projected scheme "
+          "missed them)",
+          k, q.points[k].x(), q.points[k].y(), missing[k]));
     if (!(w[k] > 0.0))
       throw NumericalError(fmt::format(
           "quadrature point {} at ({:.6g}, {:.6g}) has weight {:.3e} <= 0: its projected gradients "
