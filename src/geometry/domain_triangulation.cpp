@@ -179,6 +179,8 @@ Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& 
 
   // Cracks: constraints through the material, so that no triangle spans the two faces (the
   // points on them are split, one copy per face: crack_faces.hpp) and the opening shows.
+  // Inserting the constraints above may have removed the hint's face: start without one.
+  hint = Cdt::Face_handle();
   for (const Crack& c : domain.cracks()) {
     Cdt::Vertex_handle previous;
     for (const Vec2& a : c.points) {

@@ -1,17 +1,16 @@
-#include <catch2/catch.hpp>
-
-#include "../test_support.hpp"
-
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <initializer_list>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/geometry/domain.hpp"
 #include "mfree/geometry/domain_triangulation.hpp"
 
@@ -194,4 +193,22 @@ TEST_CASE("domain triangulation: points outside the domain are input errors nami
              Catch::Contains("point 1 at (0, 0) lies outside the domain"));
   CHECK_THAT(message({{1, 1}, {1, 1.5}, {3, 0}}), Catch::Contains("point 2"));
   CHECK_THAT(message({{1, 1}, {NAN, 0}}), Catch::Contains("point 1 is not finite"));
+}
+
+TEST_CASE("domain triangulation: a crack from a notch's root, its nodes split, is covered exactly",
+          "[geometry][crack]") {
+  // The crack's vertices were inserted with a hint face taken before the boundary constraints,
+  // which may have removed it (a crash at h = 0.0125, found running this notched plate).
+  const Domain domain = Domain::from_wkt(
+      "GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1.2, 0 1.2, 0 0.64, 0.4 0.6, 0 0.56, 0 0)),"
+      " LINESTRING(0.4 0.6, 0.9 0.62))");
+  for (const double h : {0.025, 0.0125}) {
+    INFO("h = " << h);
+    mfree::CloudSettings settings;
+    settings.kind = mfree::CloudKind::lattice;
+    settings.spacing = h;
+    const std::vector<Vec2> points = mfree::split_on_cracks(domain, mfree::make_cloud(domain, settings), h);
+    const Triangulation tri = mfree::triangulate_domain(domain, points);
+    CHECK(check_triangulation(domain, points, tri) == points.size());
+  }
 }
