@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "mfree/geometry/segment_grid.hpp"
 
@@ -55,6 +56,46 @@ std::vector<Vec2> without_straight_vertices(const std::vector<Vec2>& p, bool clo
   return out;
 }
 
+/// The corners of the reflex ring vertex v (edges prev -> v -> next, the domain on their
+/// left). Cracks whose mouth is at v cut its wedge into sub-wedges: a path may not pass from one
+/// to the next through v (it would go from one face of the crack to the other). A sub-wedge of
+/// more than 180 degrees gets a corner 1e-3 of the shorter edge inside it along its bisector,
+/// reached from its side of either bounding ray; a convex one needs none (no shortest path bends
+/// there). Without a crack the corner is v itself, reached from the domain's side of an edge.
+void add_reflex_corners(SupportObstacles& o, const Domain& domain, const Vec2& prev, const Vec2& v,
+                        const Vec2& next, double tolerance) {
+  std::vector<Vec2> rays;  // directions of the cracks leaving v into the domain
+  for (const Crack& c : domain.cracks())
+    for (int end = 0; end < 2; ++end) {
+      const std::size_t at = end == 0 ? 0 : c.points.size() - 1, inner = end == 0 ? 1 : c.points.size() - 2;
+      if (!c.tip[end] && (c.points[at] - v).norm() <= tolerance) rays.push_back(unit_or_zero(c.points[inner] - v));
+    }
+  if (rays.empty()) {
+    add_corner(o, v, v, {inward_normal(prev, v), inward_normal(v, next)});
+    return;
+  }
+  // Angles counter-clockwise from the edge to next, through the domain to the edge to prev.
+  const Vec2 start = unit_or_zero(next - v);
+  const auto angle = [&](const Vec2& d) {
+    const double a = std::atan2(start.x() * d.y() - start.y() * d.x(), start.dot(d));
+    return a < 0.0 ? a + 2.0 * std::numbers::pi : a;
+  };
+  std::sort(rays.begin(), rays.end(), [&](const Vec2& a, const Vec2& b) { return angle(a) < angle(b); });
+  rays.insert(rays.begin(), start);
+  rays.push_back(unit_or_zero(prev - v));
+  const double offset = 1e-3 * std::min((prev - v).norm(), (next - v).norm());
+  for (std::size_t k = 0; k + 1 < rays.size(); ++k) {
+    const Vec2 &d1 = rays[k], &d2 = rays[k + 1];
+    const double width = angle(d2) - angle(d1);
+    if (width <= std::numbers::pi) continue;
+    const double half = angle(d1) + 0.5 * width;
+    const Vec2 bisector(std::cos(half) * start.x() - std::sin(half) * start.y(),
+                        std::sin(half) * start.x() + std::cos(half) * start.y());
+    // d1's left normal and d2's right normal point into the sub-wedge.
+    add_corner(o, v + offset * bisector, v, {Vec2(-d1.y(), d1.x()), Vec2(d2.y(), -d2.x())});
+  }
+}
+
 }  // namespace
 
 SupportObstacles support_obstacles(const Domain& domain, double reach) {
@@ -87,8 +128,7 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
       // A reflex vertex is reached from the domain's side of either edge only: a path from the
       // vertex into the outside wedge (across a slot to a point on its far wall) crosses no
       // obstacle, since it touches them only at its ends.
-      if (turn[i] < 0.0)
-        add_corner(out, r[i], r[i], {inward_normal(r[(i + n - 1) % n], r[i]), inward_normal(r[i], r[(i + 1) % n])});
+      if (turn[i] < 0.0) add_reflex_corners(out, domain, r[(i + n - 1) % n], r[i], r[(i + 1) % n], tolerance);
       const Vec2 &a = r[i], &b = r[(i + 1) % n];
       if (separates(a, b)) add_segment(out, a, b, turn[i] > 0.0, turn[(i + 1) % n] > 0.0, true);
     }
