@@ -58,4 +58,32 @@ Vec2 inside_face(const BoundarySegment& segment, const Vec2& x, double h) {
   return segment.crack < 0 ? x : Vec2(x - crack_offset * h * segment.normal);
 }
 
+bool crack_crosses(const Domain& domain, const Box& box) {
+  if (domain.cracks().empty() || !domain.boundary_near(box)) return false;
+  const Vec2 pad = 1e-9 * box.size();
+  const Vec2 lo = box.lo + pad, hi = box.hi - pad;
+  for (const Crack& c : domain.cracks()) {
+    if (c.interface()) continue;
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+      // Liang–Barsky: the parameters of a + t d inside the box on each axis.
+      const Vec2 a = c.points[k], d = c.points[k + 1] - a;
+      double t0 = 0.0, t1 = 1.0;
+      bool meets = true;
+      for (int axis = 0; axis < 2 && meets; ++axis) {
+        if (d[axis] == 0.0) {
+          meets = a[axis] > lo[axis] && a[axis] < hi[axis];
+          continue;
+        }
+        double ta = (lo[axis] - a[axis]) / d[axis], tb = (hi[axis] - a[axis]) / d[axis];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        meets = t0 <= t1;
+      }
+      if (meets) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace mfree

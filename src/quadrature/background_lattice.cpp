@@ -10,7 +10,8 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
-#include "mfree/quadrature/polygon_quadrature.hpp"
+#include "mfree/geometry/crack_faces.hpp"
+#include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 #include "mfree/quadrature/rule_on_cracks.hpp"
 
@@ -210,12 +211,11 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
     for (Index cell = begin; cell < end; ++cell) {
       const Index ci = cell % ncx, cj = cell / ncx;
       const Vec2 lo = cell_lo(ci, cj);
-      if (maybe_cut[cell] & interface) {
-        // Each region's part apart, by interior points (polygon_quadrature.hpp, degree 2 order):
-        // no point straddles the interface, where the functions and the law jump.
+      if ((maybe_cut[cell] & interface) || (maybe_cut[cell] && crack_crosses(domain, Box{lo, lo + Vec2(side, side)}))) {
+        // Each region's part apart, quartered where a crack crosses, by interior points
+        // (gauss_cells.hpp, degree 2 order + 1): no point straddles a jump of the functions or the law.
         QuadratureRule parts;
-        for (int r = 0; r < static_cast<int>(domain.regions().size()); ++r)
-          add_cut_cell_rule(domain, Box{lo, lo + Vec2(side, side)}, r, order + 1, parts);
+        add_cell_points(domain, Box{lo, lo + Vec2(side, side)}, order + 1, parts);
         cut_points[t].insert(cut_points[t].end(), parts.points.begin(), parts.points.end());
         cut_weights[t].insert(cut_weights[t].end(), parts.weights.begin(), parts.weights.end());
         ++cut_count[t];

@@ -7,6 +7,7 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/quadrature/polygon_quadrature.hpp"
 #include "mfree/quadrature/rule_on_cracks.hpp"
 
@@ -24,15 +25,40 @@ bool is_box(const std::vector<Ring>& rings, const Box& box) {
 
 }  // namespace
 
+void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRule& rule, int depth) {
+  if (depth < crack_depth && crack_crosses(domain, cell)) {  // the functions jump across the crack
+    const Vec2 mid = 0.5 * (cell.lo + cell.hi);
+    for (const Box& quarter : {Box{cell.lo, mid}, Box{Vec2(mid.x(), cell.lo.y()), Vec2(cell.hi.x(), mid.y())},
+                               Box{Vec2(cell.lo.x(), mid.y()), Vec2(mid.x(), cell.hi.y())}, Box{mid, cell.hi}})
+      add_cell_points(domain, quarter, n, rule, depth + 1);
+    return;
+  }
+  const int regions = static_cast<int>(domain.regions().size());
+  if (!domain.boundary_near(cell)) {
+    if (!domain.contains(0.5 * (cell.lo + cell.hi))) return;
+  } else if (regions > 0) {  // each region's part: the law and the functions jump between them
+    for (int r = 0; r < regions; ++r) add_cut_cell_rule(domain, cell, r, n + 1, rule);
+    return;
+  } else if (const std::vector<Ring> inside = domain.clip(cell); !is_box(inside, cell)) {  // cut by the boundary
+    add_cut_cell_rule(domain, cell, -1, n + 1, rule, &inside);
+    return;
+  }
+  const GaussLegendre1D g = gauss_legendre(n);
+  const Vec2 size = cell.size();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      rule.points.emplace_back(cell.lo.x() + g.points[i] * size.x(), cell.lo.y() + g.points[j] * size.y());
+      rule.weights.push_back(g.weights[i] * g.weights[j] * size.x() * size.y());
+    }
+}
+
 QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
   if (!(cell_size > 0.0))
     throw InputError(fmt::format("Gauss cells: cell size must be positive, got {}", cell_size));
-  const GaussLegendre1D g = gauss_legendre(n);
   const Box box = domain.bounding_box();
   const int nx = std::max(1, static_cast<int>(std::lround(box.size().x() / cell_size)));
   const int ny = std::max(1, static_cast<int>(std::lround(box.size().y() / cell_size)));
   const double hx = box.size().x() / nx, hy = box.size().y() / ny;
-  const int regions = static_cast<int>(domain.regions().size());
   // Rows of cells in parallel, each into a rule of its own, joined in row order.
   std::vector<QuadratureRule> rows(static_cast<std::size_t>(ny));
   parallel_blocks(ny, 1, [&](Index begin, Index end) {
@@ -40,21 +66,7 @@ QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
       QuadratureRule& row = rows[static_cast<std::size_t>(cj)];
       for (int ci = 0; ci < nx; ++ci) {
         const Vec2 lo(box.lo.x() + ci * hx, box.lo.y() + static_cast<double>(cj) * hy);
-        const Box cell{lo, lo + Vec2(hx, hy)};
-        if (!domain.boundary_near(cell)) {
-          if (!domain.contains(0.5 * (cell.lo + cell.hi))) continue;
-        } else if (regions > 0) {  // each region's part: the law and the functions jump between them
-          for (int r = 0; r < regions; ++r) add_cut_cell_rule(domain, cell, r, n + 1, row);
-          continue;
-        } else if (const std::vector<Ring> inside = domain.clip(cell); !is_box(inside, cell)) {  // cut by the boundary
-          add_cut_cell_rule(domain, cell, -1, n + 1, row, &inside);
-          continue;
-        }
-        for (int j = 0; j < n; ++j)
-          for (int i = 0; i < n; ++i) {
-            row.points.emplace_back(lo.x() + g.points[i] * hx, lo.y() + g.points[j] * hy);
-            row.weights.push_back(g.weights[i] * g.weights[j] * hx * hy);
-          }
+        add_cell_points(domain, Box{lo, lo + Vec2(hx, hy)}, n, row);
       }
     }
   });

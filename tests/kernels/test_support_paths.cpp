@@ -192,3 +192,20 @@ TEST_CASE("support paths: from one face of a re-entrant corner to the other the 
   // Along a face the segment stays on it.
   CHECK(path_distance(SupportRule::visibility, lower, Vec2(0.05, 0.0)) == Approx(0.1).epsilon(1e-14));
 }
+
+TEST_CASE("support paths: a crack from a notch's root cuts the root's wedge; no path passes through the root",
+          "[kernels][crack]") {
+  // The notch's root (0.4, 0.6) is a reflex vertex and the crack's mouth: a path bending there
+  // went from one face to the other (0.1086 between (0.45, 0.63) and (0.45, 0.595)).
+  const Domain d = Domain::from_wkt(
+      "GEOMETRYCOLLECTION(POLYGON((0 0, 2 0, 2 1.2, 0 1.2, 0 0.64, 0.4 0.6, 0 0.56, 0 0)),"
+      " LINESTRING(0.4 0.6, 0.9 0.62))");
+  const Vec2 above(0.45, 0.63), below(0.45, 0.595);
+  Vec2 g;
+  CHECK(std::isinf(distance_in(d, SupportRule::geodesic, 0.3, above, below, g)));
+  // Without the crack the root is a corner: round it from the notch's upper face to below.
+  const Domain notch = Domain::from_wkt("POLYGON((0 0, 2 0, 2 1.2, 0 1.2, 0 0.64, 0.4 0.6, 0 0.56, 0 0))");
+  const Vec2 over_notch(0.2, 0.635), root(0.4, 0.6), under(0.45, 0.5);
+  CHECK(distance_in(notch, SupportRule::geodesic, 0.4, over_notch, under, g) ==
+        Approx((root - over_notch).norm() + (under - root).norm()).epsilon(1e-12));
+}

@@ -26,6 +26,10 @@ inline constexpr double crack_tolerance = 1e-9;
 std::vector<Vec2> split_on_cracks(const Domain& domain, const std::vector<Vec2>& points, double h,
                                   std::vector<Index>* origin = nullptr);
 
+/// Whether a crack that is not an interface crosses the inside of the box (a crack along
+/// its edges does not: the box shrunk by 1e-9 of its size).
+bool crack_crosses(const Domain& domain, const Box& box);
+
 /// A point of boundary segment `segment` moved into the material beside it when the
 /// segment is a crack face (offset crack_offset * h against its outward normal); ring
 /// edges' points are returned as they are.

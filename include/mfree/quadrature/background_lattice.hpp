@@ -18,12 +18,11 @@
 // linear reproduction give sum_K w_K = sum_v c_v = |Omega| and sum_K w_K x_K = integral of x
 // to round-off, and each phi_K(x_v) is evaluated once for all K instead of once per window.
 // Every point lies in the closed domain, where the quadrature-cloud functions are defined.
-// A cell near an interface is integrated region by region, by the interior points of
-// polygon_quadrature.hpp (degree 2 order), so that no point straddles the interface where the
-// functions and the law jump. A point on a crack or an interface is two, one on each face with half its
-// weight (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy. A cell that a
-// crack crosses keeps its Newton–Cotes weights: its integrals of functions that jump across the crack are
-// first-order there, and the solver's consistency correction restores the patch test.
+// A cell near an interface, or one a crack crosses, is integrated by the points of
+// gauss_cells.hpp's add_cell_points (region by region, quartered along the crack; degree
+// 2 order + 1), so that no point's rule straddles a jump of the functions or the law. A point
+// on a crack or an interface is two, one on each face with half its weight
+// (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy.
 
 #include <vector>
 
