@@ -66,28 +66,32 @@ BoundarySelection select_edges(const Domain& domain, int ring, const std::vector
   });
 }
 
+std::optional<std::array<double, 2>> segment_in_box(const Vec2& a, const Vec2& b, const Box& box) {
+  // Liang–Barsky: a + t d inside the box for t in [t0, t1].
+  const Vec2 d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  for (int c = 0; c < 2; ++c) {
+    if (d[c] == 0.0) {
+      if (a[c] < box.lo[c] || a[c] > box.hi[c]) return std::nullopt;
+      continue;
+    }
+    double lo = (box.lo[c] - a[c]) / d[c], hi = (box.hi[c] - a[c]) / d[c];
+    if (lo > hi) std::swap(lo, hi);
+    t0 = std::max(t0, lo);
+    t1 = std::min(t1, hi);
+    if (!(t1 > t0)) return std::nullopt;
+  }
+  return std::array<double, 2>{t0, t1};
+}
+
 BoundarySelection select_box(const Domain& domain, const Box& box) {
   BoundarySelection out;
   const auto& segments = domain.boundary();
   for (std::size_t s = 0; s < segments.size(); ++s) {
     // The faces of an interface are tied to each other, not a boundary a condition holds on.
     if (segments[s].crack >= 0 && domain.cracks()[segments[s].crack].interface()) continue;
-    // Liang–Barsky: a + t d inside the box for t in [t0, t1].
-    const Vec2 a = segments[s].a, d = segments[s].b - segments[s].a;
-    double t0 = 0.0, t1 = 1.0;
-    bool inside = true;
-    for (int c = 0; c < 2 && inside; ++c) {
-      if (d[c] == 0.0) {
-        inside = a[c] >= box.lo[c] && a[c] <= box.hi[c];
-        continue;
-      }
-      double lo = (box.lo[c] - a[c]) / d[c], hi = (box.hi[c] - a[c]) / d[c];
-      if (lo > hi) std::swap(lo, hi);
-      t0 = std::max(t0, lo);
-      t1 = std::min(t1, hi);
-      inside = t1 > t0;
-    }
-    if (inside && t1 > t0) out.push_back({static_cast<Index>(s), t0, t1});
+    if (const auto t = segment_in_box(segments[s].a, segments[s].b, box))
+      out.push_back({static_cast<Index>(s), (*t)[0], (*t)[1]});
   }
   return out;
 }

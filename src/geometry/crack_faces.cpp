@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mfree/geometry/boundary_selection.hpp"
+
 namespace mfree {
 
 namespace {
@@ -64,24 +66,8 @@ bool crack_crosses(const Domain& domain, const Box& box) {
   const Vec2 lo = box.lo + pad, hi = box.hi - pad;
   for (const Crack& c : domain.cracks()) {
     if (c.interface()) continue;
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-      // Liang–Barsky: the parameters of a + t d inside the box on each axis.
-      const Vec2 a = c.points[k], d = c.points[k + 1] - a;
-      double t0 = 0.0, t1 = 1.0;
-      bool meets = true;
-      for (int axis = 0; axis < 2 && meets; ++axis) {
-        if (d[axis] == 0.0) {
-          meets = a[axis] > lo[axis] && a[axis] < hi[axis];
-          continue;
-        }
-        double ta = (lo[axis] - a[axis]) / d[axis], tb = (hi[axis] - a[axis]) / d[axis];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-        meets = t0 <= t1;
-      }
-      if (meets) return true;
-    }
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+      if (segment_in_box(c.points[k], c.points[k + 1], Box{lo, hi})) return true;
   }
   return false;
 }

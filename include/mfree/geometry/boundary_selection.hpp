@@ -16,6 +16,8 @@
 // A selection may be empty; the caller decides that this is an error (it is, in scenes).
 
 #include <string>
+#include <array>
+#include <optional>
 #include <vector>
 
 #include "mfree/geometry/domain.hpp"
@@ -41,7 +43,10 @@ BoundarySelection select_part(const Domain& domain, const std::string& name);
 BoundarySelection select_ring(const Domain& domain, int ring);
 /// Edges `edges` of ring k; throws InputError for a ring or edge that does not exist.
 BoundarySelection select_edges(const Domain& domain, int ring, const std::vector<int>& edges);
-/// The parts of the segments inside the closed box (Liang–Barsky clipping).
+/// The parameters [t0, t1] of the part of segment a -> b inside the closed box (Liang–Barsky
+/// clipping), when that part has a positive length.
+std::optional<std::array<double, 2>> segment_in_box(const Vec2& a, const Vec2& b, const Box& box);
+/// The parts of the segments inside the closed box (segment_in_box).
 BoundarySelection select_box(const Domain& domain, const Box& box);
 
 /// Length of the boundary that two selections share.
