@@ -32,10 +32,11 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 /// face y = 0) touches the edge and is seen from the domain's side, not cut off from it.
 bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double tolerance) {
   // orientation / length: signed distance from the line (length units).
-  const double ab = tolerance * (b - a).norm(), pq = tolerance * (q - p).norm();
   const double o1 = orientation(a, b, p), o2 = orientation(a, b, q);
+  if (!(o1 * o2 < 0.0)) return false;  // the common case, before any square root
+  const double ab = tolerance * (b - a).norm();
   if (!((o1 > ab && o2 < -ab) || (o1 < -ab && o2 > ab))) return false;
-  const double o3 = orientation(p, q, a), o4 = orientation(p, q, b);
+  const double o3 = orientation(p, q, a), o4 = orientation(p, q, b), pq = tolerance * (q - p).norm();
   return (o3 > pq && o4 < -pq) || (o3 < -pq && o4 > pq);
 }
 
@@ -45,8 +46,9 @@ bool crosses(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double 
 /// segment runs outside and touches the edges only at its ends.
 bool leaves_outside(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, double tolerance) {
   const Vec2 e = b - a;
-  const double length = e.norm(), along = (p - a).dot(e);
-  if (!(std::abs(orientation(a, b, p)) <= tolerance * length)) return false;
+  const double off = orientation(a, b, p), length2 = e.squaredNorm();
+  if (!(off * off <= tolerance * tolerance * length2)) return false;  // before any square root
+  const double length = std::sqrt(length2), along = (p - a).dot(e);
   if (!(along > tolerance * length && along < (length - tolerance) * length)) return false;
   return orientation(a, b, q) < -tolerance * length;
 }
@@ -127,6 +129,47 @@ SupportPaths::SupportPaths(SupportObstacles obstacles, SupportRule rule, double 
   fill(
       obstacles_.corners.size(), [&](std::size_t k, Vec2& lo, Vec2& hi) { lo = hi = obstacles_.corners[k]; },
       corner_start_, corner_items_);
+  if (rule_ == SupportRule::geodesic) find_legs();
+}
+
+void SupportPaths::find_legs() {
+  // Per corner p, the corners q after it within the reach joined by a leg; each leg is then
+  // stored at both ends. The same point, so the same obstacles, for all of p's legs.
+  const Index n = static_cast<Index>(obstacles_.corners.size());
+  std::vector<std::vector<std::pair<int, double>>> after(n);
+  parallel_blocks(n, 16, [&](Index begin, Index end) {
+    PathScratch s;
+    for (Index c = begin; c < end; ++c) {
+      const Vec2& p = obstacles_.corners[c];
+      if (!prepare_obstacles(p, s)) continue;
+      for (const int d : s.corners) {
+        if (d <= c) continue;
+        const Vec2& q = obstacles_.corners[d];
+        const double length = (q - p).norm();
+        if (length < reach_ && obstacles_.reaches(q, c) && obstacles_.reaches(p, d) && visible(p, q, s))
+          after[c].emplace_back(d, length);
+      }
+    }
+  });
+  leg_start_.assign(n + 1, 0);
+  for (Index c = 0; c < n; ++c)
+    for (const auto& [d, length] : after[c]) {
+      ++leg_start_[c + 1];
+      ++leg_start_[d + 1];
+    }
+  for (Index c = 0; c < n; ++c) leg_start_[c + 1] += leg_start_[c];
+  leg_to_.resize(leg_start_[n]);
+  leg_length_.resize(leg_start_[n]);
+  std::vector<int> cursor(leg_start_.begin(), leg_start_.end() - 1);
+  const auto store = [&](int from, int to, double length) {
+    leg_to_[cursor[from]] = to;
+    leg_length_[cursor[from]++] = length;
+  };
+  for (Index c = 0; c < n; ++c)
+    for (const auto& [d, length] : after[c]) {
+      store(static_cast<int>(c), d, length);
+      store(d, static_cast<int>(c), length);
+    }
 }
 
 template <class F>
@@ -142,10 +185,9 @@ void SupportPaths::for_each_bucket(const Vec2& x, F&& f) const {
     for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * nx_ + i);
 }
 
-bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
+bool SupportPaths::prepare_obstacles(const Vec2& x, PathScratch& s) const {
   s.segments.clear();
   s.corners.clear();
-  if (rule_ == SupportRule::plain || obstacles_.empty()) return false;
   // The box x +- reach: any obstacle a path within the support can meet lies in it.
   const Vec2 lo = x.array() - reach_, hi = x.array() + reach_;
   for_each_bucket(x, [&](std::size_t cell) {
@@ -166,45 +208,66 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
   // A segment spanning several buckets was met once per bucket.
   std::sort(s.segments.begin(), s.segments.end());
   s.segments.erase(std::unique(s.segments.begin(), s.segments.end()), s.segments.end());
+  return true;
+}
+
+bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
+  if (rule_ == SupportRule::plain || obstacles_.empty()) {
+    s.segments.clear();
+    s.corners.clear();
+    return false;
+  }
+  if (!prepare_obstacles(x, s)) return false;
   if (rule_ != SupportRule::geodesic) return true;
 
-  // Shortest paths from x to the near corners (Dijkstra on their visibility graph; a
-  // handful of corners, so the O(n^2) form).
+  // Shortest paths from x to the near corners: Dijkstra over the first legs, from x to the
+  // corners it sees, and the legs between corners (find_legs).
   const std::size_t n = s.corners.size();
   s.to_x.assign(n, infinity);
   s.last.assign(n, x);
-  std::vector<char> done(n, 0);
+  s.local.resize(obstacles_.corners.size(), -1);
+  s.heap.clear();
+  const auto later = [](const std::pair<double, int>& u, const std::pair<double, int>& v) { return u > v; };
   for (std::size_t c = 0; c < n; ++c) {
+    s.local[s.corners[c]] = static_cast<int>(c);
     const Vec2& p = obstacles_.corners[s.corners[c]];
     if (obstacles_.reaches(x, s.corners[c]) && visible(x, p, s)) {
       s.to_x[c] = (p - x).norm();
       s.last[c] = p;
+      s.heap.emplace_back(s.to_x[c], static_cast<int>(c));
     }
   }
-  for (;;) {
-    std::size_t best = n;
-    for (std::size_t c = 0; c < n; ++c)
-      if (!done[c] && s.to_x[c] < reach_ && (best == n || s.to_x[c] < s.to_x[best])) best = c;
-    if (best == n) break;
-    done[best] = 1;
-    const Vec2& p = obstacles_.corners[s.corners[best]];
-    for (std::size_t c = 0; c < n; ++c) {
-      if (done[c]) continue;
-      const Vec2& q = obstacles_.corners[s.corners[c]];
-      const double through = s.to_x[best] + (q - p).norm();
-      if (through < s.to_x[c] && through < reach_ && obstacles_.reaches(q, s.corners[best]) &&
-          obstacles_.reaches(p, s.corners[c]) && visible(p, q, s)) {
-        s.to_x[c] = through;
-        s.last[c] = s.last[best];
-      }
+  std::make_heap(s.heap.begin(), s.heap.end(), later);
+  while (!s.heap.empty()) {
+    std::pop_heap(s.heap.begin(), s.heap.end(), later);
+    const auto [length, c] = s.heap.back();
+    s.heap.pop_back();
+    if (length > s.to_x[c]) continue;  // a shorter path to c came first
+    const int corner = s.corners[c];
+    for (int l = leg_start_[corner]; l < leg_start_[corner + 1]; ++l) {
+      const int to = s.local[leg_to_[l]];
+      const double through = length + leg_length_[l];
+      if (to < 0 || !(through < s.to_x[to] && through < reach_)) continue;
+      s.to_x[to] = through;
+      s.last[to] = s.last[c];
+      s.heap.emplace_back(through, to);
+      std::push_heap(s.heap.begin(), s.heap.end(), later);
     }
   }
+  for (const int corner : s.corners) s.local[corner] = -1;
   return true;
 }
 
 bool SupportPaths::visible(const Vec2& p, const Vec2& q, const PathScratch& s) const {
+  // The box of p q grown by the tolerance: an obstacle apart from it neither crosses nor
+  // holds an end of p q.
+  const double grow = tolerance_ + 1e-12 * (q - p).lpNorm<Eigen::Infinity>();
+  const Vec2 lo = p.cwiseMin(q).array() - grow, hi = p.cwiseMax(q).array() + grow;
   for (const int k : s.segments) {
     const Vec2 &a = obstacles_.a[k], &b = obstacles_.b[k];
+    if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() || std::max(a.y(), b.y()) < lo.y() ||
+        std::min(a.y(), b.y()) > hi.y())
+      continue;
     if (crosses(p, q, a, b, tolerance_)) return false;
     if (!obstacles_.one_sided.empty() && obstacles_.one_sided[k] &&
         (leaves_outside(p, q, a, b, tolerance_) || leaves_outside(q, p, a, b, tolerance_)))

@@ -36,6 +36,7 @@
 
 #include <array>
 #include <memory>
+#include <utility>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -69,16 +70,30 @@ struct SupportObstacles {
   /// the domain's side of one of its edges (m their inward normals); m zero: from anywhere.
   std::vector<Vec2> corner_vertex;
   std::vector<std::array<Vec2, 2>> corner_sides;
+  /// Per corner (or empty: none), the unit directions from the corner along the two edges
+  /// that meet there, for corners that are a reflex vertex itself; zero: not such a corner.
+  std::vector<std::array<Vec2, 2>> corner_edges;
   [[nodiscard]] bool empty() const { return a.empty(); }
-  /// Whether a path from x may bend at corner c (x on the corner's side). A point on the
-  /// line of one of the corner's segments (to 1e-10 of its distance: a crack tip, from which a
-  /// path runs along the face) reaches it too; face copies lie 1e-7 h off the line
-  /// (crack_faces.hpp), far outside that tolerance.
+  /// Whether a path from x may bend at corner c: x on the corner's side and, where the
+  /// corner's edges are known, the line from x through the corner tangent to them (both on
+  /// one side of it, to 1e-9 in the sine of the angle). A shortest path bends only where each
+  /// of its legs is tangent (its line entering the outside wedge at the vertex, the path
+  /// could be shortened), so the test drops no shortest path; along a finely faceted concave
+  /// arc it leaves two corners of hundreds. A point on the line of one of the corner's
+  /// segments (to 1e-10 of its distance: a crack tip, from which a path runs along the face)
+  /// reaches it too; face copies lie 1e-7 h off the line (crack_faces.hpp), far outside that
+  /// tolerance.
   [[nodiscard]] bool reaches(const Vec2& x, std::size_t c) const {
     if (corner_sides.empty() || corner_sides[c][0].isZero()) return true;
     const Vec2 d = x - corner_vertex[c];
     const double on_line = -1e-10 * d.norm();
-    return d.dot(corner_sides[c][0]) >= on_line || d.dot(corner_sides[c][1]) >= on_line;
+    if (!(d.dot(corner_sides[c][0]) >= on_line || d.dot(corner_sides[c][1]) >= on_line)) return false;
+    if (corner_edges.empty() || corner_edges[c][0].isZero()) return true;
+    // Sines (times |d|) of the angles from d to each edge: opposite signs, the line separates them.
+    const double s0 = d.x() * corner_edges[c][0].y() - d.y() * corner_edges[c][0].x();
+    const double s1 = d.x() * corner_edges[c][1].y() - d.y() * corner_edges[c][1].x();
+    const double tolerance = 1e-9 * d.norm();
+    return !((s0 > tolerance && s1 < -tolerance) || (s0 < -tolerance && s1 > tolerance));
   }
 };
 
@@ -89,6 +104,8 @@ struct PathScratch {
   std::vector<int> corners;   ///< indices of corners near x
   std::vector<double> to_x;   ///< per near corner: shortest path length to x (inf: none)
   std::vector<Vec2> last;     ///< per near corner: the path's last point before x
+  std::vector<int> local;     ///< per corner of the domain: its place in `corners`, or -1
+  std::vector<std::pair<double, int>> heap;  ///< Dijkstra's queue: (length, place)
 };
 
 class SupportPaths {
@@ -114,6 +131,9 @@ class SupportPaths {
  private:
   template <class F>
   void for_each_bucket(const Vec2& x, F&& f) const;
+  /// The obstacles and corners near x into s; false when there are no obstacles.
+  bool prepare_obstacles(const Vec2& x, PathScratch& s) const;
+  void find_legs();
 
   SupportObstacles obstacles_;
   SupportRule rule_;
@@ -124,6 +144,10 @@ class SupportPaths {
   double side_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> segment_start_, segment_items_, corner_start_, corner_items_;
+  // Geodesic rule: the legs between corners (CSR by corner), those shorter than the reach
+  // along which a shortest path may run (each end reached from the other, no obstacle crossed).
+  std::vector<int> leg_start_, leg_to_;
+  std::vector<double> leg_length_;
 };
 
 /// A node whose plain support of radius `radius` reaches a point across a gap: |x - x_I| <
