@@ -67,6 +67,8 @@ std::vector<Vec2> without_straight_vertices(const std::vector<Vec2>& p, bool clo
 /// there). Without a crack the corner is v itself, reached from the domain's side of an edge.
 void add_reflex_corners(SupportObstacles& o, const Domain& domain, const Vec2& prev, const Vec2& v,
                         const Vec2& next, double tolerance) {
+  o.wedge_vertex.push_back(v);
+  o.wedge_edges.push_back({unit_or_zero(prev - v), unit_or_zero(next - v)});
   std::vector<Vec2> rays;  // directions of the cracks leaving v into the domain
   for (const Crack& c : domain.cracks())
     for (int end = 0; end < 2; ++end) {

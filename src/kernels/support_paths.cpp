@@ -53,6 +53,27 @@ bool leaves_outside(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b, 
   return orientation(a, b, q) < -tolerance * length;
 }
 
+/// Whether the segment p q (direction d = q - p, length `length`) passes through or starts
+/// at the reflex vertex v (to `tolerance`) and runs into its outside wedge, the convex cone of
+/// the unit edge directions e (to 1e-10 in the sines: along an edge is not into it).
+bool enters_wedge(const Vec2& p, const Vec2& q, const Vec2& v, const std::array<Vec2, 2>& e,
+                  double tolerance) {
+  const Vec2 d = q - p;
+  const double length = d.norm();
+  if (!(length > 0.0) || !(std::abs(orientation(p, q, v)) <= tolerance * length)) return false;
+  const double along = (v - p).dot(d) / length;
+  if (along < -tolerance || along > length + tolerance) return false;
+  const double turn = e[0].x() * e[1].y() - e[0].y() * e[1].x();
+  const auto inside = [&](const Vec2& u) {
+    const double s0 = e[0].x() * u.y() - e[0].y() * u.x(), s1 = u.x() * e[1].y() - u.y() * e[1].x();
+    return turn > 0.0 ? s0 > 1e-10 && s1 > 1e-10 : s0 < -1e-10 && s1 < -1e-10;
+  };
+  const Vec2 u = d / length;
+  if (along <= tolerance) return inside(u);            // from v
+  if (along >= length - tolerance) return inside(-u);  // to v
+  return inside(u) || inside(-u);                      // through v
+}
+
 Vec2 unit_or_zero(const Vec2& v) {
   const double n = v.norm();
   return n > 0.0 ? Vec2(v / n) : Vec2(Vec2::Zero());
@@ -129,6 +150,10 @@ SupportPaths::SupportPaths(SupportObstacles obstacles, SupportRule rule, double 
   fill(
       obstacles_.corners.size(), [&](std::size_t k, Vec2& lo, Vec2& hi) { lo = hi = obstacles_.corners[k]; },
       corner_start_, corner_items_);
+  fill(
+      obstacles_.wedge_vertex.size(),
+      [&](std::size_t k, Vec2& lo, Vec2& hi) { lo = hi = obstacles_.wedge_vertex[k]; }, wedge_start_,
+      wedge_items_);
   if (rule_ == SupportRule::geodesic) find_legs();
 }
 
@@ -188,6 +213,7 @@ void SupportPaths::for_each_bucket(const Vec2& x, F&& f) const {
 bool SupportPaths::prepare_obstacles(const Vec2& x, PathScratch& s) const {
   s.segments.clear();
   s.corners.clear();
+  s.wedges.clear();
   // The box x +- reach: any obstacle a path within the support can meet lies in it.
   const Vec2 lo = x.array() - reach_, hi = x.array() + reach_;
   for_each_bucket(x, [&](std::size_t cell) {
@@ -203,6 +229,10 @@ bool SupportPaths::prepare_obstacles(const Vec2& x, PathScratch& s) const {
       const int k = corner_items_[i];
       if ((obstacles_.corners[k] - x).squaredNorm() < reach_ * reach_) s.corners.push_back(k);
     }
+    for (int i = wedge_start_[cell]; i < wedge_start_[cell + 1]; ++i) {
+      const int k = wedge_items_[i];
+      if ((obstacles_.wedge_vertex[k] - x).squaredNorm() <= reach_ * reach_) s.wedges.push_back(k);
+    }
   });
   if (s.segments.empty()) return false;
   // A segment spanning several buckets was met once per bucket.
@@ -215,6 +245,7 @@ bool SupportPaths::prepare(const Vec2& x, PathScratch& s) const {
   if (rule_ == SupportRule::plain || obstacles_.empty()) {
     s.segments.clear();
     s.corners.clear();
+    s.wedges.clear();
     return false;
   }
   if (!prepare_obstacles(x, s)) return false;
@@ -272,6 +303,11 @@ bool SupportPaths::visible(const Vec2& p, const Vec2& q, const PathScratch& s) c
     if (!obstacles_.one_sided.empty() && obstacles_.one_sided[k] &&
         (leaves_outside(p, q, a, b, tolerance_) || leaves_outside(q, p, a, b, tolerance_)))
       return false;
+  }
+  for (const int k : s.wedges) {
+    const Vec2& v = obstacles_.wedge_vertex[k];
+    if (v.x() < lo.x() || v.x() > hi.x() || v.y() < lo.y() || v.y() > hi.y()) continue;
+    if (enters_wedge(p, q, v, obstacles_.wedge_edges[k], tolerance_)) return false;
   }
   return true;
 }

@@ -1,8 +1,12 @@
 // Support paths on the L of meshes/l_shape.wkt (the square [-1, 1]^2 without the quadrant
 // x > 0, y > 0; its re-entrant corner at the origin, faces y = 0 and x = 0 for 0 <= s <= 1).
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <string>
 
 #include "mfree/geometry/support_obstacles.hpp"
 #include "mfree/kernels/support_paths.hpp"
@@ -208,4 +212,53 @@ TEST_CASE("support paths: a crack from a notch's root cuts the root's wedge; no 
   const Vec2 over_notch(0.2, 0.635), root(0.4, 0.6), under(0.45, 0.5);
   CHECK(distance_in(notch, SupportRule::geodesic, 0.4, over_notch, under, g) ==
         Approx((root - over_notch).norm() + (under - root).norm()).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "support paths: round a hole faceted into 1024 edges the path wraps along the arc, as round a circle",
+    "[kernels]") {
+  // A square with a hole of radius R = 1 (a 1024-gon on the circle). From x at r = 1.2 on one
+  // side to x_I on the other, the shortest path runs along the tangents and the arc between
+  // them: 2 sqrt(r^2 - R^2) + R (pi - 2 acos(R / r)); the polygon's chords shorten the arc by
+  // about 1.6e-6 of it. Its bends are hundreds of reflex vertices, of which a path from a point
+  // may start only at the two its line is tangent to.
+  std::string wkt = "POLYGON((-2 -2, 2 -2, 2 2, -2 2, -2 -2), (";
+  constexpr int facets = 1024;
+  for (int k = 0; k <= facets; ++k) {
+    const double t = 2.0 * std::numbers::pi * (k % facets) / facets;
+    wkt += fmt::format("{}{:.17g} {:.17g}", k == 0 ? "" : ", ", std::cos(t), std::sin(t));
+  }
+  wkt += "))";
+  const Domain d = Domain::from_wkt(wkt);
+  const double r = 1.2, tangent = std::sqrt(r * r - 1.0),
+               expected = 2.0 * tangent + std::numbers::pi - 2.0 * std::acos(1.0 / r);
+  const Vec2 x(-r, 0.0), xi(r * std::cos(0.3), r * std::sin(0.3));
+  Vec2 g;
+  const double around = 2.0 * tangent + (std::numbers::pi - 0.3) - 2.0 * std::acos(1.0 / r);
+  CHECK(distance_in(d, SupportRule::geodesic, 3.5, xi, x, g) == Approx(around).epsilon(1e-5));
+  CHECK(distance_in(d, SupportRule::geodesic, 3.5, Vec2(r, 0.0), x, g) == Approx(expected).epsilon(1e-5));
+  // The last leg is the tangent from x: it ends on the circle, at right angles to the radius.
+  const Vec2 touch = x - tangent * g;
+  CHECK(touch.norm() == Approx(1.0).epsilon(1e-5));
+  CHECK(std::abs(touch.dot(g)) <= 1e-3);
+  CHECK(std::isinf(distance_in(d, SupportRule::visibility, 3.5, xi, x, g)));
+}
+
+TEST_CASE(
+    "support paths: a segment through two corners of a square hole is blocked; the path goes round the hole",
+    "[kernels]") {
+  // The diagonal from (0.3, 0.3) to (0.7, 0.7) passes through the hole's corners (0.4, 0.4) and
+  // (0.6, 0.6), reflex vertices where the edges end unmoved: it touched every edge at an end
+  // and was seen.
+  const Domain d =
+      Domain::from_wkt("POLYGON((0 0, 1 0, 1 1, 0 1, 0 0), (0.4 0.4, 0.4 0.6, 0.6 0.6, 0.6 0.4, 0.4 0.4))");
+  const Vec2 below(0.3, 0.3), above(0.7, 0.7);
+  Vec2 g;
+  CHECK(std::isinf(distance_in(d, SupportRule::visibility, 0.8, below, above, g)));
+  const double round = 2.0 * std::sqrt(0.1);  // by the corner (0.6, 0.4) or (0.4, 0.6)
+  CHECK(distance_in(d, SupportRule::geodesic, 0.8, below, above, g) == Approx(round).epsilon(1e-12));
+  CHECK(distance_in(d, SupportRule::geodesic, 0.8, above, below, g) == Approx(round).epsilon(1e-12));
+  // From a corner along an edge of the hole is in the domain.
+  CHECK(distance_in(d, SupportRule::visibility, 0.8, Vec2(0.4, 0.4), Vec2(0.4, 0.6), g) ==
+        Approx(0.2).epsilon(1e-12));
 }

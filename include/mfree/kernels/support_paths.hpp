@@ -73,6 +73,13 @@ struct SupportObstacles {
   /// Per corner (or empty: none), the unit directions from the corner along the two edges
   /// that meet there, for corners that are a reflex vertex itself; zero: not such a corner.
   std::vector<std::array<Vec2, 2>> corner_edges;
+  /// The reflex vertices of the rings, each with the unit directions along its two edges:
+  /// their ends meet there unmoved (paths bend there), so a segment through such a vertex,
+  /// or from it, into the outside wedge between the edges (under 180 degrees) crosses no
+  /// obstacle at an interior point; it is blocked by the wedge (a chord of a faceted hole
+  /// through two of its vertices, a path from a slot's corner across the slot).
+  std::vector<Vec2> wedge_vertex;
+  std::vector<std::array<Vec2, 2>> wedge_edges;
   [[nodiscard]] bool empty() const { return a.empty(); }
   /// Whether a path from x may bend at corner c: x on the corner's side and, where the
   /// corner's edges are known, the line from x through the corner tangent to them (both on
@@ -102,6 +109,7 @@ struct SupportObstacles {
 struct PathScratch {
   std::vector<int> segments;  ///< indices of obstacles near x
   std::vector<int> corners;   ///< indices of corners near x
+  std::vector<int> wedges;    ///< indices of wedges near x
   std::vector<double> to_x;   ///< per near corner: shortest path length to x (inf: none)
   std::vector<Vec2> last;     ///< per near corner: the path's last point before x
   std::vector<int> local;     ///< per corner of the domain: its place in `corners`, or -1
@@ -125,7 +133,8 @@ class SupportPaths {
   /// `gradient` gets d d / d x (a unit vector; zero where x is the path's last point).
   double distance(const Vec2& xi, const Vec2& x, const PathScratch& s, Vec2& gradient) const;
 
-  /// Whether the segment p -> q crosses none of the obstacles collected in s.
+  /// Whether the segment p -> q crosses none of the obstacles collected in s and enters no
+  /// wedge collected there.
   [[nodiscard]] bool visible(const Vec2& p, const Vec2& q, const PathScratch& s) const;
 
  private:
@@ -143,7 +152,7 @@ class SupportPaths {
   Vec2 origin_ = Vec2::Zero();
   double side_ = 1.0;
   int nx_ = 1, ny_ = 1;
-  std::vector<int> segment_start_, segment_items_, corner_start_, corner_items_;
+  std::vector<int> segment_start_, segment_items_, corner_start_, corner_items_, wedge_start_, wedge_items_;
   // Geodesic rule: the legs between corners (CSR by corner), those shorter than the reach
   // along which a shortest path may run (each end reached from the other, no obstacle crossed).
   std::vector<int> leg_start_, leg_to_;
