@@ -19,6 +19,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "mfree/core/error.hpp"
@@ -392,9 +393,10 @@ bool overlap_beyond(const FastSegment& s, const FastSegment& t, const Epick::Poi
 }  // namespace
 
 Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std::string> names,
-                           const std::string& source) const {
-  if (names.size() != lines.size())
-    throw Error(fmt::format("{}: {} cracks but {} names", source, lines.size(), names.size()));
+                           const std::string& source, const std::vector<std::pair<int, int>>& sides) const {
+  if (names.size() != lines.size() || (!sides.empty() && sides.size() != lines.size()))
+    throw Error(fmt::format("{}: {} cracks but {} names and {} sides", source, lines.size(), names.size(),
+                            sides.size()));
   auto impl = std::make_unique<Impl>(*impl_);
   // Every segment of every crack, bucketed, for the test that no two meet.
   std::vector<BoundarySegment> pieces;
@@ -421,11 +423,18 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
       throw InputError(
           fmt::format("{}: crack name '{}' is {}", source, name, taken ? "already a part name" : "empty"));
     Crack crack{line, name, {false, false}};
+    if (!sides.empty()) std::tie(crack.left, crack.right) = sides[c];
+    const bool closed = crack.closed();
+    if (closed && !crack.interface())
+      throw InputError(fmt::format(
+          "{}: crack '{}' closes on itself at ({}, {}): it would cut its inside loose; a hole is a "
+          "ring of the polygon, an inclusion a region of its own",
+          source, name, line.front().x(), line.front().y()));
     for (std::size_t i = 0; i < line.size(); ++i) {
       const Vec2& x = line[i];
       if (!contains(x))
         throw InputError(fmt::format("{}: {} lies outside the domain", source, crack_point(name, i, x)));
-      const bool end = i == 0 || i + 1 == line.size();
+      const bool end = !closed && (i == 0 || i + 1 == line.size());
       const bool boundary = on_boundary(impl->fast_rings, x);
       if (boundary && !end)
         throw InputError(fmt::format("{}: {} lies on the boundary; only an end of a crack may (its mouth)",
@@ -471,7 +480,16 @@ Domain Domain::with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std
       pieces_grid.for_each_meeting(
           Box{line[i].cwiseMin(line[i + 1]), line[i].cwiseMax(line[i + 1])}, [&](int k) {
             if (k >= here) return;
+            // The segment before, and for the last of a closed line its first, share an end.
             const bool previous = owner[k] == c && k + 1 == here;
+            const bool closing =
+                closed && i + 2 == line.size() && owner[k] == c && k == here - static_cast<int>(i);
+            if (closing) {
+              if (overlap_beyond(all[k], seg, seg.target()))
+                throw InputError(
+                    fmt::format("{}: crack '{}', segment {} folds back onto its first", source, name, i + 1));
+              return;
+            }
             if (previous ? overlap_beyond(all[k], seg, seg.source()) : CGAL::do_intersect(all[k], seg))
               throw InputError(
                   fmt::format("{}: crack '{}', segment {} meets {}; cracks do not cross, touch or fold back",
@@ -648,8 +666,9 @@ std::vector<SharedPiece> shared_pieces(const std::vector<Ring>& first, const std
   return out;
 }
 
-/// Joins pieces end to start into polylines; throws naming `what` when they close on
-/// themselves or branch.
+/// Joins pieces end to start into polylines, open ones (from a start that no piece ends at)
+/// first, then those that close on themselves (round an inclusion: the last point repeats the
+/// first); throws naming `what` where they branch.
 std::vector<std::vector<Vec2>> chain(const std::vector<SharedPiece>& pieces, const std::string& what) {
   const auto key = [](const Vec2& x) { return std::pair<double, double>(x.x(), x.y()); };
   std::map<std::pair<double, double>, std::size_t> starting;
@@ -660,22 +679,20 @@ std::vector<std::vector<Vec2>> chain(const std::vector<SharedPiece>& pieces, con
     ends.insert(key(pieces[k].b));
   }
   std::vector<std::vector<Vec2>> lines;
-  std::size_t used = 0;
-  for (const SharedPiece& first : pieces) {
-    if (ends.count(key(first.a))) continue;  // not the start of a polyline
-    std::vector<Vec2> line{first.a};
-    for (auto at = starting.find(key(first.a)); at != starting.end(); at = starting.find(key(line.back()))) {
+  std::vector<char> used(pieces.size(), 0);
+  const auto follow = [&](std::size_t first) {
+    std::vector<Vec2> line{pieces[first].a};
+    for (auto at = starting.find(key(line.back())); at != starting.end() && !used[at->second];
+         at = starting.find(key(line.back()))) {
       line.push_back(pieces[at->second].b);
-      ++used;
+      used[at->second] = 1;
     }
     lines.push_back(std::move(line));
-  }
-  if (used != pieces.size())
-    throw InputError(
-        fmt::format("{} closes on itself (an inclusion); mfree ties interfaces that run from "
-                    "boundary to boundary: cut the outer region so that the interface ends on "
-                    "its boundary",
-                    what));
+  };
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    if (!ends.count(key(pieces[k].a))) follow(k);  // the start of an open polyline
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    if (!used[k]) follow(k);  // a loop: it ends where it started
   return lines;
 }
 
@@ -810,13 +827,7 @@ Domain Domain::from_regions(std::vector<std::vector<Ring>> polygons, const Regio
   for (const std::string& n : line_names) ++pieces[n];
   for (std::string& n : line_names)
     if (const std::string base = n; pieces[base] > 1) n += fmt::format("#{}", ++numbered[base]);
-  Domain with = domain.with_cracks(std::move(lines), std::move(line_names), source);
-  for (std::size_t k = 0; k < sides.size(); ++k) {
-    Crack& c = with.impl_->cracks[with.impl_->cracks.size() - sides.size() + k];
-    c.left = sides[k].first;
-    c.right = sides[k].second;
-  }
-  return with;
+  return domain.with_cracks(std::move(lines), std::move(line_names), source, sides);
 }
 
 Domain Domain::from_wkt(std::string_view wkt, const std::string& source, const RegionOptions& regions) {

@@ -119,6 +119,25 @@ void mark_nesting_levels(Cdt& cdt, Passable&& passable) {
 
 }  // namespace
 
+std::vector<std::array<Vec2, 3>> triangulate_rings(const std::vector<Ring>& rings) {
+  Cdt cdt;
+  for (const Ring& ring : rings) {
+    std::vector<Cdt::Vertex_handle> v;
+    for (const Vec2& x : ring) v.push_back(cdt.insert(CgalPoint(x.x(), x.y())));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] != v[(i + 1) % v.size()]) cdt.insert_constraint(v[i], v[(i + 1) % v.size()]);
+  }
+  mark_nesting_levels(cdt, [](const Cdt::Edge&) { return false; });
+  std::vector<std::array<Vec2, 3>> out;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (f->info().level % 2 == 0) continue;
+    std::array<Vec2, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = Vec2(f->vertex(k)->point().x(), f->vertex(k)->point().y());
+    out.push_back(t);
+  }
+  return out;
+}
+
 Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& points) {
   // The rings' edges; crack faces (after them) bound no area.
   std::vector<BoundarySegment> segments = domain.boundary();

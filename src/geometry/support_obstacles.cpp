@@ -140,26 +140,33 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
     }
   }
   for (const Crack& c : domain.cracks()) {
-    const std::vector<Vec2> p = without_straight_vertices(c.points, false);
+    // A closed interface (round an inclusion) has no ends: every vertex is an inner one.
+    const bool closed = c.closed();
+    const std::vector<Vec2> p = closed
+                                    ? without_straight_vertices({c.points.begin(), c.points.end() - 1}, true)
+                                    : without_straight_vertices(c.points, false);
     const std::size_t n = p.size();
     for (std::size_t i = 0; i < n; ++i) {
-      if ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1])) add_corner(out, p[i]);  // paths go round a tip
-      if (i == 0 || i + 1 == n) continue;
+      if (!closed && ((i == 0 && c.tip[0]) || (i + 1 == n && c.tip[1])))
+        add_corner(out, p[i]);  // paths go round a tip
+      if (!closed && (i == 0 || i + 1 == n)) continue;
       // An inner vertex is a corner on its reflex face, a little off the crack along the
       // bisector (1e-3 of the shorter segment: far above the round-off tolerance of the
       // crossing test, so that a path from the other face to it, nearly along the bisector,
       // still crosses a segment): a path that bends there stays on that face (through the
       // vertex itself it would pass from one face to the other).
-      const Vec2 n1 = unit_or_zero(Vec2(p[i - 1].y() - p[i].y(), p[i].x() - p[i - 1].x()));
-      const Vec2 n2 = unit_or_zero(Vec2(p[i].y() - p[i + 1].y(), p[i + 1].x() - p[i].x()));
+      const Vec2 &before = p[(i + n - 1) % n], &after = p[(i + 1) % n];
+      const Vec2 n1 = unit_or_zero(Vec2(before.y() - p[i].y(), p[i].x() - before.x()));
+      const Vec2 n2 = unit_or_zero(Vec2(p[i].y() - after.y(), after.x() - p[i].x()));
       // Only the face on which the crack turns away (the reflex one) bends paths.
-      const double offset = 1e-3 * std::min((p[i] - p[i - 1]).norm(), (p[i + 1] - p[i]).norm());
+      const double offset = 1e-3 * std::min((p[i] - before).norm(), (after - p[i]).norm());
       const Vec2 side = offset * unit_or_zero(n1 + n2);
-      const double sign = orientation(p[i - 1], p[i], p[i + 1]) > 0.0 ? -1.0 : 1.0;
+      const double sign = orientation(before, p[i], after) > 0.0 ? -1.0 : 1.0;
       add_corner(out, p[i] + sign * side, p[i], {sign * n1, sign * n2});
     }
-    for (std::size_t i = 0; i + 1 < n; ++i)
-      add_segment(out, p[i], p[i + 1], !(i == 0 && c.tip[0]), !(i + 2 == n && c.tip[1]), false);
+    for (std::size_t i = 0; i + 1 < n + (closed ? 1 : 0); ++i)
+      add_segment(out, p[i], p[(i + 1) % n], closed || !(i == 0 && c.tip[0]),
+                  closed || !(i + 2 == n && c.tip[1]), false);
   }
   return out;
 }

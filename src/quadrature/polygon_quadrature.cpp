@@ -10,6 +10,7 @@
 #include <list>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/domain_triangulation.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
 
 namespace mfree {
@@ -98,9 +99,20 @@ void add_convex_piece(const std::vector<Vec2>& p, const GaussLegendre1D& g, doub
 }  // namespace
 
 bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule& rule) {
-  for (const Ring& ring : rings)
-    if (ring_area(ring) < -1e-14 * size * size) return false;
   const GaussLegendre1D g = gauss_legendre(m);
+  // Holes, or rings that touch themselves: Gauss rules on the triangles of the region.
+  const auto on_triangles = [&] {
+    std::vector<std::array<Vec2, 3>> triangles;
+    try {
+      triangles = triangulate_rings(rings);
+    } catch (const std::exception&) {
+      return false;  // rounding made edges cross: the caller cuts the cell smaller
+    }
+    for (const std::array<Vec2, 3>& t : triangles) add_triangle(t[0], t[1], t[2], g, rule);
+    return true;
+  };
+  for (const Ring& ring : rings)
+    if (ring_area(ring) < -1e-14 * size * size) return on_triangles();
   std::vector<std::list<Piece>> partitions;
   for (const Ring& ring : rings) {
     // A sliver of no area (the exact intersection touching the cell at a point or along an
@@ -110,7 +122,7 @@ bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, Quadra
     for (std::size_t k = 0; k < ring.size(); ++k)  // vertices that rounding made equal, once
       if (ring[k] != ring[(k + 1) % ring.size()])
         polygon.push_back(Traits::Point_2(ring[k].x(), ring[k].y()));
-    if (!polygon.is_simple()) return false;  // rounding made it touch itself
+    if (!polygon.is_simple()) return on_triangles();  // it touches itself
     std::list<Piece>& pieces = partitions.emplace_back();
     if (polygon.is_convex())
       pieces.push_back(polygon);

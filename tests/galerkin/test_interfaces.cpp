@@ -30,6 +30,16 @@ Domain two_parts(bool interfaces) {
   return Domain::from_regions(parts, {{"left", "right"}, interfaces}, "two parts");
 }
 
+/// A hexagonal inclusion in [0, 2] x [0, 1.25], tied round its whole boundary (an interface
+/// that closes on itself); three rows of nodes of the tests' spacing 1/8 below and above it.
+Domain with_inclusion() {
+  const Ring inclusion{Vec2(0.45, 0.3),  Vec2(1.3, 0.32), Vec2(1.6, 0.6),
+                       Vec2(1.35, 0.95), Vec2(0.6, 0.92), Vec2(0.32, 0.62)};
+  const std::vector<std::vector<Ring>> parts{
+      {{Vec2(0, 0), Vec2(2, 0), Vec2(2, 1.25), Vec2(0, 1.25)}, inclusion}, {inclusion}};
+  return Domain::from_regions(parts, {{"matrix", "inclusion"}, true}, "inclusion");
+}
+
 /// Two materials side by side, the interface x = 1 straight.
 Domain bimaterial(bool interfaces) {
   const std::vector<std::vector<Ring>> parts{{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}},
@@ -86,6 +96,34 @@ TEST_CASE("two parts tied along a kinked edge reproduce linear and quadratic fie
   const Domain tied = two_parts(true);
   REQUIRE(tied.cracks().size() == 1);
   CHECK(tied.cracks()[0].name == "left/right");
+  for (const QuadratureScheme scheme : {QuadratureScheme::gauss_cells, QuadratureScheme::projected})
+    for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
+      for (const SupportRule rule : {SupportRule::geodesic, SupportRule::visibility}) {
+        const double linear = tied_patch_error(tied, {steel, {}}, linear_field(Vec2(0.01, -0.02), g, steel),
+                                               kind, RKOrder::linear, rule, scheme);
+        const double quadratic =
+            tied_patch_error(tied, {steel, {}}, quadratic_field(Vec2(0.01, -0.02), g, h0, h1, steel), kind,
+                             RKOrder::quadratic, rule, scheme);
+        CAPTURE(to_string(scheme), to_string(kind), to_string(rule), linear, quadratic);
+        CHECK(linear < 1e-10);
+        CHECK(quadratic < 1e-10);
+      }
+}
+
+TEST_CASE("an inclusion tied round its closed interface reproduces linear and quadratic fields of one part",
+          "[galerkin][regions]") {
+  Mat2 g, h0, h1;
+  g << 1e-3, 2e-3, -0.5e-3, 1.5e-3;
+  h0 << 0.8e-3, -0.3e-3, -0.3e-3, 0.5e-3;
+  h1 << -0.4e-3, 0.6e-3, 0.6e-3, 1.1e-3;
+  const Domain tied = with_inclusion();
+  REQUIRE(tied.cracks().size() == 1);
+  const Crack& loop = tied.cracks()[0];
+  CHECK(loop.name == "matrix/inclusion");
+  CHECK(loop.closed());
+  CHECK(loop.points.size() == 7);
+  CHECK(!loop.tip[0]);
+  CHECK(!loop.tip[1]);
   for (const QuadratureScheme scheme : {QuadratureScheme::gauss_cells, QuadratureScheme::projected})
     for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed, CloudKind::random})
       for (const SupportRule rule : {SupportRule::geodesic, SupportRule::visibility}) {

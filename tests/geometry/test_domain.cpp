@@ -396,7 +396,19 @@ TEST_CASE("regions: the union of polygons that share edges, interfaces along the
     if (s.ring == 0 && s.a.y() == 1 && s.b.y() == 1)
       CHECK((s.part >= 0 && parted.part_names()[s.part] == "top"));
 
-  // Refusals: apart, overlapping, an inclusion, a crack across the interface.
+  // An inclusion: the interface closes on itself, the matrix on its left.
+  const Domain inclusion =
+      Domain::from_wkt("MULTIPOLYGON(((0 0, 3 0, 3 3, 0 3), (1 1, 1 2, 2 2, 2 1)), ((1 1, 2 1, 2 2, 1 2)))");
+  REQUIRE(inclusion.cracks().size() == 1);
+  const mfree::Crack& loop = inclusion.cracks()[0];
+  CHECK(loop.closed());
+  CHECK(loop.points.size() == 5);
+  CHECK((!loop.tip[0] && !loop.tip[1]));
+  CHECK((loop.left == 0 && loop.right == 1));
+  CHECK(mfree::ring_area(mfree::Ring(loop.points.begin(), loop.points.end() - 1)) <
+        0.0);  // clockwise: the matrix outside
+
+  // Refusals: apart, overlapping, a crack that closes on itself, a crack across the interface.
   const auto refusal = [](const std::string& text) {
     return input_error_message([&] { (void)Domain::from_wkt(text, "regions.wkt"); });
   };
@@ -405,8 +417,9 @@ TEST_CASE("regions: the union of polygons that share edges, interfaces along the
              Contains("2 separate pieces"));
   CHECK_THAT(refusal("MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((0.5 0, 2 0, 2 1, 0.5 1)))"),
              Contains("overlap"));
-  CHECK_THAT(refusal("MULTIPOLYGON(((0 0, 3 0, 3 3, 0 3), (1 1, 1 2, 2 2, 2 1)), ((1 1, 2 1, 2 2, 1 2)))"),
-             Contains("closes on itself"));
+  CHECK_THAT(
+      refusal("GEOMETRYCOLLECTION(POLYGON((0 0, 3 0, 3 3, 0 3)), LINESTRING(1 1, 2 1, 2 2, 1 2, 1 1))"),
+      Contains("crack 'crack1' closes on itself at (1, 1): it would cut its inside loose"));
   CHECK_THAT(refusal("GEOMETRYCOLLECTION(MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1)), ((1 0, 2 0, 2 1, 1 1))),"
                      " LINESTRING(0.5 0.5, 1.5 0.5))"),
              Contains("meets the interface 'region1/region2'"));

@@ -47,7 +47,9 @@ struct BoundarySegment {
 /// a condition names the crack). Each end is a tip inside the domain or lies on the boundary
 /// (an edge crack's mouth). Its faces are the part named `name`.
 struct Crack {
-  std::vector<Vec2> points;  ///< vertices in order, at least 2
+  /// Vertices in order, at least 2; an interface round an inclusion closes on itself: its
+  /// last point repeats its first (at least 3 distinct points), and it has no ends.
+  std::vector<Vec2> points;
   std::string name;
   bool tip[2] = {false, false};  ///< whether points.front() / points.back() is a tip
   /// An interface between two regions (Domain::regions()) is a crack whose faces are tied,
@@ -55,6 +57,7 @@ struct Crack {
   /// material) and the one on its right. -1 for a crack.
   int left = -1, right = -1;
   [[nodiscard]] bool interface() const { return left >= 0; }
+  [[nodiscard]] bool closed() const { return points.size() > 3 && points.front() == points.back(); }
 };
 
 /// A named region of a domain made of several (a material, or a part of an assembly).
@@ -90,7 +93,7 @@ class Domain {
   /// edges, or pieces of edges, and overlap nowhere; their union must be one polygon with
   /// holes. Where two regions share edges the domain gets an interface (a Crack with left
   /// and right set) named "<left>/<right>", unless options.interfaces is false. An interface
-  /// runs from boundary to boundary; one that closes on itself (an inclusion) or meets
+  /// runs from boundary to boundary or closes on itself (round an inclusion); one that meets
   /// another is refused. `edge_parts`, when given, holds per region, ring and edge (as given)
   /// the index of its part in `part_names` or -1; an edge of the union takes the part of the
   /// region edge it lies along. Throws InputError naming `source` and the regions otherwise.
@@ -102,9 +105,13 @@ class Domain {
   /// domain, whose vertices other than the ends lie in its interior, crossing no boundary
   /// edge, no other crack and themselves nowhere; an end on the boundary is a mouth, one in
   /// the interior a tip. `names` (one per crack, not a part name already) name their faces.
+  /// `sides`, when given, makes each line an interface between regions: (left, right) per
+  /// line (Crack::left, right); an interface may close on itself (its last point its first,
+  /// every point in the interior), a crack may not (it would cut its inside loose).
   /// Throws InputError naming `source` and the crack otherwise.
   [[nodiscard]] Domain with_cracks(std::vector<std::vector<Vec2>> lines, std::vector<std::string> names,
-                                   const std::string& source) const;
+                                   const std::string& source,
+                                   const std::vector<std::pair<int, int>>& sides = {}) const;
   /// Reads a domain file by its extension (case aside): .wkt as WKT (from_wkt), the gmsh
   /// extensions (.geo, .msh, .step, .stp, .brep, .iges, .igs) with read_gmsh_domain
   /// (gmsh_domain.hpp), which also names the boundary parts and takes the regions from the

@@ -44,4 +44,11 @@ struct Triangulation {
 /// the domain (beyond the tolerance above).
 Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& points);
 
+/// The triangles (counter-clockwise, positive area) of the region that the rings bound: the
+/// faces of the constrained triangulation of their edges inside an odd number of them. For
+/// pieces the polygon partition cannot take: a ring with a hole, or rings that touch
+/// themselves or each other at a vertex (Domain::clip of a region with a hole whose vertex
+/// lies on the box's side). Throws when rounding made two edges cross.
+std::vector<std::array<Vec2, 3>> triangulate_rings(const std::vector<Ring>& rings);
+
 }  // namespace mfree

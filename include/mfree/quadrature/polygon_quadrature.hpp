@@ -23,9 +23,10 @@ namespace mfree {
 
 /// Appends the points of the polygon `rings` (counter-clockwise outer rings, clockwise holes,
 /// as Domain::clip returns them) with m points per direction per triangle; `size` is the
-/// cell's size (the simplification's scale). Returns false, appending nothing, when a ring is
-/// a hole or is not simple (rounded from an exact intersection): the caller cuts the cell
-/// smaller.
+/// cell's size (the simplification's scale). Convex pieces of each ring take the rule; a
+/// region with a hole, or a ring that touches itself (a hole's vertex on the cell's side),
+/// takes it on the triangles of the region (triangulate_rings). Returns false, appending
+/// nothing, when rounding made edges cross: the caller cuts the cell smaller.
 bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule& rule);
 
 /// Appends the points of the part of `cell` in the domain (in region `region` when >= 0:
