@@ -36,7 +36,7 @@ namespace {
 
 double force_scale(const Reactions& r) {
   double scale = std::max(r.applied.force.norm(), r.applied_magnitude);
-  for (const PartReaction& p : r.parts) scale = std::max(scale, p.reaction.force.norm());
+  for (const PartReaction& p : r.parts) scale = std::max({scale, p.reaction.force.norm(), p.magnitude});
   if (r.inertia) scale = std::max(scale, r.inertia->force.norm());
   return scale;
 }
@@ -83,8 +83,9 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
   for (std::size_t b = 0; b < model.nitsche_points(); ++b) {
     const TotalLagrangian::NitscheValues v = model.nitsche_values(b, d, load);
     const std::size_t c = static_cast<std::size_t>(v.condition - problem.conditions.data());
-    r.parts[part_of[c]].reaction +=
-        weighted(bq.weights[v.point], nitsche_flux(v.traction, v.gap, penalty), boundary_arm(v.point));
+    const Vec2 flux = nitsche_flux(v.traction, v.gap, penalty);
+    r.parts[part_of[c]].reaction += weighted(bq.weights[v.point], flux, boundary_arm(v.point));
+    r.parts[part_of[c]].magnitude += std::abs(bq.weights[v.point]) * flux.norm();
   }
 
   // Applied: tractions and pressures at the boundary points, the body force at the domain's.

@@ -9,9 +9,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <deque>
 #include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -80,6 +84,80 @@ bool snap_into(const Domain& domain, const Vec2& x, double tolerance, Vec2& snap
   }
   snapped = q;
   return true;
+}
+
+/// A vertex of a crack (not a tip) that the triangulation added, and its neighbours along
+/// the crack (none beyond a mouth).
+struct FaceSplit {
+  Index index;
+  Vec2 at;
+  std::optional<Vec2> previous, next;
+};
+
+/// Angle of d counter-clockwise from `from`, in [0, 2 pi).
+double angle_from(const Vec2& from, const Vec2& d) {
+  const double a = std::atan2(from.x() * d.y() - from.y() * d.x(), from.dot(d));
+  return a < 0.0 ? a + 2.0 * std::numbers::pi : a;
+}
+
+/// A crack's vertex lies on both faces: each face's triangles get a copy of their own, sampled
+/// a little into the face (Triangulation::samples), so that a warped plot opens there too. The
+/// left face's copy keeps the vertex's index, the right face's is appended.
+void split_crack_vertices(const Domain& domain, const std::vector<FaceSplit>& splits, Triangulation& out) {
+  out.samples = out.points;
+  const double floor = 1e-10 * domain.bounding_box().size().norm();
+  std::map<Index, std::size_t> split_of;
+  std::vector<Index> right(splits.size());
+  std::vector<Vec2> into_left(splits.size());
+  for (std::size_t k = 0; k < splits.size(); ++k) {
+    const FaceSplit& f = splits[k];
+    split_of.emplace(f.index, k);
+    const auto left_normal = [](const Vec2& a, const Vec2& b) {
+      return Vec2(Vec2(a.y() - b.y(), b.x() - a.x()).normalized());
+    };
+    double shortest = std::numeric_limits<double>::infinity();
+    Vec2 direction = Vec2::Zero();
+    if (f.previous) {
+      direction += left_normal(*f.previous, f.at);
+      shortest = std::min(shortest, (f.at - *f.previous).norm());
+    }
+    if (f.next) {
+      direction += left_normal(f.at, *f.next);
+      shortest = std::min(shortest, (*f.next - f.at).norm());
+    }
+    into_left[k] = direction.normalized();
+    const double delta = std::max(1e-7 * shortest, floor);
+    // Along the crack away from a mouth.
+    const Vec2 inward =
+        f.previous && f.next ? Vec2::Zero() : Vec2(((f.next ? *f.next : *f.previous) - f.at).normalized());
+    const auto copy = [&](const Vec2& d) {
+      Vec2 x = f.at + delta * d;
+      for (int step = 1; step <= 64 && !domain.contains(x); step *= 2) x += step * delta * inward;
+      return x;
+    };
+    out.samples[f.index] = copy(into_left[k]);
+    right[k] = static_cast<Index>(out.points.size());
+    out.points.push_back(f.at);
+    out.samples.push_back(copy(-into_left[k]));
+  }
+  if (splits.empty()) return;
+  for (std::array<Index, 3>& t : out.triangles) {
+    const Vec2 centroid = (out.points[t[0]] + out.points[t[1]] + out.points[t[2]]) / 3.0;
+    for (Index& i : t) {
+      const auto found = split_of.find(i);
+      if (found == split_of.end()) continue;
+      const FaceSplit& f = splits[found->second];
+      const Vec2 d = centroid - f.at;
+      // Left of the crack: counter-clockwise from the way to the next vertex to the way back.
+      bool left;
+      if (f.previous && f.next)
+        left = angle_from(*f.next - f.at, d) < angle_from(*f.next - f.at, *f.previous - f.at);
+      else
+        left = f.next ? orientation(f.at, *f.next, centroid) > 0.0
+                      : orientation(*f.previous, f.at, centroid) > 0.0;
+      if (!left) i = right[found->second];
+    }
+  }
 }
 
 /// Sets every face's nesting level by flooding from the unbounded region: faces reached
@@ -200,13 +278,23 @@ Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& 
   // points on them are split, one copy per face: crack_faces.hpp) and the opening shows.
   // Inserting the constraints above may have removed the hint's face: start without one.
   hint = Cdt::Face_handle();
+  std::vector<FaceSplit> splits;  // the crack vertices this triangulation added, but tips
   for (const Crack& c : domain.cracks()) {
     Cdt::Vertex_handle previous;
-    for (const Vec2& a : c.points) {
+    const std::size_t n = c.points.size();
+    const bool closed = c.closed();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2& a = c.points[i];
       const Cdt::Vertex_handle v = cdt.insert(CgalPoint(a.x(), a.y()), hint);
       if (v->info().index < 0) {
         v->info().index = static_cast<Index>(out.points.size());
         out.points.push_back(a);
+        const bool first = i == 0 && !closed, last = i + 1 == n && !closed;
+        if (!(first && c.tip[0]) && !(last && c.tip[1]))
+          splits.push_back(
+              {v->info().index, a,
+               first ? std::nullopt : std::optional<Vec2>(c.points[closed && i == 0 ? n - 2 : i - 1]),
+               last ? std::nullopt : std::optional<Vec2>(c.points[closed && i + 1 == n ? 1 : i + 1])});
       }
       if (previous != Cdt::Vertex_handle()) cdt.insert_constraint(previous, v);
       previous = v;
@@ -234,6 +322,7 @@ Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& 
           {f->vertex(0)->info().index, f->vertex(1)->info().index, f->vertex(2)->info().index});
     }
   }
+  split_crack_vertices(domain, splits, out);
   return out;
 }
 

@@ -67,7 +67,8 @@ std::vector<std::filesystem::path> write_elasticity_fields(const ElasticityScene
   if (scene.output.wants("weights")) qf.push_back({"weight", 1, r.quadrature.weights});
   write_point_cloud_vtu(dir / "quadrature.vtu", r.quadrature.points, qf);
   const Triangulation tri = triangulate_domain(scene.domain, r.nodes);
-  write_triangles_vtu(dir / "field.vtu", tri.points, tri.triangles, sampled_fields(scene, r, tri.points, nullptr, exact));
+  write_triangles_vtu(dir / "field.vtu", tri.points, tri.triangles,
+                      sampled_fields(scene, r, tri.samples, nullptr, exact));
   return {dir / "nodes.vtu", dir / "quadrature.vtu", dir / "field.vtu"};
 }
 

@@ -43,9 +43,10 @@ SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& dis
     throw std::logic_error("SolidFrames: a law with history needs the model that holds it");
   Triangulation tri = triangulate_domain(scene.domain, disc.nodes);
   points_ = std::move(tri.points);
+  samples_ = std::move(tri.samples);
   triangles_ = std::move(tri.triangles);
   const bool gradients = !model_ && (output_.wants("stress") || output_.wants("von_mises") || output_.wants("error"));
-  at_ = sample_shape_functions(*disc.trial, points_, gradients);
+  at_ = sample_shape_functions(*disc.trial, samples_, gradients);
 }
 
 void SolidFrames::write_points(double time, const Eigen::VectorXd& d) {
@@ -97,8 +98,8 @@ void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::Vect
       if (output_.wants("stress")) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
       if (output_.wants("von_mises")) vm.push_back(von_mises(s, out_of_plane_stress(material_, f)));
       if (want_error) {
-        const Vec2 eu = uk - exact_->displacement(points_[k], time);
-        const Mat2 es = s - exact_->cauchy_stress(points_[k], time);
+        const Vec2 eu = uk - exact_->displacement(samples_[k], time);
+        const Mat2 es = s - exact_->cauchy_stress(samples_[k], time);
         ue.insert(ue.end(), {eu.x(), eu.y()});
         se.insert(se.end(), {es(0, 0), es(1, 1), es(0, 1)});
       }

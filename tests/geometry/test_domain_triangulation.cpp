@@ -212,3 +212,33 @@ TEST_CASE("domain triangulation: a crack from a notch's root, its nodes split, i
     CHECK(check_triangulation(domain, points, tri) == points.size());
   }
 }
+
+TEST_CASE(
+    "domain triangulation: round an inclusion each region's triangles hold copies of the interface's "
+    "vertices",
+    "[geometry][regions]") {
+  // The interface's vertices lie on both regions: sampled there, the functions of both faces
+  // meet (a ring of von Mises 0.83 where the exact field has 0.30 round a stiff inclusion).
+  // Each face's triangles take a copy moved into their region.
+  const Domain domain = Domain::from_wkt(
+      "MULTIPOLYGON(((0 0, 2 0, 2 1.25, 0 1.25), (0.45 0.3, 0.32 0.62, 0.6 0.92, 1.35 0.95, 1.6 0.6, 1.3 "
+      "0.32)),"
+      " ((0.45 0.3, 1.3 0.32, 1.6 0.6, 1.35 0.95, 0.6 0.92, 0.32 0.62)))");
+  const double h = 0.125;
+  mfree::CloudSettings settings;
+  settings.kind = mfree::CloudKind::lattice;
+  settings.spacing = h;
+  const std::vector<Vec2> points = mfree::split_on_cracks(domain, mfree::make_cloud(domain, settings), h);
+  const Triangulation tri = mfree::triangulate_domain(domain, points);
+  CHECK(check_triangulation(domain, points, tri) == points.size());
+  CHECK(tri.points.size() == points.size() + 2 * 6);  // each interface vertex twice (the corners are nodes)
+  REQUIRE(tri.samples.size() == tri.points.size());
+  std::size_t mixed = 0, moved = 0;
+  for (const auto& t : tri.triangles) {
+    const Vec2 centroid = (tri.points[t[0]] + tri.points[t[1]] + tri.points[t[2]]) / 3.0;
+    for (const Index v : t) mixed += domain.region_at(tri.samples[v]) != domain.region_at(centroid);
+  }
+  for (std::size_t i = 0; i < tri.points.size(); ++i) moved += tri.samples[i] != tri.points[i];
+  CHECK(mixed == 0);
+  CHECK(moved == 12);
+}

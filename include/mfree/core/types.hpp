@@ -25,4 +25,10 @@ struct Box {
   }
 };
 
+/// Twice the signed area of (a, b, c): > 0 when c lies left of a -> b (floating point, not
+/// an exact predicate; callers compare it against tolerances).
+inline double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
 }  // namespace mfree

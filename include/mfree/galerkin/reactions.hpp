@@ -91,6 +91,9 @@ inline Vec2 nitsche_flux(const Vec2& traction, const Vec2& gap, double penalty) 
 struct PartReaction {
   std::string name;    ///< the condition's name
   Resultant reaction;  ///< what the support exerts on the body
+  /// sum of |w lambda| over its points: the reaction's size where it balances itself (a
+  /// support that pulls a ring outward all round exerts no net force)
+  double magnitude = 0.0;
 };
 
 struct Reactions {
@@ -103,8 +106,8 @@ struct Reactions {
 
   /// sum_p R_p + F - inertia: zero for the exact discrete balance.
   [[nodiscard]] Resultant balance() const;
-  /// |balance force| / the largest of |F|, the applied magnitude, |R_p|, |inertia| (0 when
-  /// all vanish).
+  /// |balance force| / the largest of |F|, the applied magnitude, |R_p| and the parts'
+  /// magnitudes, |inertia| (0 when all vanish).
   [[nodiscard]] double force_imbalance() const;
   /// |balance moment| / (arm × that force scale).
   [[nodiscard]] double moment_imbalance() const;

@@ -30,8 +30,14 @@ struct Triangulation {
   /// Vertices: points[0 .. input_points) are the given points in their order (so fields
   /// computed at them map 1:1; those a round-off outside the domain moved into it, see
   /// above), then the boundary vertices that coincide with no given point, in ring order
-  /// (domain.rings()).
+  /// (domain.rings()), then the cracks' vertices: each (but a tip) twice, the triangles of
+  /// each face using their own copy.
   std::vector<Vec2> points;
+  /// Where each point's fields are sampled: the point itself, but a copy of a crack's vertex
+  /// moved a little into its face (1e-7 of the shorter crack segment there, at least 1e-10 of
+  /// the domain's diagonal; at a mouth, stepped along the crack back into the domain): at the
+  /// vertex itself the functions of both faces meet (a ring of wrong stress round an inclusion).
+  std::vector<Vec2> samples;
   /// Indices into points, counter-clockwise, each triangle of positive area.
   std::vector<std::array<Index, 3>> triangles;
   /// How many of `points` were given.

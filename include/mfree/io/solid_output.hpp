@@ -54,7 +54,7 @@ class SolidFrames {
   const ExactMotion* exact_;
   const TotalLagrangian* model_;  ///< set for a law with history
   std::filesystem::path folder_;
-  std::vector<Vec2> points_;
+  std::vector<Vec2> points_, samples_;  ///< the plot's vertices, where their fields are sampled
   std::vector<std::array<Index, 3>> triangles_;
   GalerkinQuadrature at_;
   std::vector<std::pair<double, std::string>> steps_, point_steps_;

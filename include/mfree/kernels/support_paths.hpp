@@ -51,12 +51,6 @@ enum class SupportRule { plain, visibility, geodesic };
 const NameTable<SupportRule>& support_rule_names();
 std::string_view to_string(SupportRule rule);
 
-/// Twice the signed area of (a, b, c): > 0 when c lies left of a -> b (floating point, not
-/// an exact predicate; callers compare it against tolerances).
-inline double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
 /// Segments no path crosses and the corners where paths bend.
 struct SupportObstacles {
   std::vector<Vec2> a, b;  ///< segment k runs from a[k] to b[k]
