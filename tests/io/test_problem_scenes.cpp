@@ -565,3 +565,33 @@ TEST_CASE(
   CHECK(tied[1].energy <= 0.5 * smooth[1].energy);
   CHECK(rate(quadratic[0].energy, quadratic[1].energy) >= 2.0);
 }
+
+TEST_CASE(
+    "inclusion: tied round its closed interface it converges at the optimal rates, smoothed it does not",
+    "[io][problems][study][regions]") {
+  // verification/inclusion at h = 0.05 and 0.025 (README): tied, linear RK L2 rate 1.74,
+  // energy 1.05; smooth energy 0.50, 13 times the tied energy error at h = 0.025.
+  const auto errors_of = [](const std::vector<std::string>& extra) {
+    std::vector<ElasticErrors> errors;
+    for (const char* h : {"0.05", "0.025"}) {
+      std::vector<std::string> sets = extra;
+      sets.push_back(std::string("nodes.spacing=") + h);
+      const ElasticityScene scene = verification_scene("inclusion/inclusion.toml", sets);
+      REQUIRE(scene.domain.cracks().size() == (extra.empty() ? 1U : 0U));  // smooth: no interface
+      if (extra.empty()) CHECK(scene.domain.cracks()[0].closed());
+      const ExactElasticity exact = *scene.exact();
+      errors.push_back(*solve_elasticity(scene.domain, scene.settings, &exact).errors);
+    }
+    return errors;
+  };
+  const auto rate = [](double coarse, double fine) { return std::log(coarse / fine) / std::log(2.0); };
+  const std::vector<ElasticErrors> tied = errors_of({});
+  const std::vector<ElasticErrors> smooth = errors_of({"domain.interfaces=\"smooth\""});
+  INFO("tied L2 " << tied[0].l2_displacement << " " << tied[1].l2_displacement << ", energy "
+                  << tied[0].energy << " " << tied[1].energy);
+  INFO("smooth energy " << smooth[0].energy << " " << smooth[1].energy);
+  CHECK(rate(tied[0].l2_displacement, tied[1].l2_displacement) >= 1.6);
+  CHECK(rate(tied[0].energy, tied[1].energy) >= 0.9);
+  CHECK(rate(smooth[0].energy, smooth[1].energy) <= 0.7);
+  CHECK(tied[1].energy <= 0.2 * smooth[1].energy);
+}
