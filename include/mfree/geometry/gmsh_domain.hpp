@@ -32,8 +32,8 @@
 // is an interface between them ("inner/outer", a Crack with left and right), both regions'
 // polygons running through the same nodes along it, unless read_gmsh_domain's `interfaces` is
 // false (Domain::from_file passes RegionOptions::interfaces), when it stays inside the domain.
-// from_regions's rules apply: an interface runs from boundary to boundary, so a region
-// enclosed by another (an inclusion) is refused unless interfaces are off. Without physical
+// from_regions's rules apply: an interface runs from boundary to boundary or closes on itself
+// (round a region enclosed by another, an inclusion). Without physical
 // surfaces the domain has no regions. Cracks (below) come on top of the regions and their
 // interfaces, which they may not meet. meshes/two_layer_cylinder.geo is an example.
 //
