@@ -64,10 +64,10 @@ bool crack_crosses(const Domain& domain, const Box& box) {
   if (domain.cracks().empty() || !domain.boundary_near(box)) return false;
   const Vec2 pad = 1e-9 * box.size();
   const Vec2 lo = box.lo + pad, hi = box.hi - pad;
-  for (const Crack& c : domain.cracks()) {
-    if (c.interface()) continue;
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
-      if (segment_in_box(c.points[k], c.points[k + 1], Box{lo, hi})) return true;
+  for (const int k : domain.boundary_segments_near(box)) {
+    const BoundarySegment& s = domain.boundary()[k];
+    if (s.crack >= 0 && !domain.cracks()[s.crack].interface() && segment_in_box(s.a, s.b, Box{lo, hi}))
+      return true;
   }
   return false;
 }

@@ -919,6 +919,12 @@ std::pair<int, double> Domain::nearest_region(const Vec2& x) const {
 
 bool Domain::boundary_near(const Box& box) const { return impl_->grid.may_touch(box); }
 
+std::vector<int> Domain::boundary_segments_near(const Box& box) const {
+  std::vector<int> out;
+  impl_->grid.for_each_meeting(box, [&](int k) { out.push_back(k); });
+  return out;
+}
+
 int Domain::region_at(const Vec2& x) const {
   const Impl& d = *impl_;
   if (d.regions.empty()) return 0;

@@ -138,6 +138,9 @@ class Domain {
   /// Whether a boundary segment (ring edge, crack or interface face) may meet the box: false
   /// means the box lies wholly inside or wholly outside one region (a conservative test).
   [[nodiscard]] bool boundary_near(const Box& box) const;
+  /// Indices into boundary() of the segments whose boxes meet the box's (from the domain's
+  /// segment grid: a few per query, however many segments the domain has).
+  [[nodiscard]] std::vector<int> boundary_segments_near(const Box& box) const;
   /// The cracks, in the order given, and the interfaces between regions.
   [[nodiscard]] const std::vector<Crack>& cracks() const;
   /// The regions of a domain built from several; empty for one polygon.
