@@ -1,6 +1,7 @@
 #include "mfree/geometry/crack_faces.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "mfree/geometry/boundary_selection.hpp"
 
@@ -21,12 +22,25 @@ OnCrack crack_at(const Domain& domain, const Vec2& x, double tolerance) {
     if ((c.tip[0] && (x - c.points.front()).norm() <= tolerance) ||
         (c.tip[1] && (x - c.points.back()).norm() <= tolerance))
       return {};
-    for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+    const std::size_t n = c.points.size();
+    const auto left_normal = [&](std::size_t i) {
+      const Vec2 d = c.points[i + 1] - c.points[i];
+      return Vec2(Vec2(-d.y(), d.x()).normalized());
+    };
+    for (std::size_t i = 0; i + 1 < n; ++i) {
       const Vec2 &a = c.points[i], &b = c.points[i + 1];
       const Vec2 d = b - a;
       const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      if ((a + t * d - x).norm() <= tolerance)
-        return {Vec2(-d.y(), d.x()).normalized(), (t < 0.5 ? 1.0 : -1.0) * d.normalized()};
+      if ((a + t * d - x).norm() > tolerance) continue;
+      // At an inner vertex the copies go along the bisector of the faces' wedges (the sum of
+      // the two segments' left normals): along one segment's normal, a copy at a sharp corner
+      // of an inclusion would leave its face's wedge for the other side.
+      const bool closed = c.closed();
+      std::optional<std::size_t> other;  // the segment meeting this one at the vertex
+      if (t == 0.0 && (i > 0 || closed)) other = i > 0 ? i - 1 : n - 2;
+      if (t == 1.0 && (i + 2 < n || closed)) other = i + 2 < n ? i + 1 : 0;
+      const Vec2 normal = other ? Vec2((left_normal(i) + left_normal(*other)).normalized()) : left_normal(i);
+      return {normal, (t < 0.5 ? 1.0 : -1.0) * d.normalized()};
     }
   }
   return {};

@@ -441,3 +441,20 @@ TEST_CASE("regions: an interface may end where the boundary runs straight on pas
              }),
              Catch::Matchers::Contains("meets the boundary"));
 }
+
+TEST_CASE("crack faces: a node at a sharp corner of an inclusion gets one copy in each region",
+          "[geometry][regions]") {
+  // The apex (0.5, 0.75) of a triangular inclusion turns by 127 degrees: a copy moved along one
+  // edge's normal left the 53-degree wedge of the inclusion, and both copies were the matrix's.
+  const Domain d = Domain::from_wkt(
+      "MULTIPOLYGON(((0 0, 1 0, 1 1, 0 1), (0.25 0.25, 0.5 0.75, 0.75 0.25)), ((0.25 0.25, 0.75 0.25, 0.5 "
+      "0.75)))");
+  REQUIRE(d.cracks().size() == 1);
+  for (const Vec2& corner : {Vec2(0.5, 0.75), Vec2(0.25, 0.25), Vec2(0.75, 0.25)}) {
+    CAPTURE(corner.x(), corner.y());
+    const std::vector<Vec2> copies = mfree::split_on_cracks(d, {corner}, 0.125);
+    REQUIRE(copies.size() == 2);
+    CHECK(d.region_at(copies[0]) + d.region_at(copies[1]) == 1);  // one in each (regions 0 and 1)
+    CHECK((copies[0] - corner).norm() <= 2e-8);
+  }
+}
