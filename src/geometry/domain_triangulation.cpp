@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 
 namespace mfree {
 
@@ -105,40 +106,24 @@ double angle_from(const Vec2& from, const Vec2& d) {
 /// left face's copy keeps the vertex's index, the right face's is appended.
 void split_crack_vertices(const Domain& domain, const std::vector<FaceSplit>& splits, Triangulation& out) {
   out.samples = out.points;
-  const double floor = 1e-10 * domain.bounding_box().size().norm();
   std::map<Index, std::size_t> split_of;
   std::vector<Index> right(splits.size());
-  std::vector<Vec2> into_left(splits.size());
   for (std::size_t k = 0; k < splits.size(); ++k) {
     const FaceSplit& f = splits[k];
     split_of.emplace(f.index, k);
-    const auto left_normal = [](const Vec2& a, const Vec2& b) {
-      return Vec2(Vec2(a.y() - b.y(), b.x() - a.x()).normalized());
-    };
+    // The face copies of the clouds (crack_faces.hpp), with the shorter crack segment at the
+    // vertex as the spacing: the left copy first.
     double shortest = std::numeric_limits<double>::infinity();
-    Vec2 direction = Vec2::Zero();
-    if (f.previous) {
-      direction += left_normal(*f.previous, f.at);
-      shortest = std::min(shortest, (f.at - *f.previous).norm());
-    }
-    if (f.next) {
-      direction += left_normal(f.at, *f.next);
-      shortest = std::min(shortest, (*f.next - f.at).norm());
-    }
-    into_left[k] = direction.normalized();
-    const double delta = std::max(1e-7 * shortest, floor);
-    // Along the crack away from a mouth.
-    const Vec2 inward =
-        f.previous && f.next ? Vec2::Zero() : Vec2(((f.next ? *f.next : *f.previous) - f.at).normalized());
-    const auto copy = [&](const Vec2& d) {
-      Vec2 x = f.at + delta * d;
-      for (int step = 1; step <= 64 && !domain.contains(x); step *= 2) x += step * delta * inward;
-      return x;
-    };
-    out.samples[f.index] = copy(into_left[k]);
+    for (const std::optional<Vec2>& n : {f.previous, f.next})
+      if (n) shortest = std::min(shortest, (*n - f.at).norm());
+    const std::vector<Vec2> copies = split_on_cracks(domain, {f.at}, shortest);
+    if (copies.size() != 2)
+      throw Error(
+          fmt::format("triangulate_domain: the crack vertex ({}, {}) was not split", f.at.x(), f.at.y()));
+    out.samples[f.index] = copies[0];
     right[k] = static_cast<Index>(out.points.size());
     out.points.push_back(f.at);
-    out.samples.push_back(copy(-into_left[k]));
+    out.samples.push_back(copies[1]);
   }
   if (splits.empty()) return;
   for (std::array<Index, 3>& t : out.triangles) {
@@ -197,13 +182,17 @@ void mark_nesting_levels(Cdt& cdt, Passable&& passable) {
 
 }  // namespace
 
-std::vector<std::array<Vec2, 3>> triangulate_rings(const std::vector<Ring>& rings) {
+std::optional<std::vector<std::array<Vec2, 3>>> triangulate_rings(const std::vector<Ring>& rings) {
   Cdt cdt;
-  for (const Ring& ring : rings) {
-    std::vector<Cdt::Vertex_handle> v;
-    for (const Vec2& x : ring) v.push_back(cdt.insert(CgalPoint(x.x(), x.y())));
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (v[i] != v[(i + 1) % v.size()]) cdt.insert_constraint(v[i], v[(i + 1) % v.size()]);
+  try {
+    for (const Ring& ring : rings) {
+      std::vector<Cdt::Vertex_handle> v;
+      for (const Vec2& x : ring) v.push_back(cdt.insert(CgalPoint(x.x(), x.y())));
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (v[i] != v[(i + 1) % v.size()]) cdt.insert_constraint(v[i], v[(i + 1) % v.size()]);
+    }
+  } catch (const Cdt::Intersection_of_constraints_exception&) {
+    return std::nullopt;
   }
   mark_nesting_levels(cdt, [](const Cdt::Edge&) { return false; });
   std::vector<std::array<Vec2, 3>> out;

@@ -30,14 +30,13 @@ Vec2 unit_or_zero(const Vec2& v) {
 Vec2 inward_normal(const Vec2& a, const Vec2& b) { return unit_or_zero(Vec2(a.y() - b.y(), b.x() - a.x())); }
 
 /// A corner at x; with `sides`, reached only from those sides of `vertex` (SupportObstacles).
-/// With `edges`, x is the vertex itself and they are the unit directions along its edges.
+/// With `wedge` >= 0, x is that wedge's reflex vertex itself.
 void add_corner(SupportObstacles& o, const Vec2& x, const Vec2& vertex = Vec2::Zero(),
-                const std::array<Vec2, 2>& sides = {Vec2::Zero(), Vec2::Zero()},
-                const std::array<Vec2, 2>& edges = {Vec2::Zero(), Vec2::Zero()}) {
+                const std::array<Vec2, 2>& sides = {Vec2::Zero(), Vec2::Zero()}, int wedge = -1) {
   o.corners.push_back(x);
   o.corner_vertex.push_back(vertex);
   o.corner_sides.push_back(sides);
-  o.corner_edges.push_back(edges);
+  o.corner_wedge.push_back(wedge);
 }
 
 /// The vertices of a polyline (closed: a ring) without those where it runs straight on
@@ -77,7 +76,7 @@ void add_reflex_corners(SupportObstacles& o, const Domain& domain, const Vec2& p
     }
   if (rays.empty()) {
     add_corner(o, v, v, {inward_normal(prev, v), inward_normal(v, next)},
-               {unit_or_zero(prev - v), unit_or_zero(next - v)});
+               static_cast<int>(o.wedge_vertex.size()) - 1);
     return;
   }
   // Angles counter-clockwise from the edge to next, through the domain to the edge to prev.

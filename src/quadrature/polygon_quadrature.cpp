@@ -102,13 +102,9 @@ bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, Quadra
   const GaussLegendre1D g = gauss_legendre(m);
   // Holes, or rings that touch themselves: Gauss rules on the triangles of the region.
   const auto on_triangles = [&] {
-    std::vector<std::array<Vec2, 3>> triangles;
-    try {
-      triangles = triangulate_rings(rings);
-    } catch (const std::exception&) {
-      return false;  // rounding made edges cross: the caller cuts the cell smaller
-    }
-    for (const std::array<Vec2, 3>& t : triangles) add_triangle(t[0], t[1], t[2], g, rule);
+    const auto triangles = triangulate_rings(rings);
+    if (!triangles) return false;  // rounding made edges cross: the caller cuts the cell smaller
+    for (const std::array<Vec2, 3>& t : *triangles) add_triangle(t[0], t[1], t[2], g, rule);
     return true;
   };
   for (const Ring& ring : rings)

@@ -19,6 +19,7 @@
 // CGAL does the work; its headers stay in domain_triangulation.cpp.
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "mfree/core/types.hpp"
@@ -34,9 +35,9 @@ struct Triangulation {
   /// each face using their own copy.
   std::vector<Vec2> points;
   /// Where each point's fields are sampled: the point itself, but a copy of a crack's vertex
-  /// moved a little into its face (1e-7 of the shorter crack segment there, at least 1e-10 of
-  /// the domain's diagonal; at a mouth, stepped along the crack back into the domain): at the
-  /// vertex itself the functions of both faces meet (a ring of wrong stress round an inclusion).
+  /// moved a little into its face (split_on_cracks with the shorter crack segment there as the
+  /// spacing): at the vertex itself the functions of both faces meet (a ring of wrong stress
+  /// round an inclusion).
   std::vector<Vec2> samples;
   /// Indices into points, counter-clockwise, each triangle of positive area.
   std::vector<std::array<Index, 3>> triangles;
@@ -54,7 +55,7 @@ Triangulation triangulate_domain(const Domain& domain, const std::vector<Vec2>& 
 /// faces of the constrained triangulation of their edges inside an odd number of them. For
 /// pieces the polygon partition cannot take: a ring with a hole, or rings that touch
 /// themselves or each other at a vertex (Domain::clip of a region with a hole whose vertex
-/// lies on the box's side). Throws when rounding made two edges cross.
-std::vector<std::array<Vec2, 3>> triangulate_rings(const std::vector<Ring>& rings);
+/// lies on the box's side). Empty (no value) when rounding made two edges cross.
+std::optional<std::vector<std::array<Vec2, 3>>> triangulate_rings(const std::vector<Ring>& rings);
 
 }  // namespace mfree

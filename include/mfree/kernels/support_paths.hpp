@@ -64,9 +64,9 @@ struct SupportObstacles {
   /// the domain's side of one of its edges (m their inward normals); m zero: from anywhere.
   std::vector<Vec2> corner_vertex;
   std::vector<std::array<Vec2, 2>> corner_sides;
-  /// Per corner (or empty: none), the unit directions from the corner along the two edges
-  /// that meet there, for corners that are a reflex vertex itself; zero: not such a corner.
-  std::vector<std::array<Vec2, 2>> corner_edges;
+  /// Per corner (or empty: none), the wedge (below) of the reflex vertex the corner is, or -1
+  /// for a corner off a vertex (a crack's, or one of a vertex a crack's mouth cuts).
+  std::vector<int> corner_wedge;
   /// The reflex vertices of the rings, each with the unit directions along its two edges:
   /// their ends meet there unmoved (paths bend there), so a segment through such a vertex,
   /// or from it, into the outside wedge between the edges (under 180 degrees) crosses no
@@ -89,10 +89,11 @@ struct SupportObstacles {
     const Vec2 d = x - corner_vertex[c];
     const double on_line = -1e-10 * d.norm();
     if (!(d.dot(corner_sides[c][0]) >= on_line || d.dot(corner_sides[c][1]) >= on_line)) return false;
-    if (corner_edges.empty() || corner_edges[c][0].isZero()) return true;
+    if (corner_wedge.empty() || corner_wedge[c] < 0) return true;
     // Sines (times |d|) of the angles from d to each edge: opposite signs, the line separates them.
-    const double s0 = d.x() * corner_edges[c][0].y() - d.y() * corner_edges[c][0].x();
-    const double s1 = d.x() * corner_edges[c][1].y() - d.y() * corner_edges[c][1].x();
+    const std::array<Vec2, 2>& e = wedge_edges[static_cast<std::size_t>(corner_wedge[c])];
+    const double s0 = d.x() * e[0].y() - d.y() * e[0].x();
+    const double s1 = d.x() * e[1].y() - d.y() * e[1].x();
     const double tolerance = 1e-9 * d.norm();
     return !((s0 > tolerance && s1 < -tolerance) || (s0 < -tolerance && s1 > tolerance));
   }
