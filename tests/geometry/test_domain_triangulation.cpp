@@ -48,6 +48,14 @@ double distance_to_boundary(const Domain& domain, const Vec2& x) {
   return nearest;
 }
 
+/// A lattice of spacing h with its points on cracks split into face copies.
+std::vector<Vec2> split_lattice(const Domain& domain, double h) {
+  mfree::CloudSettings settings;
+  settings.kind = mfree::CloudKind::lattice;
+  settings.spacing = h;
+  return mfree::split_on_cracks(domain, mfree::make_cloud(domain, settings), h);
+}
+
 /// Checks a triangulation of `domain` through `points` and returns how many of the given
 /// points are vertices of some triangle.
 std::size_t check_triangulation(const Domain& domain, const std::vector<Vec2>& points,
@@ -204,10 +212,7 @@ TEST_CASE("domain triangulation: a crack from a notch's root, its nodes split, i
       " LINESTRING(0.4 0.6, 0.9 0.62))");
   for (const double h : {0.025, 0.0125}) {
     INFO("h = " << h);
-    mfree::CloudSettings settings;
-    settings.kind = mfree::CloudKind::lattice;
-    settings.spacing = h;
-    const std::vector<Vec2> points = mfree::split_on_cracks(domain, mfree::make_cloud(domain, settings), h);
+    const std::vector<Vec2> points = split_lattice(domain, h);
     const Triangulation tri = mfree::triangulate_domain(domain, points);
     CHECK(check_triangulation(domain, points, tri) == points.size());
   }
@@ -225,10 +230,7 @@ TEST_CASE(
       "0.32)),"
       " ((0.45 0.3, 1.3 0.32, 1.6 0.6, 1.35 0.95, 0.6 0.92, 0.32 0.62)))");
   const double h = 0.125;
-  mfree::CloudSettings settings;
-  settings.kind = mfree::CloudKind::lattice;
-  settings.spacing = h;
-  const std::vector<Vec2> points = mfree::split_on_cracks(domain, mfree::make_cloud(domain, settings), h);
+  const std::vector<Vec2> points = split_lattice(domain, h);
   const Triangulation tri = mfree::triangulate_domain(domain, points);
   CHECK(check_triangulation(domain, points, tri) == points.size());
   CHECK(tri.points.size() == points.size() + 2 * 6);  // each interface vertex twice (the corners are nodes)

@@ -162,6 +162,21 @@ namespace {
 ElasticityScene verification_scene(const std::string& file, const std::vector<std::string>& overrides) {
   return read_elasticity_scene(mfree::testing::source_dir() + "/verification/" + file, false, overrides);
 }
+
+/// The errors of a verification scene with an exact solution at h = 0.05 and 0.025, with the
+/// overrides `extra`.
+std::vector<ElasticErrors> errors_at_two_spacings(const std::string& file,
+                                                  const std::vector<std::string>& extra) {
+  std::vector<ElasticErrors> errors;
+  for (const char* h : {"0.05", "0.025"}) {
+    std::vector<std::string> sets = extra;
+    sets.push_back(std::string("nodes.spacing=") + h);
+    const ElasticityScene scene = verification_scene(file, sets);
+    const ExactElasticity exact = *scene.exact();
+    errors.push_back(*solve_elasticity(scene.domain, scene.settings, &exact).errors);
+  }
+  return errors;
+}
 }  // namespace
 
 TEST_CASE("Lamé cylinder from gmsh, pressure and slip by part names: L2 rate of linear RK at least 1.8",
@@ -541,15 +556,7 @@ TEST_CASE(
   // verification/two-material-cylinder at h = 0.05 and 0.025 (README): tied, linear RK
   // L2 rate 2.1, energy 1.35; quadratic RK energy 2.3; smooth (no tie) energy 0.62 (linear).
   const auto errors_of = [](const std::vector<std::string>& extra) {
-    std::vector<ElasticErrors> errors;
-    for (const char* h : {"0.05", "0.025"}) {
-      std::vector<std::string> sets = extra;
-      sets.push_back(std::string("nodes.spacing=") + h);
-      const ElasticityScene scene = verification_scene("two-material-cylinder/two_layer_cylinder.toml", sets);
-      const ExactElasticity exact = *scene.exact();
-      errors.push_back(*solve_elasticity(scene.domain, scene.settings, &exact).errors);
-    }
-    return errors;
+    return errors_at_two_spacings("two-material-cylinder/two_layer_cylinder.toml", extra);
   };
   const auto rate = [](double coarse, double fine) { return std::log(coarse / fine) / std::log(2.0); };
   const std::vector<ElasticErrors> tied = errors_of({});
@@ -571,18 +578,11 @@ TEST_CASE(
     "[io][problems][study][regions]") {
   // verification/inclusion at h = 0.05 and 0.025 (README): tied, linear RK L2 rate 1.74,
   // energy 1.05; smooth energy 0.50, 13 times the tied energy error at h = 0.025.
+  const ElasticityScene scene = verification_scene("inclusion/inclusion.toml", {});
+  REQUIRE(scene.domain.cracks().size() == 1);
+  CHECK(scene.domain.cracks()[0].closed());
   const auto errors_of = [](const std::vector<std::string>& extra) {
-    std::vector<ElasticErrors> errors;
-    for (const char* h : {"0.05", "0.025"}) {
-      std::vector<std::string> sets = extra;
-      sets.push_back(std::string("nodes.spacing=") + h);
-      const ElasticityScene scene = verification_scene("inclusion/inclusion.toml", sets);
-      REQUIRE(scene.domain.cracks().size() == (extra.empty() ? 1U : 0U));  // smooth: no interface
-      if (extra.empty()) CHECK(scene.domain.cracks()[0].closed());
-      const ExactElasticity exact = *scene.exact();
-      errors.push_back(*solve_elasticity(scene.domain, scene.settings, &exact).errors);
-    }
-    return errors;
+    return errors_at_two_spacings("inclusion/inclusion.toml", extra);
   };
   const auto rate = [](double coarse, double fine) { return std::log(coarse / fine) / std::log(2.0); };
   const std::vector<ElasticErrors> tied = errors_of({});
