@@ -47,6 +47,11 @@ std::optional<GalerkinQuadrature> probe_functions(const ElasticityScene& scene, 
   return sample_shape_functions(*disc.trial, {*scene.output.probe}, false);
 }
 
+/// The law at X of the model's problem (its region's).
+MaterialAt law_at(const TotalLagrangian& model, const Domain& domain) {
+  return [&model, &domain](const Vec2& x) -> const Material& { return model.problem().law_at(domain, x); };
+}
+
 QuadratureRule error_rule(const ElasticityScene& scene) {
   return gauss_cell_rule(scene.domain, 0.5 * scene.settings.nodes.spacing, scene.settings.error_gauss_points);
 }
@@ -55,7 +60,7 @@ QuadratureRule error_rule(const ElasticityScene& scene) {
 
 int run_static(const ElasticityScene& scene) {
   std::cout << fmt::format("mfree run: {} (total-Lagrangian statics, {} material, {} thread(s))\n",
-                           scene.file.string(), name(scene.material), thread_count());
+                           scene.file.string(), scene.law_names(), thread_count());
   std::cout << scene.describe_conditions();
   StageTimer timer;
   timer.report_to(&std::cout);
@@ -75,7 +80,7 @@ int run_static(const ElasticityScene& scene) {
 
   const std::optional<ExactMotion> exact = scaled_static(scene);
   std::optional<MotionErrorSampler> sampler;
-  if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
+  if (exact) sampler.emplace(*disc.trial, error_rule(scene), law_at(model, scene.domain));
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
   if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
@@ -292,16 +297,17 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
 
   const std::optional<ExactMotion> exact = scene.motion();
   std::optional<MotionErrorSampler> sampler;
-  if (exact) sampler.emplace(*disc.trial, error_rule(scene), scene.material);
+  if (exact) sampler.emplace(*disc.trial, error_rule(scene), law_at(model, scene.domain));
   const DynamicsScene& dyn = *scene.dynamics;
   // Initial fields: of the exact motion, or the scene's formulas, L2-projected (the
   // coefficients of RK functions are not nodal values); zero otherwise.
   const auto initial = [&](const std::optional<VectorFormula>& f, bool velocity) -> Eigen::VectorXd {
     if (exact && velocity)
-      return project_velocity(model, disc.nodes, settings.density, [&](const Vec2& x) { return exact->velocity(x, 0.0); },
-                              scene.settings.solver);
-    if (f) return project_velocity(model, disc.nodes, settings.density, [&](const Vec2& x) { return (*f)(x); },
-                                   scene.settings.solver);
+      return project_velocity(
+          model, disc.nodes, [&](const Vec2& x) { return exact->velocity(x, 0.0); }, scene.settings.solver);
+    if (f)
+      return project_velocity(
+          model, disc.nodes, [&](const Vec2& x) { return (*f)(x); }, scene.settings.solver);
     return Eigen::VectorXd::Zero(model.dofs());
   };
   const Eigen::VectorXd v0 = timer.time("initial velocity", [&] { return initial(dyn.initial_velocity, true); });
@@ -411,7 +417,7 @@ double energy_drift(const std::vector<EnergyRecord>& energy) {
 int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   const DynamicsSettings& s = scene.dynamics->settings;
   std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {} material, {} thread(s))\n",
-                           scene.file.string(), to_string(s.scheme), name(scene.material), thread_count());
+                           scene.file.string(), to_string(s.scheme), scene.law_names(), thread_count());
   std::cout << scene.describe_conditions();
   if (checkpoints) checkpoints->restore_output(scene.output.folder);
   const DynamicRun run = simulate(scene, s, true, checkpoints);

@@ -17,15 +17,18 @@ const NameTable<TimeScheme>& time_scheme_names() {
 
 std::string_view to_string(TimeScheme s) { return time_scheme_names().name(s); }
 
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes, double density,
-                                 const std::function<Vec2(const Vec2&)>& field, const SolverSettings& settings) {
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes,
+                                 const std::function<Vec2(const Vec2&)>& field,
+                                 const SolverSettings& settings) {
+  // M v = int rho0 phi v0 with M's own densities: M^-1 of the rows is the L2 projection in rho0's weight.
   const GalerkinQuadrature& q = model.quadrature();
+  const SparseMatrix m = model.mass_matrix();
+  const std::vector<double> rho = model.point_densities();
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(model.dofs());
   for (Index k = 0; k < q.size(); ++k) {
-    const Vec2 f = density * q.weights[k] * field(q.points[k]);
+    const Vec2 f = rho[static_cast<std::size_t>(k)] * q.weights[k] * field(q.points[k]);
     for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
   }
-  const SparseMatrix m = model.mass_matrix(density);
   const std::unique_ptr<LinearSolver> solver = make_linear_solver(settings, {"mass", true, 2, nodes}, model.dofs());
   solver->analyze(m);
   solver->factorize(m);
@@ -169,7 +172,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
   SparseMatrix mass;
   double dt = 0.0;
   if (explicit_scheme) {
-    lumped = model.lumped_mass(s.density, node_positions);
+    lumped = model.lumped_mass(node_positions);
     out.stability_limit = timer.time("stability limit", [&] { return critical_time_step(model, lumped, d); });
     if (s.time_step && *s.time_step > *out.stability_limit)
       throw InputError(fmt::format(
@@ -180,7 +183,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2
     std::tie(dt, out.steps) = equal_steps(s.end_time, s.time_step.value_or(s.stability_factor * *out.stability_limit));
   } else {
     if (!s.time_step) throw InputError("dynamics: the newmark scheme needs a time_step");
-    mass = model.mass_matrix(s.density);
+    mass = model.mass_matrix();
     std::tie(dt, out.steps) = equal_steps(s.end_time, *s.time_step);
   }
   out.time_step = dt;

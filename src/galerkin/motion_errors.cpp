@@ -9,9 +9,11 @@
 
 namespace mfree {
 
-MotionErrorSampler::MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, Material material)
-    : at_(sample_shape_functions(trial, rule.points, true)), material_(std::move(material)) {
+MotionErrorSampler::MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule,
+                                       const MaterialAt& law_at)
+    : at_(sample_shape_functions(trial, rule.points, true)) {
   at_.weights = rule.weights;
+  for (const Vec2& x : rule.points) law_.push_back(law_at(x));
   for (double w : rule.weights) volume_ += w;
 }
 
@@ -35,7 +37,7 @@ MotionErrors MotionErrorSampler::operator()(const Eigen::VectorXd& d, const Eige
       sum[1] += w * (vel - exact.velocity(x, time)).squaredNorm();
       Mat2 sigma;
       try {
-        sigma = cauchy_stress(material_, f);
+        sigma = cauchy_stress(law_[static_cast<std::size_t>(k)], f);
       } catch (const NumericalError& e) {  // u^h itself is inverted here: say where and when
         throw NumericalError(fmt::format("{} in the discrete motion at error point ({:.6g}, {:.6g}), t = {:.6g} s",
                                          e.what(), x.x(), x.y(), time));

@@ -79,11 +79,10 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
       part_of[c] = r.parts.size();
       r.parts.push_back({problem.conditions[c].name, {}});
     }
-  const double penalty = model.nitsche_penalty();
   for (std::size_t b = 0; b < model.nitsche_points(); ++b) {
     const TotalLagrangian::NitscheValues v = model.nitsche_values(b, d, load);
     const std::size_t c = static_cast<std::size_t>(v.condition - problem.conditions.data());
-    const Vec2 flux = nitsche_flux(v.traction, v.gap, penalty);
+    const Vec2 flux = nitsche_flux(v.traction, v.gap, v.penalty);
     r.parts[part_of[c]].reaction += weighted(bq.weights[v.point], flux, boundary_arm(v.point));
     r.parts[part_of[c]].magnitude += std::abs(bq.weights[v.point]) * flux.norm();
   }

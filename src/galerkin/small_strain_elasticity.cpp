@@ -29,9 +29,6 @@ SolidProblem solid_problem(const ElasticityProblem& problem) {
   if (problem.body_force) solid.body_force = [b = problem.body_force](const Vec2& x, double) { return b(x); };
   solid.conditions = problem.conditions;
   solid.nitsche_beta = problem.nitsche_beta;
-  solid.penalty_modulus = solid.region_materials.empty() ? p_wave_modulus(solid.material) : 0.0;
-  for (const Material& m : solid.region_materials)
-    solid.penalty_modulus = std::max(solid.penalty_modulus, p_wave_modulus(m));
   solid.spacing = problem.spacing;
   return solid;
 }

@@ -179,6 +179,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     small_strain = small_strain && is_small_strain(m);
     symmetric_tangents = symmetric_tangents && has_symmetric_tangent(m);
     reference_tangents_.push_back(mfree::tangent(m, Mat2::Identity()));
+    penalty_of_law_.push_back(problem_.nitsche_beta * p_wave_modulus(m) / problem_.spacing);
   }
   const bool linear = linear_;
   const bool dead_pressure = small_strain;
@@ -218,7 +219,9 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
       continue;
     }
     const Vec2& n = bq.normals[p];
-    nitsche_.push_back({p, c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(), c});
+    nitsche_.push_back({p,
+                        c->type == BoundaryCondition::Type::slip ? Mat2(n * n.transpose()) : Mat2::Identity(),
+                        c, penalty_of_law_[law_of_boundary_[p]]});
     for (Index s = at_boundary.row_begin(p); s < at_boundary.row_end(p); ++s)
       reference_traction_[s] =
           traction_operator(reference_tangents_[law_of_boundary_[p]], at_boundary.grad[s], n);
@@ -231,12 +234,9 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     if (q_twin < 0) continue;
     const Crack& crack = domain.cracks()[segments[bq.segment[p]].crack];
     if (segments[bq.segment[p]].a != crack.points[segments[bq.segment[p]].edge]) continue;  // the - face
-    if (history_laws_)
-      throw InputError(
-          fmt::format("interface '{}': laws with history (J2, Drucker–Prager) are not tied across "
-                      "interfaces; use elastic laws or one region",
-                      crack.name));
-    ties_.push_back({p, q_twin});
+    ties_.push_back(
+        {p, q_twin,
+         std::max(penalty_of_law_[law_of_boundary_[p]], penalty_of_law_[law_of_boundary_[q_twin]])});
     for (const Index side : {p, q_twin}) {
       const Vec2& n = bq.normals[p];
       for (Index s = at_boundary.row_begin(side); s < at_boundary.row_end(side); ++s)
@@ -270,7 +270,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
                (linear || (nitsche_.empty() && ties_.empty() && !history_laws_));
   if (history_laws_) {
     history_.domain.assign(q.size(), MaterialState{});
-    history_.boundary.assign(nitsche_.size(), MaterialState{});
+    history_.boundary.assign(nitsche_.size() + 2 * ties_.size(), MaterialState{});
   }
 }
 
@@ -296,26 +296,33 @@ Mat2 TotalLagrangian::boundary_deformation_gradient(Index point, const Eigen::Ve
   return f;
 }
 
+void TotalLagrangian::commit_boundary(const Eigen::VectorXd& d) {
+  std::vector<MaterialState> next(history_.boundary.size());
+  for (std::size_t b = 0; b < nitsche_.size(); ++b)
+    next[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
+  for (std::size_t t = 0; t < ties_.size(); ++t)
+    for (const int face : {0, 1}) next[tie_state(t, face)] = tie_update(t, face, d, false).state;
+  history_.boundary = std::move(next);
+}
+
 void TotalLagrangian::commit(const Eigen::VectorXd& d) {
   if (!history_laws_) return;
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index k = begin; k < end; ++k) history_.domain[k] = domain_update(k, deformation_gradient(k, d), false).state;
   });
-  for (std::size_t b = 0; b < nitsche_.size(); ++b)
-    history_.boundary[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
+  commit_boundary(d);
 }
 
 Eigen::VectorXd TotalLagrangian::internal_force_committed(const Eigen::VectorXd& d) {
   if (!history_laws_) return internal_force(d);
   Eigen::VectorXd f = domain_force(d, &history_.domain);
-  for (std::size_t b = 0; b < nitsche_.size(); ++b)
-    history_.boundary[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
+  commit_boundary(d);
   return f;
 }
 
 void TotalLagrangian::set_history(PointHistory history) {
   const std::size_t domain = history_laws_ ? static_cast<std::size_t>(q_.size()) : 0;
-  const std::size_t boundary = history_laws_ ? nitsche_.size() : 0;
+  const std::size_t boundary = history_laws_ ? nitsche_.size() + 2 * ties_.size() : 0;
   if (history.domain.size() != domain || history.boundary.size() != boundary)
     throw InputError(fmt::format("material history of {} quadrature and {} boundary points does not fit this model "
                                  "({} and {})",
@@ -364,7 +371,6 @@ Eigen::VectorXd TotalLagrangian::domain_force(const Eigen::VectorXd& d, std::vec
 
 Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const LoadState& load) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
-  const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
   for (std::size_t b = 0; b < nitsche_.size(); ++b) {
     const NitscheValues v = nitsche_values(b, d, load);
     const Index begin = at_boundary_.row_begin(v.point), end = at_boundary_.row_end(v.point);
@@ -372,7 +378,7 @@ Eigen::VectorXd TotalLagrangian::boundary_force(const Eigen::VectorXd& d, const 
     for (Index s = begin; s < end; ++s) {
       const double phi = at_boundary_.phi[s];
       f.segment<2>(2 * at_boundary_.nodes[s]) +=
-          w * (-phi * v.traction - reference_traction_[s].transpose() * v.gap + penalty * phi * v.gap);
+          w * (-phi * v.traction - reference_traction_[s].transpose() * v.gap + v.penalty * phi * v.gap);
     }
   }
   add_tie_force(d, f);
@@ -397,23 +403,26 @@ TotalLagrangian::NitscheValues TotalLagrangian::nitsche_values(std::size_t b, co
   const Vec2 gap = p.projection * (u - load.factor * p.condition->value(bq_.points[p.point], n, load.time));
   const Vec2 traction =
       p.projection * (boundary_update(b, boundary_deformation_gradient(p.point, d), false).stress * n);
-  return {p.point, p.condition, traction, gap};
+  return {p.point, p.condition, traction, gap, p.penalty};
 }
 
-MaterialUpdate TotalLagrangian::tie_update(Index p, const Eigen::VectorXd& d, bool with_tangent) const {
+MaterialUpdate TotalLagrangian::tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
+                                           bool with_tangent) const {
   static const MaterialState none;
+  const Index p = face == 0 ? ties_[tie].plus : ties_[tie].minus;
   return at_point("interface", bq_.points, p, [&] {
-    return update(problem_.law(law_of_boundary_[p]), boundary_deformation_gradient(p, d), none, with_tangent);
+    return update(problem_.law(law_of_boundary_[p]), boundary_deformation_gradient(p, d),
+                  history_laws_ ? history_.boundary[tie_state(tie, face)] : none, with_tangent);
   });
 }
 
 void TotalLagrangian::add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const {
   // f_I = w [ -s_I phi_I {P} N - T0_I^T [[u]] / 2 + penalty s_I phi_I [[u]] ], s = +1 on the
   // + face, -1 on the other.
-  const double penalty = nitsche_penalty();
-  for (const TiePoint& t : ties_) {
+  for (std::size_t i = 0; i < ties_.size(); ++i) {
+    const TiePoint& t = ties_[i];
     const Vec2& n = bq_.normals[t.plus];
-    const Vec2 mean = 0.5 * (tie_update(t.plus, d, false).stress + tie_update(t.minus, d, false).stress) * n;
+    const Vec2 mean = 0.5 * (tie_update(i, 0, d, false).stress + tie_update(i, 1, d, false).stress) * n;
     Vec2 jump = Vec2::Zero();
     for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}})
       for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s)
@@ -423,7 +432,7 @@ void TotalLagrangian::add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f
       for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s) {
         const double phi = side.sign * at_boundary_.phi[s];
         f.segment<2>(2 * at_boundary_.nodes[s]) +=
-            w * (-phi * mean - 0.5 * reference_traction_[s].transpose() * jump + penalty * phi * jump);
+            w * (-phi * mean - 0.5 * reference_traction_[s].transpose() * jump + t.penalty * phi * jump);
       }
   }
 }
@@ -431,11 +440,11 @@ void TotalLagrangian::add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f
 void TotalLagrangian::add_tie_tangent(const Eigen::VectorXd& d, double* values) const {
   // K_IJ = w [ -s_I phi_I T_J / 2 - s_J phi_J T0_I^T / 2 + penalty s_I s_J phi_I phi_J ],
   // T_J = (A(F) : grad(phi_J e_k)) N of J's side.
-  const double penalty = nitsche_penalty();
   std::vector<Mat2> traction;
   std::vector<Index> slots;
   std::vector<double> signs;
-  for (const TiePoint& t : ties_) {
+  for (std::size_t i = 0; i < ties_.size(); ++i) {
+    const TiePoint& t = ties_[i];
     const Vec2& n = bq_.normals[t.plus];
     const double w = bq_.weights[t.plus];
     traction.clear();
@@ -443,7 +452,7 @@ void TotalLagrangian::add_tie_tangent(const Eigen::VectorXd& d, double* values) 
     signs.clear();
     for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}}) {
       const Tangent a = linear_ ? reference_tangents_[law_of_boundary_[side.point]]
-                                : tie_update(side.point, d, true).tangent;
+                                : tie_update(i, side.sign > 0.0 ? 0 : 1, d, true).tangent;
       for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s) {
         traction.push_back(linear_ ? reference_traction_[s] : traction_operator(a, at_boundary_.grad[s], n));
         slots.push_back(s);
@@ -458,7 +467,7 @@ void TotalLagrangian::add_tie_tangent(const Eigen::VectorXd& d, double* values) 
         const double phi_j = signs[b] * at_boundary_.phi[slots[b]];
         const Mat2 kij =
             w * (-0.5 * phi_i * traction[b] - 0.5 * phi_j * reference_traction_[slots[a]].transpose() +
-                 penalty * phi_i * phi_j * Mat2::Identity());
+                 t.penalty * phi_i * phi_j * Mat2::Identity());
         for (int r = 0; r < 2; ++r)
           for (int c = 0; c < 2; ++c) values[block_slot(pattern_, 2, i, j, r, c)] += kij(r, c);
       }
@@ -528,7 +537,6 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   });
 
   // Nitsche: K_IJ = w [ -phi_I Pi T_J(F) - T0_I^T Pi phi_J + penalty phi_I phi_J Pi ].
-  const double penalty = problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
   std::vector<Mat2> t;  // Pi T_J(F) for the functions of the row
   for (std::size_t b = 0; b < nitsche_.size(); ++b) {
     const NitschePoint& p = nitsche_[b];
@@ -546,7 +554,7 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
       for (Index bj = 0; bj < m; ++bj) {
         const Index j = at_boundary_.nodes[begin + bj];
         const double phi_j = at_boundary_.phi[begin + bj];
-        const Mat2 kij = w * (-phi_i * t[bj] - phi_j * t0p + penalty * phi_i * phi_j * p.projection);
+        const Mat2 kij = w * (-phi_i * t[bj] - phi_j * t0p + p.penalty * phi_i * phi_j * p.projection);
         for (int r = 0; r < 2; ++r)
           for (int c = 0; c < 2; ++c) values[block_slot(pattern_, 2, i, j, r, c)] += kij(r, c);
       }
@@ -586,19 +594,34 @@ double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
   return total;
 }
 
-SparseMatrix TotalLagrangian::mass_matrix(double density) const {
+std::vector<double> TotalLagrangian::point_densities() const {
+  const std::size_t laws = std::max<std::size_t>(1, problem_.region_materials.size());
+  for (std::size_t l = 0; l < laws; ++l)
+    if (const double rho = problem_.density_of(static_cast<int>(l)); !(rho > 0.0))
+      throw InputError(
+          laws == 1
+              ? fmt::format("the mass needs a positive density, got {}", rho)
+              : fmt::format("the mass needs a positive density in every region; region {} has {}", l, rho));
+  std::vector<double> rho(law_of_point_.size());
+  for (std::size_t k = 0; k < rho.size(); ++k) rho[k] = problem_.density_of(law_of_point_[k]);
+  return rho;
+}
+
+SparseMatrix TotalLagrangian::mass_matrix() const {
   // The mass couples only nodes sharing a domain row: blocks rho0 w phi_I phi_J I_2.
+  const std::vector<double> rho = point_densities();
   SparseMatrix m = zero_matrix();
   add_column_blocks(q_, domain_rows_, pattern_, true, m.valuePtr(), [&](Index k, Index slot_j) {
-    const double c = density * q_.weights[k] * q_.phi[slot_j];
+    const double c = rho[k] * q_.weights[k] * q_.phi[slot_j];
     return [this, c](Index s) -> Eigen::Matrix2d { return c * q_.phi[s] * Eigen::Matrix2d::Identity(); };
   });
   return m;
 }
 
-Eigen::VectorXd TotalLagrangian::lumped_mass(double density, const std::vector<Vec2>& node_positions) const {
+Eigen::VectorXd TotalLagrangian::lumped_mass(const std::vector<Vec2>& node_positions) const {
+  const std::vector<double> rho = point_densities();
   const Eigen::VectorXd m = gather_nodes(domain_rows_, [&](Index k, Index s) -> Vec2 {
-    return Vec2::Constant(density * q_.weights[k] * q_.phi[s]);
+    return Vec2::Constant(rho[k] * q_.weights[k] * q_.phi[s]);
   });
   for (Index i = 0; i < nodes_; ++i)
     if (!(m[2 * i] > 0.0))

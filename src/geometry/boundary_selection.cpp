@@ -1,8 +1,11 @@
 #include "mfree/geometry/boundary_selection.hpp"
 
-#include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "mfree/core/error.hpp"
 
@@ -28,6 +31,52 @@ double selection_length(const Domain& domain, const BoundarySelection& s) {
   double length = 0.0;
   for (const BoundaryPiece& p : s) length += (p.t1 - p.t0) * domain.boundary()[p.segment].length;
   return length;
+}
+
+std::vector<CornerSliver> corner_slivers(const Domain& domain, const BoundarySelection& s, double min_turn,
+                                         double fraction) {
+  // The pieces' ends; ends at the same vertex meet (segments share their vertices' values).
+  struct End {
+    Vec2 x;
+    std::size_t piece;
+    bool start;
+  };
+  std::vector<End> ends;
+  const auto& segments = domain.boundary();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const BoundarySegment& g = segments[static_cast<std::size_t>(s[i].segment)];
+    ends.push_back({g.a + s[i].t0 * (g.b - g.a), i, true});
+    ends.push_back({g.a + s[i].t1 * (g.b - g.a), i, false});
+  }
+  const auto before = [](const End& a, const End& b) {
+    return a.x.x() < b.x.x() || (a.x.x() == b.x.x() && a.x.y() < b.x.y());
+  };
+  std::sort(ends.begin(), ends.end(), before);
+  const auto length = [&](std::size_t i) {
+    return (s[i].t1 - s[i].t0) * segments[static_cast<std::size_t>(s[i].segment)].length;
+  };
+  const auto direction = [&](std::size_t i) {
+    const BoundarySegment& g = segments[static_cast<std::size_t>(s[i].segment)];
+    return Vec2((g.b - g.a) / g.length);
+  };
+  const double cos_turn = std::cos(min_turn * std::numbers::pi / 180.0);
+  std::vector<CornerSliver> out;
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+    const End &a = ends[k], &b = ends[k + 1];
+    if (a.x != b.x || a.piece == b.piece || a.start == b.start)
+      continue;  // not the end of one and the start of another
+    for (const auto& [short_end, long_end] : {std::pair{a, b}, std::pair{b, a}}) {
+      const std::size_t p = short_end.piece, q = long_end.piece;
+      // Cut inside its segment at its other end, and short against the piece it meets.
+      const bool cut = short_end.start ? s[p].t1 < 1.0 : s[p].t0 > 0.0;
+      if (!cut || !(length(p) < fraction * length(q))) continue;
+      const double c = direction(p).dot(direction(q));
+      if (c < cos_turn)
+        out.push_back(
+            {s[p], short_end.x, length(p), std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi});
+    }
+  }
+  return out;
 }
 
 BoundarySelection select_part(const Domain& domain, const std::string& name) {

@@ -1,7 +1,9 @@
 #include "mfree/io/elasticity_scene.hpp"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <type_traits>
 
 #include "mfree/core/error.hpp"
 #include "mfree/io/read_choice.hpp"
@@ -65,19 +67,36 @@ BoundarySelection read_selection(const SceneTable& t, const Domain& domain, std:
 /// A region meant for an edge but placed beside it clips slivers of the edges it crosses: a
 /// displacement or slip condition there holds the body by almost nothing, and the run solves
 /// a problem with a near-free rigid mode without a word. Refused when the selected length is
-/// below 1% of the region's longer side inside the domain's bounding box, unless the table
-/// sets allow_small_selection = true.
-void check_sliver(const SceneTable& t, BoundaryCondition::Type type, const std::string& what, double length,
-                  const std::optional<Box>& region, const Box& domain_box) {
+/// below 1% of the region's longer side inside the domain's bounding box. A region drawn round
+/// an edge clips the edges it crosses at its corners (corner_slivers): the condition then acts
+/// there too (a slip condition meant for the bottom holds u_x on a stretch of a side), refused
+/// for every type of condition. allow_small_selection = true lifts both.
+void check_sliver(const SceneTable& t, BoundaryCondition::Type type, const std::string& what,
+                  const BoundarySelection& selected, const std::optional<Box>& region, const Domain& domain) {
   constexpr double sliver = 0.01;
-  if (!region || (type != ConditionType::displacement && type != ConditionType::slip)) {
+  if (!region) {
     if (t.has("allow_small_selection"))
-      t.error("allow_small_selection", "applies to displacement and slip conditions selected by a region");
+      t.error("allow_small_selection", "applies to conditions selected by a region");
     return;
   }
   if (t.boolean_or("allow_small_selection", false)) return;
+  const Box domain_box = domain.bounding_box();
+  const std::vector<CornerSliver> corners = corner_slivers(domain, selected);
+  if (!corners.empty()) {
+    const CornerSliver& c = corners.front();
+    const BoundarySegment& g = domain.boundary()[static_cast<std::size_t>(c.piece.segment)];
+    t.error("region",
+            fmt::format("{} clips {} sliver(s) off the edges it crosses: one of length {:.3g} off the edge "
+                        "({:.6g}, {:.6g}) - ({:.6g}, {:.6g}) at the corner ({:.6g}, {:.6g}), where the "
+                        "selection turns by {:.0f} degrees; the {} condition would hold there too. End the "
+                        "region inside the edge it is meant for, or set allow_small_selection = true",
+                        what, corners.size(), c.length, g.a.x(), g.a.y(), g.b.x(), g.b.y(), c.corner.x(),
+                        c.corner.y(), c.turn, condition_table.name(type)));
+  }
+  if (type != ConditionType::displacement && type != ConditionType::slip) return;
   const Vec2 lo = region->lo.cwiseMax(domain_box.lo), hi = region->hi.cwiseMin(domain_box.hi);
   const double extent = (hi - lo).cwiseMax(0.0).maxCoeff();
+  const double length = selection_length(domain, selected);
   if (length >= sliver * extent) return;
   t.error("region",
           fmt::format("{} selects a boundary length of {:.3g}, {:.2g}% of the region's extent {:.6g} inside "
@@ -140,7 +159,8 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
                                       const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
-  ElasticityScene out{file, {}, {}, {}, {}, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {}, {}, {}, {}};
+  ElasticityScene out{file, {}, {}, {}, {}, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {},
+                      {},   {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
 
   {
@@ -235,12 +255,8 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
         law_of[at] = static_cast<int>(names.size() - 1);
       }
       const MaterialSection m = read_plane_material(t);
-      if (!is_small_strain(m.material))
-        t.error("model", "several materials are for small-strain laws (plane_strain, plane_stress) for now");
-      if (names.size() > 1 && m.density != out.density)
-        t.error("density", "the [[material]] tables differ in density; give all the same, or none");
-      out.density = m.density;
-      out.material = m.material;
+      out.region_materials.push_back(m.material);
+      out.region_densities.push_back(m.density);
       s.problem.region_materials.push_back(m.linear);
     }
     for (std::size_t r = 0; r < regions.size(); ++r)
@@ -249,10 +265,25 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
             "regions",
             fmt::format("region '{}' has no law: name it in the regions of a [[material]]", regions[r].name));
     // Laws per region, in region order.
-    std::vector<LinearElastic> by_region;
-    for (int l : law_of) by_region.push_back(s.problem.region_materials[static_cast<std::size_t>(l)]);
-    s.problem.region_materials = std::move(by_region);
+    const auto by_region = [&](const auto& per_table) {
+      std::remove_cvref_t<decltype(per_table)> ordered;
+      for (int l : law_of) ordered.push_back(per_table[static_cast<std::size_t>(l)]);
+      return ordered;
+    };
+    s.problem.region_materials = by_region(s.problem.region_materials);
+    out.region_materials = by_region(out.region_materials);
+    out.region_densities = by_region(out.region_densities);
     s.problem.material = s.problem.region_materials.front();
+    out.material = out.region_materials.front();
+    out.density = out.region_densities.front();
+    // A density in some tables and not in others is a slip, whatever the run needs.
+    for (std::size_t l = 0; l < tables.size(); ++l)
+      if (tables[l].has("density") != tables.front().has("density"))
+        tables[l].error("density",
+                        fmt::format("[[material]] '{}' gives a density and '{}' does not: give one in "
+                                    "every [[material]], or in none",
+                                    names[tables.front().has("density") ? 0 : l],
+                                    names[tables.front().has("density") ? l : 0]));
   } else {
     const MaterialSection m = read_plane_material(root.table("material"));
     s.problem.material = m.linear;
@@ -270,7 +301,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     }
     if (t.has("gravity")) {
       const auto g = t.numbers("gravity", 2, -1e300, 1e300);
-      if (!(out.density > 0.0)) t.error("gravity", "gravity needs [material] density");
+      if (!(out.density > 0.0))
+        t.error("gravity",
+                "gravity needs the material's density ([material] density, or one in every [[material]])");
       out.gravity = Vec2(g[0], g[1]);
     }
     if (!t.has("body_force") && !t.has("gravity")) t.error("body_force", "give body_force or gravity (or both)");
@@ -309,11 +342,11 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       e.builtin = read_builtin_solution(t, out.solution_setting(), dynamics);
     }
     // Errors are measured from the stress of F at their own points, which hold no history.
-    if (has_history(out.material))
+    if (const Material* m = out.law_with(has_history))
       t.error(e.builtin ? "solution" : "displacement",
-              fmt::format("errors against an exact solution need an elastic law; '{}' has history (its stress "
+              fmt::format("errors against an exact solution need elastic laws; '{}' has history (its stress "
                           "lives at the quadrature points: ask [output] fields for it)",
-                          name(out.material)));
+                          name(*m)));
     // A built-in solution comes with the body force that makes it exact; another one would not.
     if (e.builtin && (out.body_force || out.gravity))
       t.error("solution", fmt::format("the {} solution sets the body force: remove [loads]", e.builtin->name));
@@ -334,8 +367,8 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       t.error(key, fmt::format("{} selects no part of the boundary (the domain's bounding box is [[{}, {}], [{}, {}]])",
                                what, out.domain.bounding_box().lo.x(), out.domain.bounding_box().lo.y(),
                                out.domain.bounding_box().hi.x(), out.domain.bounding_box().hi.y()));
-    check_sliver(t, c.type, what, length, key == "region" ? read_box(t, "region") : std::optional<Box>(),
-                 out.domain.bounding_box());
+    check_sliver(t, c.type, what, c.where, key == "region" ? read_box(t, "region") : std::optional<Box>(),
+                 out.domain);
     for (std::size_t k = 0; k < s.problem.conditions.size(); ++k) {
       const double shared = overlap_length(out.domain, c.where, s.problem.conditions[k].where);
       if (shared > 1e-12 * length)
@@ -435,8 +468,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       if (f.depends_on_time()) t.error(key, "an initial field is a function of X and Y, not of t");
       (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
     }
-    if (!(out.density > 0.0)) t.error("scheme", "dynamics needs [material] density");
-    d.density = out.density;
+    if (!(out.density > 0.0))
+      t.error("scheme",
+              "dynamics needs the material's density ([material] density, or one in every [[material]])");
     if (out.newton) d.newton = *out.newton;
     d.newton.solver = s.solver;
     t.finish();
@@ -450,9 +484,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
       for (const auto& f :
            t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error", "weights"}))
         out.output.fields.insert(f);
-    if (out.output.wants("plastic_strain") && !has_history(out.material))
-      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not '{}'",
-                                    name(out.material)));
+    if (out.output.wants("plastic_strain") && !out.law_with(has_history))
+      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
+                                    out.law_names()));
     out.output.vtk = t.boolean_or("vtk", true);
     if (out.output.wants("velocity") && !out.dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
     if (t.has("probe")) {
@@ -515,12 +549,6 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.study = st;
   }
-  if (!s.problem.region_materials.empty() && (out.dynamics || out.nonlinear()))
-    root.tables("material")
-        .front()
-        .error("name",
-               "several materials are solved in linear statics (mfree solve, "
-               "mfree converge) for now: remove [dynamics] and [newton]");
   check_scheme_keys(quadrature, s.scheme, out.study);
   root.finish();
   return out;
@@ -540,6 +568,9 @@ SolidProblem ElasticityScene::solid_problem() const {
   linear.spacing = settings.nodes.spacing;
   SolidProblem p = mfree::solid_problem(linear);
   p.material = material;
+  p.region_materials = region_materials;
+  p.density = density;
+  p.region_densities = region_densities;
   if (const auto m = motion())
     p.body_force = [b = m->body_force, rho = density](const Vec2& x, double t) -> Vec2 { return rho * b(x, t); };
   else if (body_force || gravity)
@@ -548,10 +579,16 @@ SolidProblem ElasticityScene::solid_problem() const {
 }
 
 BodyForce ElasticityScene::loads_body_force() const {
-  return [f = body_force, g = gravity, rho = density](const Vec2& x, double t) -> Vec2 {
+  // Gravity in a region of its own density: the nearest region's at X.
+  std::function<double(const Vec2&)> rho = [rho = density](const Vec2&) { return rho; };
+  if (!region_densities.empty())
+    rho = [at = std::make_shared<const Domain>(domain), d = region_densities](const Vec2& x) {
+      return d[static_cast<std::size_t>(at->nearest_region(x).first)];
+    };
+  return [f = body_force, g = gravity, rho](const Vec2& x, double t) -> Vec2 {
     Vec2 b = Vec2::Zero();
     if (f) b += (*f)(x, t);
-    if (g) b += rho * *g;
+    if (g) b += rho(x) * *g;
     return b;
   };
 }
@@ -561,6 +598,21 @@ VectorField ElasticityScene::static_body_force() const {
   if (exact_spec && exact_spec->formulas) return {};  // the loads are the scene's: none
   const std::optional<ExactElasticity> e = exact();
   return e ? e->body_force : VectorField{};
+}
+
+const Material* ElasticityScene::law_with(bool (*property)(const Material&)) const {
+  if (region_materials.empty()) return property(material) ? &material : nullptr;
+  for (const Material& m : region_materials)
+    if (property(m)) return &m;
+  return nullptr;
+}
+
+std::string ElasticityScene::law_names() const {
+  if (region_materials.empty()) return fmt::format("'{}'", name(material));
+  std::string out;
+  for (std::size_t r = 0; r < region_materials.size(); ++r)
+    out += fmt::format("{}'{}' in '{}'", r ? ", " : "", name(region_materials[r]), domain.regions()[r].name);
+  return out;
 }
 
 std::string ElasticityScene::describe_conditions() const {

@@ -35,15 +35,17 @@ void SolidFrames::restore(const CheckpointState& state, double time, std::size_t
 SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
                          const TotalLagrangian* model)
     : output_(scene.output),
-      material_(scene.material),
       exact_(exact),
-      model_(has_history(scene.material) ? model : nullptr),
+      model_(scene.law_with(has_history) ? model : nullptr),
       folder_(scene.output.folder) {
-  if (has_history(material_) && !model_)
+  if (scene.law_with(has_history) && !model_)
     throw std::logic_error("SolidFrames: a law with history needs the model that holds it");
   Triangulation tri = triangulate_domain(scene.domain, disc.nodes);
   points_ = std::move(tri.points);
   samples_ = std::move(tri.samples);
+  // Each sample lies in its face's region: its law there.
+  const SolidProblem laws = scene.solid_problem();
+  for (const Vec2& x : samples_) law_.push_back(laws.law_at(scene.domain, x));
   triangles_ = std::move(tri.triangles);
   const bool gradients = !model_ && (output_.wants("stress") || output_.wants("von_mises") || output_.wants("error"));
   at_ = sample_shape_functions(*disc.trial, samples_, gradients);
@@ -94,9 +96,10 @@ void SolidFrames::write(double time, const Eigen::VectorXd& d, const Eigen::Vect
     if (output_.wants("displacement")) u.insert(u.end(), {uk.x(), uk.y()});
     if (want_v) vel.insert(vel.end(), {vk.x(), vk.y()});
     if (want_stress) {
-      const Mat2 s = cauchy_stress(material_, f);
+      const Material& law = law_[static_cast<std::size_t>(k)];
+      const Mat2 s = cauchy_stress(law, f);
       if (output_.wants("stress")) sigma.insert(sigma.end(), {s(0, 0), s(1, 1), s(0, 1)});
-      if (output_.wants("von_mises")) vm.push_back(von_mises(s, out_of_plane_stress(material_, f)));
+      if (output_.wants("von_mises")) vm.push_back(von_mises(s, out_of_plane_stress(law, f)));
       if (want_error) {
         const Vec2 eu = uk - exact_->displacement(samples_[k], time);
         const Mat2 es = s - exact_->cauchy_stress(samples_[k], time);

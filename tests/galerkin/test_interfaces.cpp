@@ -7,7 +7,9 @@
 #include <initializer_list>
 
 #include "../test_support.hpp"
+#include "mfree/core/error.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/problems/polynomial_fields.hpp"
 
 using namespace mfree;
@@ -114,6 +116,20 @@ void check_one_part_fields(const Domain& tied, std::initializer_list<CloudKind> 
         CHECK(linear < 1e-10);
         CHECK(quadratic < 1e-10);
       }
+}
+
+/// The default discretisation of a domain at spacing h.
+Discretisation discretised(const Domain& domain, double h) {
+  ElasticitySettings es;
+  es.nodes.spacing = h;
+  StageTimer timer;
+  return discretise(domain, es, timer);
+}
+
+/// The model of p on it, with the discretisation's test gradients (VCI with Gauss cells).
+TotalLagrangian model_on(const SolidProblem& p, const Domain& domain, const Discretisation& disc) {
+  return TotalLagrangian(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                         disc.at_boundary);
 }
 
 }  // namespace
@@ -254,4 +270,145 @@ TEST_CASE("supports end at a curved interface: no function of one layer is nonze
   CAPTURE(checked);
   CHECK(checked > 2000);
   CHECK(leaks == 0);
+}
+
+TEST_CASE(
+    "a J2 layer tied to an elastic one: uniaxial strain follows the material point at every point, ties "
+    "included",
+    "[galerkin][regions][plasticity]") {
+  // Plane-strain uniaxial compression of two layers (J2 below y = 0.5, a stiffer elastic law
+  // above), slip on the left, right and bottom, the top pressed down by f delta. Each layer
+  // strains uniformly, u_y = -eps_1 y below and -(eps_1 / 2 + eps_2 (y - 1/2)) above, with
+  // eps_1 / 2 + eps_2 / 2 = f delta and P_yy equal across the tie: piecewise linear, so the
+  // tie (split nodes) holds it exactly, and every quadrature, Nitsche and tie point of the
+  // J2 layer must follow the material point's path through the load factors, which it does
+  // only if the tie's faces carry their committed states.
+  const std::vector<std::vector<Ring>> parts{{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 0.5), Vec2(0, 0.5)}},
+                                             {{Vec2(0, 0.5), Vec2(1, 0.5), Vec2(1, 1), Vec2(0, 1)}}};
+  const Domain domain = Domain::from_regions(parts, {{"soft", "stiff"}, true}, "layers");
+  const Discretisation disc = discretised(domain, 0.125);
+  J2Plasticity j2;
+  j2.lame = lame_constants(1000.0, 0.3);
+  j2.yield_stress = 5.0;
+  j2.isotropic_modulus = 100.0;
+  const LinearElastic stiff{4000.0, 0.25, PlaneModel::strain};
+  const double delta = 0.04;  // the J2 layer strains about 14 times its yield strain
+  SolidProblem p;
+  p.region_materials = {j2, stiff};
+  p.spacing = 0.125;
+  const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
+  const auto edge = [&](Vec2 lo, Vec2 hi) { return select_box(domain, Box{lo, hi}); };
+  p.conditions = {{BoundaryCondition::Type::displacement, edge(Vec2(-0.1, 0.99), Vec2(1.1, 1.1)),
+                   [delta](const Vec2&, const Vec2&, double) { return Vec2(0.0, -delta); }, "top"},
+                  {BoundaryCondition::Type::slip, edge(Vec2(-0.1, -0.1), Vec2(1.1, 0.01)), zero, "bottom"},
+                  {BoundaryCondition::Type::slip, edge(Vec2(-0.1, 0.01), Vec2(0.01, 0.99)), zero, "left"},
+                  {BoundaryCondition::Type::slip, edge(Vec2(0.99, 0.01), Vec2(1.1, 0.99)), zero, "right"}};
+  TotalLagrangian model(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                        disc.at_boundary);
+  REQUIRE(model.has_history());
+  NewtonSettings s;
+  s.load_factors = {0.1, 0.25, 0.5, 0.75, 1.0};
+  s.tolerance = 1e-12;
+  StageTimer timer;
+  const StaticSolution sol = solve_static(model, {}, s, timer);
+
+  // The exact path: at each factor the strain split that balances P_yy (bisection), the
+  // J2 point committed after each.
+  const auto uniaxial = [](double eps) { return Mat2(Eigen::Vector2d(1.0, 1.0 - eps).asDiagonal()); };
+  MaterialState point;
+  MaterialUpdate last;
+  double eps1 = 0.0;
+  for (const double f : s.load_factors) {
+    double lo = 0.0, hi = 2.0 * f * delta;
+    for (int it = 0; it < 200; ++it) {
+      eps1 = 0.5 * (lo + hi);
+      const double gap = update(Material(j2), uniaxial(eps1), point, false).stress(1, 1) -
+                         stress(Material(stiff), uniaxial(2.0 * f * delta - eps1))(1, 1);
+      (gap > 0.0 ? lo : hi) = eps1;
+    }
+    last = update(Material(j2), uniaxial(eps1), point, false);
+    point = last.state;
+  }
+  REQUIRE(point.alpha > 0.02);
+  const double eps2 = 2.0 * delta - eps1;
+  double worst_u = 0.0;
+  for (std::size_t i = 0; i < disc.nodes.size(); ++i) {
+    const double y = disc.nodes[i].y();
+    const double uy = y <= 0.5 ? -eps1 * y : -(0.5 * eps1 + eps2 * (y - 0.5));
+    worst_u =
+        std::max(worst_u, (disc.displacement({disc.nodes[i]}, sol.coefficients)[0] - Vec2(0.0, uy)).norm());
+  }
+  double worst_alpha = 0.0;
+  int soft_points = 0;
+  for (Index k = 0; k < disc.quadrature.size(); ++k) {
+    if (disc.quadrature.points[k].y() > 0.5) continue;
+    ++soft_points;
+    worst_alpha =
+        std::max(worst_alpha, std::abs(model.response(k, sol.coefficients).state.alpha - point.alpha));
+  }
+  // Boundary states: the Nitsche points', then two faces per tie point, one of each layer.
+  const std::vector<MaterialState>& faces = model.history().boundary;
+  const std::size_t ties = (faces.size() - model.nitsche_points()) / 2;
+  std::size_t plastic_faces = 0;
+  for (std::size_t b = 0; b < faces.size(); ++b) {
+    if (faces[b].alpha == 0.0) continue;
+    plastic_faces += b >= model.nitsche_points();
+    worst_alpha = std::max(worst_alpha, std::abs(faces[b].alpha - point.alpha));
+  }
+  CAPTURE(eps1, eps2, point.alpha, soft_points, ties, plastic_faces);
+  CHECK(worst_u <= 1e-10 * delta);
+  CHECK(worst_alpha <= 1e-8 * point.alpha);
+  CHECK(ties >= 8);
+  CHECK(plastic_faces == ties);
+}
+
+TEST_CASE("Nitsche's penalty is beta M / h with M the P-wave modulus of the law at the point",
+          "[galerkin][regions]") {
+  // M = lambda + 2 mu in plane strain, E / (1 - nu^2) in plane stress: the stiffness of the
+  // tractions the penalty must dominate, of the point's own law (near incompressibility
+  // lambda / mu = 4999 on the left: scaled by E the penalty would fall below them).
+  const double e = 3e7, nu = 0.4999;
+  const LinearElastic rubber{e, nu, PlaneModel::strain};
+  const LinearElastic sheet{2e5, 0.3, PlaneModel::stress};
+  const Domain domain = bimaterial(true);
+  const Discretisation disc = discretised(domain, 0.25);
+  SolidProblem p;
+  p.region_materials = {rubber, sheet};
+  p.spacing = 0.25;
+  p.nitsche_beta = 50.0;
+  const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
+  p.conditions = {
+      {BoundaryCondition::Type::displacement, select_box(domain, Box{Vec2(-1, -1), Vec2(0.01, 2)}), zero,
+       "left"},
+      {BoundaryCondition::Type::slip, select_box(domain, Box{Vec2(1.99, -1), Vec2(3, 2)}), zero, "right"}};
+  const TotalLagrangian model = model_on(p, domain, disc);
+  const double lambda = e * nu / ((1 + nu) * (1 - nu * 2)), mu = e / (2 * (1 + nu));
+  const Eigen::VectorXd d = Eigen::VectorXd::Zero(model.dofs());
+  REQUIRE(model.nitsche_points() > 4);
+  for (std::size_t b = 0; b < model.nitsche_points(); ++b) {
+    const TotalLagrangian::NitscheValues v = model.nitsche_values(b, d, {});
+    const bool left = v.condition->name == "left";
+    const double m = left ? lambda + 2 * mu : 2e5 / (1 - 0.3 * 0.3);
+    CHECK(v.penalty == Approx(50.0 * m / 0.25).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("the mass of two regions: rho0 of each region, summed over the nodes to rho1 A1 + rho2 A2",
+          "[galerkin][regions][dynamics]") {
+  const Domain domain = bimaterial(true);  // two unit squares
+  const Discretisation disc = discretised(domain, 0.125);
+  SolidProblem p;
+  p.region_materials = {steel, resin};
+  p.region_densities = {7800.0, 1200.0};
+  p.spacing = 0.125;
+  const TotalLagrangian model = model_on(p, domain, disc);
+  const Eigen::VectorXd lumped = model.lumped_mass(disc.nodes);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(model.dofs());
+  // Per direction: sum_I m_I = sum_K w_K rho0_K (the functions sum to one).
+  CHECK(lumped.sum() == Approx(2.0 * (7800.0 + 1200.0)).epsilon(1e-12));
+  CHECK(ones.dot(model.mass_matrix() * ones) == Approx(2.0 * (7800.0 + 1200.0)).epsilon(1e-12));
+  p.region_densities = {7800.0, 0.0};
+  const TotalLagrangian without = model_on(p, domain, disc);
+  CHECK_THAT(mfree::testing::message_of<InputError>([&] { (void)without.mass_matrix(); }),
+             Catch::Contains("region 1 has 0"));
 }

@@ -27,7 +27,6 @@ struct Block {
     StageTimer timer;
     disc = discretise(domain, s, timer);
     problem.material = material;
-    problem.penalty_modulus = 1000.0;
     problem.spacing = s.nodes.spacing;
     problem.conditions = {
         {BoundaryCondition::Type::displacement, select_part(domain, "left"),
@@ -321,7 +320,6 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
   const double delta = 0.05;  // eight times the yield strain sigma_y / (2 mu)
   SolidProblem p;
   p.material = law;
-  p.penalty_modulus = p_wave_modulus(law);
   p.spacing = es.nodes.spacing;
   const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
   p.conditions = {{BoundaryCondition::Type::displacement, select_part(domain, "top"),

@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
 
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
@@ -59,4 +61,31 @@ TEST_CASE("domains from rings carry their named parts through reorientation", "[
                (void)Domain::from_rings({{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}}, {{0, 0}}, {"a"}, "test");
              }),
              Catch::Contains("3 edges but 2 edge parts"));
+}
+
+TEST_CASE("boundary selection: a box drawn round an edge clips the edges it crosses at the corners",
+          "[geometry]") {
+  const Domain r = Domain::rectangle(Vec2(0.0, 0.0), Vec2(2.0, 1.0));
+  // Round the bottom with a margin: 0.01 of each side at (0, 0) and (2, 0), turning 90 degrees.
+  const std::vector<CornerSliver> round =
+      corner_slivers(r, select_box(r, Box{Vec2(-0.1, -0.1), Vec2(2.1, 0.01)}));
+  REQUIRE(round.size() == 2);
+  for (const CornerSliver& s : round) {
+    CHECK(s.length == Approx(0.01).epsilon(1e-12));
+    CHECK(s.turn == Approx(90.0).epsilon(1e-12));
+    CHECK(s.corner.y() == 0.0);
+  }
+  CHECK(round[0].corner.x() != round[1].corner.x());
+  // Flush with the bottom: the sides are touched at a point only.
+  CHECK(corner_slivers(r, select_box(r, Box{Vec2(-0.1, -0.1), Vec2(2.1, 0.0)})).empty());
+  // Round a corner on purpose: both edges long.
+  CHECK(corner_slivers(r, select_box(r, Box{Vec2(1.0, -0.1), Vec2(2.1, 0.6)})).empty());
+  // A finely faceted arc turns by 0.35 degrees per piece: no corner, whatever the box cuts.
+  Ring arc{Vec2(0.0, 0.0)};
+  for (int k = 0; k <= 256; ++k) {
+    const double a = 0.5 * std::numbers::pi * k / 256;
+    arc.push_back(Vec2(std::cos(a), std::sin(a)));
+  }
+  const Domain quarter = Domain::from_rings({arc}, {std::vector<int>(arc.size(), -1)}, {}, "quarter disk");
+  CHECK(corner_slivers(quarter, select_box(quarter, Box{Vec2(0.3, 0.3), Vec2(1.1, 1.1)})).empty());
 }

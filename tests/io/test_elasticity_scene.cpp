@@ -66,7 +66,7 @@ TEST_CASE("elasticity scenes: bad input is refused naming the key and line", "[i
              Catch::Contains("exact.solution") && Catch::Contains("timoshenko_beam solution is static"));
   CHECK_THAT(scene_error(dyn), Catch::Contains("dynamics.scheme") && Catch::Contains("newmark needs a time_step"));
   CHECK_THAT(scene_error(dyn + "time_step = 1e-4\n"),
-             Catch::Contains("dynamics.scheme") && Catch::Contains("needs [material] density"));
+             Catch::Contains("dynamics.scheme") && Catch::Contains("needs the material's density"));
   CHECK_THAT(scene_error(good + "\n[newton]\nload_factors = [0.5, 0.25, 1.0]\n"),
              Catch::Contains("newton.load_factors") && Catch::Contains("must increase"));
   CHECK_THAT(scene_error(good + "\n[newton]\nload_factors = [0.5, 0.75]\n"), Catch::Contains("must end at 1"));

@@ -45,7 +45,6 @@ void BM_newton_iteration(benchmark::State& state) {
   const ExactElasticity exact = timoshenko_beam(length, depth, load, linear);
   SolidProblem p;
   p.material = make_material("neo_hookean", 3.0e7, 0.3);
-  p.penalty_modulus = 3.0e7;
   p.spacing = s.nodes.spacing;
   p.conditions = {{BoundaryCondition::Type::displacement, select_part(domain, "left"),
                    [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "x = 0"},

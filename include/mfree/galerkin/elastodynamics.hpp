@@ -44,7 +44,6 @@ std::string_view to_string(TimeScheme s);
 
 struct DynamicsSettings {
   TimeScheme scheme = TimeScheme::newmark;
-  double density = 1.0;                 ///< rho0
   double end_time = 0.0;
   std::optional<double> time_step;      ///< requested dt (required for newmark)
   double stability_factor = 0.5;        ///< explicit without time_step: dt = factor x limit
@@ -120,9 +119,9 @@ struct DynamicsCheckpoints {
   std::function<void(int steps, double dt)> resumed;
 };
 
-/// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0,
-/// M solved by the solver of `solver` (on `nodes`).
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes, double density,
+/// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0
+/// (the model's densities), M solved by the solver of `solver` (on `nodes`).
+Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes,
                                  const std::function<Vec2(const Vec2&)>& field, const SolverSettings& solver);
 
 /// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).

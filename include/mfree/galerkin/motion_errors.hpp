@@ -26,13 +26,14 @@ struct MotionErrors {
 
 class MotionErrorSampler {
  public:
-  MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, Material material);
+  /// law_at: the law at each of the rule's points (asked once per point).
+  MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, const MaterialAt& law_at);
   [[nodiscard]] MotionErrors operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
                                         const ExactMotion& exact) const;
 
  private:
   GalerkinQuadrature at_;
-  Material material_;
+  std::vector<Material> law_;  ///< per point
   double volume_ = 0.0;
 };
 

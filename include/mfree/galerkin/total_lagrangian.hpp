@@ -17,7 +17,9 @@
 //   N(u; v) = - int Pi v . P(F) N  -  int Pi (C : grad v) N . (u - ubar)
 //             + (beta M / h) int Pi v . (u - ubar),
 //
-// C = A(I) the reference tangent, M = C_xxxx its P-wave modulus (p_wave_modulus(), materials/). The first
+// C = A(I) the reference tangent, M = C_xxxx its P-wave modulus (p_wave_modulus(), materials/),
+// both of the law at the point (the penalty follows the local stiffness: a stiff inclusion
+// does not stiffen the conditions on a soft matrix's boundary). The first
 // term is the traction of the current state, so the form is consistent at any deformation; the second, with
 // the constant C, makes it the symmetric Nitsche form of SPEC section 4 for small strain (one Newton step
 // then solves a linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is not
@@ -31,17 +33,18 @@
 //   T(u; v) = - int [[v]] . {P(F)} N  -  int [[u]] . {C : grad v} N  +  (beta M / h) int [[u]] . [[v]],
 //
 // consistent (a bonded solution makes [[u]] = 0 and the tractions equal) and, for small
-// strain, symmetric; M the largest P-wave modulus of the laws. The strain may jump across
+// strain, symmetric; M the larger P-wave modulus of the two faces' laws. The strain may jump across
 // the interface: the supports end there (the interface is a crack to them) and nodes on it
-// are split, so each side has functions of its own. Laws with history are not tied (refused).
+// are split, so each side has functions of its own. With laws with history each face of a tie
+// point holds a state of its own, as a Nitsche point does.
 //
 // Laws with history (J2, Drucker–Prager; materials/material_state.hpp): every quadrature
-// point and every Nitsche point holds a MaterialState, the committed state_n. The forces and
-// tangents at d are those of update(F(d), state_n) with the consistent tangent, so Newton
-// iterates on one step without touching the history; commit(d) makes state_{n+1} the history
-// once the step is accepted (a converged load step, a time step). A failed load step,
-// cut back, leaves the history as it was. strain_energy() is the stored energy of the
-// committed state, dissipated() the plastic work.
+// point, every Nitsche point and each face of every tie point holds a MaterialState, the
+// committed state_n. The forces and tangents at d are those of update(F(d), state_n) with the
+// consistent tangent, so Newton iterates on one step without touching the history; commit(d)
+// makes state_{n+1} the history once the step is accepted (a converged load step, a time
+// step). A failed load step, cut back, leaves the history as it was. strain_energy() is the stored energy of
+// the committed state, dissipated() the plastic work.
 //
 // Pressure p (positive into the body, SPEC section 9): with a small-strain law the dead
 // traction -p N on the reference boundary; with a finite-strain law a follower load on the
@@ -107,7 +110,9 @@ inline constexpr double max_poisson_ratio = 0.49;
 /// The committed material states of a model's points (laws with history; empty otherwise).
 struct PointHistory {
   std::vector<MaterialState> domain;    ///< per quadrature point
-  std::vector<MaterialState> boundary;  ///< per Nitsche point (boundary quadrature points of essential conditions)
+  /// Per Nitsche point (boundary quadrature points of essential conditions), then per tie
+  /// point of an interface its two faces (+, -).
+  std::vector<MaterialState> boundary;
 };
 
 struct SolidProblem {
@@ -115,15 +120,26 @@ struct SolidProblem {
   /// For a domain of several regions (Domain::regions()), the law of each, in their order;
   /// empty: `material` in every region.
   std::vector<Material> region_materials;
+  double density = 0.0;  ///< rho0 [kg/m^3] everywhere, unless region_densities are given (0: not given)
+  std::vector<double> region_densities;       ///< per region, as region_materials (dynamics)
   BodyForce body_force;                       ///< empty: none
   std::vector<BoundaryCondition> conditions;  ///< on disjoint parts of the boundary; the rest is traction free
-  double nitsche_beta = 100.0;                ///< dimensionless beta of the penalty beta M / h
-  double penalty_modulus = 1.0;  ///< M of the penalty [Pa]: the largest P-wave modulus of the laws
+  /// Dimensionless beta of the penalty beta M / h, M the P-wave modulus of the law at the
+  /// point (at an interface the larger of its faces' laws).
+  double nitsche_beta = 100.0;
   double spacing = 1.0;                       ///< h of the penalty: nodal spacing
 
   /// The law of region r.
   [[nodiscard]] const Material& law(int region) const {
     return region_materials.empty() ? material : region_materials[static_cast<std::size_t>(region)];
+  }
+  /// rho0 of region r.
+  [[nodiscard]] double density_of(int region) const {
+    return region_densities.empty() ? density : region_densities[static_cast<std::size_t>(region)];
+  }
+  /// The law at X of the domain (its region's; on the boundary, the nearest region's).
+  [[nodiscard]] const Material& law_at(const Domain& domain, const Vec2& x) const {
+    return region_materials.empty() ? material : law(domain.nearest_region(x).first);
   }
 };
 
@@ -178,10 +194,6 @@ class TotalLagrangian {
   // values boundary_force() and external_force() integrate.
   [[nodiscard]] const BoundaryQuadrature& boundary() const { return bq_; }
   [[nodiscard]] const GalerkinQuadrature& at_boundary() const { return at_boundary_; }
-  /// beta M / h [Pa / m].
-  [[nodiscard]] double nitsche_penalty() const {
-    return problem_.nitsche_beta * problem_.penalty_modulus / problem_.spacing;
-  }
   /// The two parts of Nitsche's flux at one Nitsche point: traction = Pi P(F) N of the
   /// committed state [Pa], gap = Pi (u^h - factor ubar) [m].
   struct NitscheValues {
@@ -189,6 +201,7 @@ class TotalLagrangian {
     const BoundaryCondition* condition = nullptr;
     Vec2 traction = Vec2::Zero();
     Vec2 gap = Vec2::Zero();
+    double penalty = 0.0;  ///< beta M / h of the point's law [Pa / m]
   };
   /// The Nitsche points: the boundary points of the essential conditions, in boundary order.
   [[nodiscard]] std::size_t nitsche_points() const { return nitsche_.size(); }
@@ -213,23 +226,28 @@ class TotalLagrangian {
   };
   [[nodiscard]] PointResponse response(Index k, const Eigen::VectorXd& d) const;
 
-  /// Consistent mass sum_K w_K rho0 phi_I phi_J (times I_2), on the tangent's pattern (so
-  /// M and K add value by value).
-  [[nodiscard]] SparseMatrix mass_matrix(double density) const;
-  /// Row-sum lumped mass m_I = rho0 sum_K w_K phi_I(X_K) (per DOF: m_I twice). Throws
+  /// rho0 per quadrature point, its region's; InputError when a region has no density.
+  [[nodiscard]] std::vector<double> point_densities() const;
+  /// Consistent mass sum_K w_K rho0_K phi_I phi_J (times I_2), rho0_K the density of point K's
+  /// region, on the tangent's pattern (so M and K add value by value). InputError when a
+  /// region has no density.
+  [[nodiscard]] SparseMatrix mass_matrix() const;
+  /// Row-sum lumped mass m_I = sum_K w_K rho0_K phi_I(X_K) (per DOF: m_I twice). Throws
   /// NumericalError naming the node when one is not positive.
-  [[nodiscard]] Eigen::VectorXd lumped_mass(double density, const std::vector<Vec2>& node_positions) const;
+  [[nodiscard]] Eigen::VectorXd lumped_mass(const std::vector<Vec2>& node_positions) const;
 
  private:
   struct NitschePoint {
     Index point;            ///< index into bq / at_boundary
     Mat2 projection;        ///< Pi
     const BoundaryCondition* condition;
+    double penalty;  ///< beta M / h of the point's law [Pa / m]
   };
   /// A point of an interface: the same point on its two faces.
   struct TiePoint {
     Index plus;   ///< on the face whose material is on the interface's left (normal into the right)
     Index minus;  ///< on the other face
+    double penalty;  ///< beta M / h, M the larger of the faces' laws [Pa / m]
   };
   /// One side of a tie point's row: the functions there, with the sign of their jump.
   struct TieSide {
@@ -251,8 +269,15 @@ class TotalLagrangian {
   /// The tie's terms at its points: forces added to f, and with k the tangent added to k's values.
   void add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const;
   void add_tie_tangent(const Eigen::VectorXd& d, double* values) const;
-  /// P(F) N at boundary point p with its law (no history).
-  [[nodiscard]] MaterialUpdate tie_update(Index p, const Eigen::VectorXd& d, bool with_tangent) const;
+  /// The update at face `face` (0: +, 1: -) of tie point `tie` with its law, from its committed state.
+  [[nodiscard]] MaterialUpdate tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
+                                          bool with_tangent) const;
+  /// Where the state of a tie point's face lives in history_.boundary.
+  [[nodiscard]] std::size_t tie_state(std::size_t tie, int face) const {
+    return nitsche_.size() + 2 * tie + static_cast<std::size_t>(face);
+  }
+  /// Commits the states of the Nitsche and tie points at d.
+  void commit_boundary(const Eigen::VectorXd& d);
 
   SolidProblem problem_;
   bool history_laws_ = false;
@@ -268,6 +293,7 @@ class TotalLagrangian {
   std::vector<int> law_of_point_;            ///< per quadrature point, its region's law
   std::vector<int> law_of_boundary_;         ///< per boundary point
   std::vector<Tangent> reference_tangents_;  ///< per law, C = A(I)
+  std::vector<double> penalty_of_law_;       ///< per law, beta M / h
   bool linear_ = true;                       ///< every law linear
   std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures
   std::vector<const BoundaryCondition*> follower_of_point_;           ///< per boundary point; null if none

@@ -49,6 +49,20 @@ std::optional<std::array<double, 2>> segment_in_box(const Vec2& a, const Vec2& b
 /// The parts of the segments inside the closed box (segment_in_box).
 BoundarySelection select_box(const Domain& domain, const Box& box);
 
+/// A short stretch of a selection round a corner: a piece cut inside its segment at one end
+/// whose other end meets a selected piece of the next segment at a turn (a box drawn round one
+/// edge clips the edges it crosses).
+struct CornerSliver {
+  BoundaryPiece piece;
+  Vec2 corner;        ///< where it meets the longer piece
+  double length = 0;  ///< of the sliver
+  double turn = 0;    ///< angle between the two pieces' directions [degrees]
+};
+/// The slivers of s: pieces as above that turn by more than `min_turn` degrees and are
+/// shorter than `fraction` times the piece they meet.
+std::vector<CornerSliver> corner_slivers(const Domain& domain, const BoundarySelection& s,
+                                         double min_turn = 20.0, double fraction = 0.1);
+
 /// Length of the boundary that two selections share.
 double overlap_length(const Domain& domain, const BoundarySelection& a, const BoundarySelection& b);
 

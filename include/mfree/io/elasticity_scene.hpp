@@ -18,8 +18,8 @@
 //                 youngs_modulus, poisson_ratio (at most 0.49 in plane strain: max_poisson_ratio,
 //                 galerkin/total_lagrangian.hpp; allow_locking = true lifts that), density (dynamics);
 //                 or [[material]] tables, one law per region: name, regions = ["a", ...]
-//                 (every region in exactly one), and the keys of [material] (small-strain
-//                 laws, linear statics)
+//                 (every region in exactly one), and the keys of [material] (any law; a
+//                 density in every table or in none, and the densities may differ)
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy] (per unit volume; numbers or formulas in X, Y, t),
 //                 gravity = [gx, gy] (per unit mass, times [material] density)   optional
@@ -36,8 +36,11 @@
 //                 p (a number or formula, positive into the body). A selector that selects
 //                 nothing, and two conditions on one part of the boundary, are errors; so is
 //                 a displacement or slip region selecting below 1% of its extent in the
-//                 domain's bounding box (slivers), unless allow_small_selection = true.
-//   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus)
+//                 domain's bounding box (slivers), and a region that clips the edges it
+//                 crosses at a corner (geometry/boundary_selection.hpp: corner_slivers),
+//                 unless allow_small_selection = true.
+//   [nitsche]     beta (default 100: penalty beta M / h, M = lambda + 2 mu the P-wave modulus
+//                 of the law at the point)
 //   [solver]      every linear solve (linalg/linear_solver.hpp): kind (auto | cholmod |
 //                 umfpack | cg | gmres; auto: direct up to direct_limit unknowns, default
 //                 200000, Krylov above), and for the Krylov methods preconditioner (gamg |
@@ -141,8 +144,11 @@ struct ElasticityScene {
   std::vector<SelectedPart> selected;    ///< per [[boundary]], in order
   Domain domain;
   ElasticitySettings settings;  ///< settings.problem.material: the small-strain law (or the linearisation)
-  Material material;             ///< the law of [material] model
-  double density = 0.0;          ///< rho0; 0 when not given
+  Material material;            ///< the law of [material] model (of the first region with [[material]])
+  double density = 0.0;         ///< rho0; 0 when not given (of the first region with [[material]])
+  std::vector<Material>
+      region_materials;  ///< [[material]]: the law of each region (Domain::regions()); else empty
+  std::vector<double> region_densities;  ///< [[material]]: rho0 of each region; else empty
   std::optional<NewtonSettings> newton;
   std::optional<DynamicsScene> dynamics;
   std::optional<ExactSpec> exact_spec;
@@ -164,8 +170,14 @@ struct ElasticityScene {
   [[nodiscard]] VectorField static_body_force() const;
   /// A line per [[boundary]]: name, type, what it selects and the length selected.
   [[nodiscard]] std::string describe_conditions() const;
+  /// The first law with the property (is_linear, has_history, ...), or null when none has it.
+  [[nodiscard]] const Material* law_with(bool (*property)(const Material&)) const;
+  /// The laws by name, for messages: 'j2', or 'j2' in 'matrix', 'plane_strain' in 'fibre'.
+  [[nodiscard]] std::string law_names() const;
   /// True when the scene is solved by the total-Lagrangian path (Newton or dynamics).
-  [[nodiscard]] bool nonlinear() const { return newton || dynamics || !is_linear(material); }
+  [[nodiscard]] bool nonlinear() const {
+    return newton || dynamics || law_with([](const Material& m) { return !is_linear(m); });
+  }
 };
 
 /// Parses and checks a scene; `want_study` makes [study] required (mfree converge);

@@ -50,7 +50,7 @@ class SolidFrames {
 
  private:
   const OutputSettings& output_;
-  Material material_;
+  std::vector<Material> law_;  ///< per sample
   const ExactMotion* exact_;
   const TotalLagrangian* model_;  ///< set for a law with history
   std::filesystem::path folder_;

@@ -14,6 +14,7 @@
 // and energy() are the response of a point without history: the elastic laws, and the
 // reference state of any law (wave speeds, the reference tangent).
 
+#include <functional>
 #include <string_view>
 #include <utility>
 #include <variant>
@@ -29,6 +30,8 @@
 namespace mfree {
 
 using Material = std::variant<LinearElastic, StVenantKirchhoff, NeoHookean, J2Plasticity, DruckerPrager>;
+/// The law at a reference position X (a body of several materials: its region's).
+using MaterialAt = std::function<const Material&(const Vec2& x)>;
 
 /// The update of any law (above). NumericalError for J <= 0 (finite-strain laws).
 MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& state, bool with_tangent);
