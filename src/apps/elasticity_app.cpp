@@ -50,9 +50,16 @@ int run_linear_statics(const ElasticityScene& scene) {
       r.timer.time("reactions", [&] { return elastic_reactions(scene.domain, s, r); });
   std::cout << reaction_lines(reactions);
   for (const TipIntensity& t : r.tips)
-    std::cout << fmt::format("  crack '{}' tip ({:.6g}, {:.6g}): K_I = {:.6e}, K_II = {:.6e}, J = {:.6e} (interaction "
-                             "integral, radius {:.4g})\n",
-                             t.crack, t.frame.position.x(), t.frame.position.y(), t.k.k1, t.k.k2, t.k.j, t.outer_radius);
+    std::cout << (t.loaded_by.empty()
+                      ? fmt::format(
+                            "  crack '{}' tip ({:.6g}, {:.6g}): K_I = {:.6e}, K_II = {:.6e}, J = {:.6e} "
+                            "(interaction integral, radius {:.4g})\n",
+                            t.crack, t.frame.position.x(), t.frame.position.y(), t.k.k1, t.k.k2, t.k.j,
+                            t.outer_radius)
+                      : fmt::format(
+                            "  crack '{}' tip ({:.6g}, {:.6g}): no K, its faces carry condition '{}' (the "
+                            "interaction integral needs traction-free faces)\n",
+                            t.crack, t.frame.position.x(), t.frame.position.y(), t.loaded_by));
 
   RunSummary summary("linear_statics", path);
   summarise_reactions(summary, reactions);

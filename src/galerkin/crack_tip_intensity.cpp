@@ -53,7 +53,8 @@ double room_at_tip(const Domain& domain, std::size_t c, int end) {
 }  // namespace
 
 std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
-                                                const Eigen::VectorXd& d, const LawAt& law_at, double h) {
+                                                const Eigen::VectorXd& d, const LawAt& law_at, double h,
+                                                const std::vector<std::string>& face_conditions) {
   std::vector<TipIntensity> out;
   if (domain.cracks().empty()) return out;
   const QuadratureRule rule = gauss_cell_rule(domain, 0.5 * h, 4);
@@ -67,6 +68,13 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
       t.end = end;
       t.frame.position = end == 0 ? crack.points.front() : crack.points.back();
       t.frame.direction = (t.frame.position - (end == 0 ? crack.points[1] : crack.points[n - 2])).normalized();
+      if (c < face_conditions.size() && !face_conditions[c].empty()) {
+        t.loaded_by = face_conditions[c];
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        t.k = {nan, nan, nan};
+        out.push_back(t);
+        continue;
+      }
       const double room = 0.9 * room_at_tip(domain, c, end);
       // A fixed share of the room once refined enough: the annulus then stays where u^h
       // converges, not a fixed number of spacings from the tip.

@@ -213,10 +213,17 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   if (std::any_of(domain.cracks().begin(), domain.cracks().end(),
                   [](const Crack& c) { return c.tip[0] || c.tip[1]; }))
     res.tips = timer.time("stress intensity", [&] {
+      // A crack whose faces carry a condition (a slip face holding a symmetry line) has no K.
+      std::vector<std::string> face_conditions(domain.cracks().size());
+      for (const BoundaryCondition& c : s.problem.conditions)
+        for (const BoundaryPiece& piece : c.where)
+          if (const int crack = domain.boundary()[static_cast<std::size_t>(piece.segment)].crack;
+              crack >= 0 && face_conditions[static_cast<std::size_t>(crack)].empty())
+            face_conditions[static_cast<std::size_t>(crack)] = c.name;
       return crack_tip_intensities(
           domain, *res.trial, res.coefficients,
-          [&](const Vec2& x) -> const LinearElastic& { return s.problem.law_at(domain, x); },
-          s.nodes.spacing);
+          [&](const Vec2& x) -> const LinearElastic& { return s.problem.law_at(domain, x); }, s.nodes.spacing,
+          face_conditions);
     });
   if (exact) {
     res.errors = timer.time("errors", [&] {

@@ -27,14 +27,20 @@ struct TipIntensity {
   int end = 0;         ///< 0: its first point, 1: its last
   CrackTipFrame frame; ///< tip and direction of extension
   double outer_radius = 0.0;  ///< r1 of the annulus used (length)
-  StressIntensity k;
+  StressIntensity k;          ///< NaN when loaded_by is set
+  /// The condition on the crack's faces, when one holds there (a slip face used as a
+  /// symmetry hold): the domain form needs traction-free faces, so the tip has no K.
+  std::string loaded_by;
 };
 
 /// K_I, K_II and J at every tip (in crack order, first end before last) for coefficients d of
 /// the trial functions; `h` the nodal spacing. Throws InputError when a tip has no room for
 /// an annulus of one spacing. The law is the tip's region's (the annulus stops short of other
-/// cracks and interfaces, so it lies in that region).
+/// cracks and interfaces, so it lies in that region). `face_conditions`: per crack, the name
+/// of a condition on its faces, empty when they are traction free (or an empty list: all
+/// free); such a crack's tips are listed with loaded_by set and no K.
 std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
-                                                const Eigen::VectorXd& d, const LawAt& law_at, double h);
+                                                const Eigen::VectorXd& d, const LawAt& law_at, double h,
+                                                const std::vector<std::string>& face_conditions = {});
 
 }  // namespace mfree
