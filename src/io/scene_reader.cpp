@@ -1,12 +1,14 @@
 #include "mfree/io/scene_reader.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <fstream>
-#include <sstream>
 #include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
 
 #include "mfree/core/error.hpp"
 
@@ -75,24 +77,75 @@ void apply_override(toml::table& root, const std::string& setting) {
                                    as_value.description()));
     }
   }
+  // The path's parts: sections, then the key. A section that is a list of tables
+  // ([[material]]) takes one of them: by its name (material.steel.model) or its place
+  // (material[1].model, as errors name it).
+  std::vector<std::string> parts;
+  for (std::size_t begin = 0;;) {
+    const std::size_t dot = path.find('.', begin);
+    parts.push_back(path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  const auto joined = [&](std::size_t upto) {
+    std::string out = parts[0];
+    for (std::size_t k = 1; k <= upto; ++k) out += "." + parts[k];
+    return out;
+  };
   toml::table* at = &root;
-  std::size_t begin = 0;
-  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', begin)) {
-    const std::string section = path.substr(begin, dot - begin);
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    std::string section = parts[i];
+    std::optional<std::size_t> place;
+    if (const std::size_t open = section.find('['); open != std::string::npos && section.back() == ']') {
+      const std::string digits = section.substr(open + 1, section.size() - open - 2);
+      if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(
+            fmt::format("{}: '{}' is not a place in a list of tables ([0], [1], ...)", origin, section));
+      place = std::stoul(digits);
+      section.resize(open);
+    }
     if (section.empty() || section.find_first_not_of(bare_key_characters) != std::string::npos)
-      throw InputError(fmt::format("{}: '{}' is not a section name (letters, digits, _ and -)", origin, section));
+      throw InputError(
+          fmt::format("{}: '{}' is not a section name (letters, digits, _ and -)", origin, parts[i]));
     if (!at->contains(section)) {
+      if (place) throw InputError(fmt::format("{}: the scene has no [[{}]] tables", origin, section));
       // Parsed rather than made, so that the new section carries the override as its source.
       toml::table made = toml::parse(section + " = {}", origin);
       at->insert(section, std::move(*made.get(section)));
     }
-    const auto it = at->find(section);
-    if (!it->second.is_table())
-      throw InputError(fmt::format("{}: '{}' is not a section of the scene", origin, path.substr(0, dot)));
-    at = it->second.as_table();
-    begin = dot + 1;
+    toml::node& node = at->find(section)->second;
+    if (toml::array* list = node.as_array(); list && list->is_array_of_tables()) {
+      // The tables' names, for the choice and for messages.
+      std::vector<std::string> names;
+      for (toml::node& t : *list)
+        names.push_back(t.as_table()->get_as<std::string>("name")
+                            ? **t.as_table()->get_as<std::string>("name")
+                            : std::string());
+      if (!place) {
+        if (i + 2 >= parts.size())
+          throw InputError(
+              fmt::format("{}: '{}' is a list of tables ([[{}]]): name one, {}.<name>.{}, or give its "
+                          "place, {}[k].{} (names: {})",
+                          origin, joined(i), section, joined(i), parts.back(), joined(i), parts.back(),
+                          fmt::join(names, ", ")));
+        const auto it = std::find(names.begin(), names.end(), parts[i + 1]);
+        if (it == names.end())
+          throw InputError(fmt::format("{}: no [[{}]] table is named '{}' (names: {})", origin, section,
+                                       parts[i + 1], fmt::join(names, ", ")));
+        place = static_cast<std::size_t>(it - names.begin());
+        ++i;
+      }
+      if (*place >= list->size())
+        throw InputError(fmt::format("{}: the scene has {} [[{}]] table(s), numbered from 0: there is no {}",
+                                     origin, list->size(), section, *place));
+      at = (*list)[*place].as_table();
+      continue;
+    }
+    if (place || !node.is_table())
+      throw InputError(fmt::format("{}: '{}' is not a section of the scene", origin, joined(i)));
+    at = node.as_table();
   }
-  const std::string key = path.substr(begin);
+  const std::string& key = parts.back();
   if (key.empty() || key.find_first_not_of(bare_key_characters) != std::string::npos)
     throw InputError(fmt::format("{}: '{}' is not a key name (letters, digits, _ and -)", origin, key));
   at->insert_or_assign(key, std::move(*parsed.get("value")));

@@ -83,3 +83,39 @@ TEST_CASE("scene overrides: --set replaces, adds, and is named in errors", "[io]
   CHECK_THAT(read_e({"material.E.x=1"}), Catch::Contains("'material.E' is not a section"));
   CHECK_THAT(read_e({"material"}), Catch::Contains("expected section.key=value"));
 }
+
+TEST_CASE("scene overrides: --set reaches a [[table]] by its name or its place", "[io]") {
+  mfree::testing::ScratchFolder folder("overrides_lists");
+  const std::filesystem::path file = folder.path / "scene.toml";
+  {
+    std::ofstream out(file);
+    out << "[[material]]\nname = \"steel\"\nE = 2e11\n[[material]]\nname = \"resin\"\nE = 3e9\n"
+           "[[boundary]]\nname = \"hold y\"\nvalue = [0, 0]\n";
+  }
+  const Scene scene =
+      Scene::load(file, {"material.resin.E=4e9", "material[0].density=7800", "boundary[0].value=[0, 1]"});
+  const std::vector<SceneTable> laws = scene.root().tables("material");
+  CHECK(laws[0].number("E", 0, 1e300) == 2e11);
+  CHECK(laws[0].number("density", 0, 1e300) == 7800);
+  CHECK(laws[1].number("E", 0, 1e300) == 4e9);
+  CHECK(scene.root().tables("boundary")[0].numbers("value", 2, -1, 1) == std::vector<double>{0, 1});
+  // A value out of range names the override, as for a section.
+  CHECK_THAT(
+      mfree::testing::message_of<InputError>([&] {
+        (void)Scene::load(file, {"material.resin.E=-1"}).root().tables("material")[1].number("E", 0, 1e300);
+      }),
+      Catch::Contains("--set material.resin.E=-1"));
+
+  const auto load_error = [&](const std::string& o) {
+    return mfree::testing::message_of<InputError>([&] { (void)Scene::load(file, {o}); });
+  };
+  CHECK_THAT(load_error("material.E=1"), Catch::Contains("'material' is a list of tables") &&
+                                             Catch::Contains("material.<name>.E") &&
+                                             Catch::Contains("steel, resin"));
+  CHECK_THAT(load_error("material.glass.E=1"), Catch::Contains("no [[material]] table is named 'glass'"));
+  CHECK_THAT(load_error("material[2].E=1"),
+             Catch::Contains("2 [[material]] table(s), numbered from 0: there is no 2"));
+  CHECK_THAT(load_error("material[x].E=1"), Catch::Contains("'material[x]' is not a place"));
+  CHECK_THAT(load_error("mpm[0].cells=1"), Catch::Contains("the scene has no [[mpm]] tables"));
+  CHECK_THAT(load_error("material.steel.E.x=1"), Catch::Contains("'material.steel.E' is not a section"));
+}
