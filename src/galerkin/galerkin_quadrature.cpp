@@ -1,12 +1,14 @@
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
 #include <optional>
-#include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/quadrature/rk_quadrature.hpp"
 
 namespace mfree {
 
@@ -133,63 +135,31 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   }
   row_nodes = {};
 
-  // The lattice sums w_K = sum_v c_v phi_K(v), w_K c_K = sum_v c_v phi_K(v) v and
-  // row K = sum_v c_v phi_K(v) grad phi_I(v), over chunks of lattice points:
-  //   1. every lattice point of the chunk evaluates phi_K and grad phi_I once (in parallel);
-  //   2. every quadrature point K adds the chunk's terms in increasing lattice order (in
-  //      parallel over K, each K owned by one thread).
-  // Each sum is so taken in one fixed order: a run gives the same numbers bit for bit, on
-  // any number of threads. Chunks bound the memory of the stored evaluations.
+  // The lattice sums (quadrature/rk_quadrature.hpp: for_lattice_terms, one fixed order on any
+  // number of threads) w_K = sum_v c_v phi_K(v), w_K c_K = sum_v c_v phi_K(v) v and
+  // row K = sum_v c_v phi_K(v) grad phi_I(v); grad phi_I evaluated once per lattice point.
   std::vector<double> w(nq, 0.0);
   std::vector<Index> missing(nq, 0);
   std::vector<Vec2> moment(nq, Vec2::Zero());
   const auto& lp = lattice.points();
-  const auto& lc = lattice.weights();
-  const Index nl = static_cast<Index>(lp.size());
-  constexpr Index chunk = Index{1} << 15;
-  std::vector<ShapeValues> phik(std::min(chunk, nl)), phii(phik.size());
-  std::vector<Index> first(nq + 1), terms;  // K's terms (v, a): terms[first[K]], ... (pairs)
-  for (Index v0 = 0; v0 < nl; v0 += chunk) {
-    const Index v1 = std::min(nl, v0 + chunk);
-    parallel_blocks(v1 - v0, 256, [&](Index b, Index e) {
-      for (Index v = b; v < e; ++v) {
-        quadrature_functions.evaluate(lp[v0 + v], phik[v], false);
-        trial.evaluate(lp[v0 + v], phii[v], true);
-      }
-    });
-    std::fill(first.begin(), first.end(), 0);
-    for (Index v = 0; v < v1 - v0; ++v)
-      for (Index k : phik[v].nodes) ++first[k + 1];
-    for (Index k = 0; k < nq; ++k) first[k + 1] += first[k];
-    terms.resize(2 * static_cast<std::size_t>(first[nq]));
-    std::vector<Index> next(first.begin(), first.end() - 1);
-    for (Index v = 0; v < v1 - v0; ++v)
-      for (std::size_t a = 0; a < phik[v].size(); ++a) {
-        const Index at = next[phik[v].nodes[a]]++;
-        terms[2 * at] = v;
-        terms[2 * at + 1] = static_cast<Index>(a);
-      }
-    parallel_blocks(nq, 512, [&](Index b, Index e) {
-      for (Index k = b; k < e; ++k) {
+  std::vector<ShapeValues> phii(
+      static_cast<std::size_t>(std::min(lattice_chunk, static_cast<Index>(lp.size()))));
+  for_lattice_terms(
+      quadrature_functions, lattice, [&](Index local, Index v) { trial.evaluate(lp[v], phii[local], true); },
+      [&](Index k, Index v, Index local, double c) {
+        w[k] += c;
+        moment[k] += c * lp[v];
         const auto row_first = q.nodes.begin() + q.offsets[k], row_last = q.nodes.begin() + q.offsets[k + 1];
-        for (Index t = first[k]; t < first[k + 1]; ++t) {
-          const Index v = terms[2 * t];
-          const double c = lc[v0 + v] * phik[v].phi[terms[2 * t + 1]];
-          w[k] += c;
-          moment[k] += c * lp[v0 + v];
-          const ShapeValues& gi = phii[v];
-          for (std::size_t i = 0; i < gi.size(); ++i) {
-            const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
-            if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below
-              ++missing[k];
-              continue;
-            }
-            q.grad[static_cast<std::size_t>(it - q.nodes.begin())] += c * gi.grad[i];
+        const ShapeValues& gi = phii[local];
+        for (std::size_t i = 0; i < gi.size(); ++i) {
+          const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
+          if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below
+            ++missing[k];
+            continue;
           }
+          q.grad[static_cast<std::size_t>(it - q.nodes.begin())] += c * gi.grad[i];
         }
-      }
-    });
-  }
+      });
   for (Index k = 0; k < nq; ++k) {
     if (missing[k] > 0)
       throw NumericalError(fmt::format(

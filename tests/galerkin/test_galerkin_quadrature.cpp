@@ -2,11 +2,14 @@
 // 1 and x, projected gradients of a quadratic field are exact at the row centroids, and the
 // lattice sums come out the same bit for bit on every run and thread count.
 
-#include <catch2/catch.hpp>
 #include <omp.h>
 
+#include <catch2/catch.hpp>
+
 #include "../test_support.hpp"
+#include "mfree/clouds/point_cloud.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/quadrature/rk_quadrature.hpp"
 
 using namespace mfree;
 
@@ -90,4 +93,38 @@ TEST_CASE("projected quadrature: the same numbers bit for bit on every run and t
   };
   CHECK(identical(first.quadrature, second.quadrature));
   CHECK(identical(one.quadrature, first.quadrature));
+}
+
+TEST_CASE("projected quadrature: its weights are the integration study's rk_quadrature_weights, bit for bit",
+          "[galerkin]") {
+  // One computation of w_K = integral of phi_K (quadrature/rk_quadrature.hpp): the integration
+  // study measures the weights the solver uses, on every cloud, with 1 and 2 threads.
+  const Domain domain = l_shape();
+  CloudSettings cs;
+  cs.kind = CloudKind::perturbed;
+  cs.spacing = 1.0 / 16;
+  cs.perturbation = 0.4;
+  cs.seed = 5;
+  const std::vector<Vec2> nodes = make_cloud(domain, cs);
+  cs.cell_centred = true;
+  const std::vector<Vec2> points = make_cloud(domain, cs);
+  RKSettings rs;
+  rs.radius = 2.0 * cs.spacing;
+  rs.node_radii = nodal_support_radii(nodes, cs.spacing, 2.5);
+  const RKShapeFunctions trial(nodes, rs);
+  rs.node_radii = nodal_support_radii(points, cs.spacing, 2.5);
+  const RKShapeFunctions quadrature_functions(points, rs);
+  const BackgroundLattice lattice(domain, cs.spacing / 2, 1);
+  const int threads = omp_get_max_threads();
+  for (const int t : {1, std::max(2, threads)}) {
+    omp_set_num_threads(t);
+    const std::vector<double> study = rk_quadrature_weights(quadrature_functions, lattice);
+    const GalerkinQuadrature solver = projected_quadrature(trial, quadrature_functions, lattice);
+    REQUIRE(study.size() == solver.weights.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < study.size(); ++k) differ += !testing::same_bits(study[k], solver.weights[k]);
+    CAPTURE(t);
+    CHECK(differ == 0);
+  }
+  omp_set_num_threads(threads);
 }
