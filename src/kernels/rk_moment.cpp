@@ -16,12 +16,10 @@ double norm1(const Matrix& m) {
 
 }  // namespace
 
-template <int Order, class Scalar>
-double RKMoment<Order, Scalar>::invert(Matrix& inverse) const
-  requires std::is_arithmetic_v<Scalar>
-{
+template <int dim, int Order, class Scalar>
+double RKMoment<dim, Order, Scalar>::invert(Matrix& inverse) const requires std::is_arithmetic_v<Scalar> {
   const Matrix m = matrix();
-  if constexpr (nb == 3) {
+  if constexpr (nb <= 4) {
     if (!(std::abs(m.determinant()) > 0.0)) return -1.0;
     inverse = m.inverse();
   } else {
@@ -32,7 +30,9 @@ double RKMoment<Order, Scalar>::invert(Matrix& inverse) const
   return 1.0 / (norm1(m) * norm1(inverse));
 }
 
-template class RKMoment<1>;
-template class RKMoment<2>;
+template class RKMoment<2, 1>;
+template class RKMoment<2, 2>;
+template class RKMoment<3, 1>;
+template class RKMoment<3, 2>;
 
 }  // namespace mfree

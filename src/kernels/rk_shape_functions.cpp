@@ -73,10 +73,10 @@ WindowSample sample_window(double dx, double dy, double inv_a) {
 template <int Order, Window W, SupportShape S, bool Given>
 void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, ShapeValues& out,
               bool with_gradient) {
-  using Basis = PolynomialBasis<Order>;
+  using Basis = PolynomialBasis<2, Order>;
   constexpr int nb = Basis::size;
   using Terms = typename Basis::Terms;
-  using Matrix = typename RKMoment<Order>::Matrix;
+  using Matrix = typename RKMoment<2, Order>::Matrix;
 
   const std::size_t n = out.nodes.size();
   if constexpr (!Given) {
@@ -89,7 +89,7 @@ void rk_point(const Vec2& x, std::span<const Vec2> nodes, const RKSettings& s, S
   if (n < static_cast<std::size_t>(nb)) throw_moment_failure(x, n, s, -1.0);
 
   // Pass 1: windows and M; phi temporarily holds w_I, grad holds grad w_I.
-  RKMoment<Order> moment;
+  RKMoment<2, Order> moment;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& node = nodes[out.nodes[k]];
     const double dx = x.x() - node.x(), dy = x.y() - node.y();

@@ -173,9 +173,9 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions,
 /// (quadratic spline window, tensor support of half width a), summed in another order.
 template <int Order>
 std::vector<unsigned char> MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {
-  using Basis = PolynomialBasis<Order>;
+  using Basis = PolynomialBasis<2, Order>;
   using Lanes = Eigen::Array4d;  // lane q: Gauss point q of the cell
-  using Moment = RKMoment<Order, Lanes>;
+  using Moment = RKMoment<2, Order, Lanes>;
   const double h = grid_.spacing(), a = settings_.radius, inv_a = 1.0 / a;
   const Vec2 lo = grid_.box().lo;
   const int nx = grid_.cells_x(), ny = grid_.cells_y();
@@ -219,7 +219,7 @@ std::vector<unsigned char> MLSReconstruction::update_rows(const std::vector<Vec2
       // b = M^-1 H(0) of each point, lane by lane: b[i][q].
       std::array<Lanes, Moment::nb> b;
       for (int q = 0; q < 4; ++q) {
-        typename RKMoment<Order>::Matrix inverse;
+        typename RKMoment<2, Order>::Matrix inverse;
         // Fewer than nb particles, or too regular (on a line; on a conic for the quadratic basis).
         if (!(moment.lane(q).invert(inverse) >= settings_.rcond_min)) failed[c] = 1;
         for (int i = 0; i < Moment::nb; ++i) b[i][q] = inverse(i, 0);

@@ -1,5 +1,6 @@
 #pragma once
-// The moment matrix of the RK / MLS construction at one point x (SPEC section 1),
+// The moment matrix of the RK / MLS construction at one point x of dimension dim (2 or 3;
+// SPEC section 1),
 //
 //   M(x) = sum_I w_I H(z_I) H(z_I)^T,   z_I = (x - x_I) / a,
 //
@@ -23,10 +24,10 @@
 
 namespace mfree {
 
-template <int Order, class Scalar = double>
+template <int dim, int Order, class Scalar = double>
 class RKMoment {
  public:
-  using Basis = PolynomialBasis<Order>;
+  using Basis = PolynomialBasis<dim, Order>;
   static constexpr int nb = Basis::size;
   static constexpr int entries = nb * (nb + 1) / 2;
   using Matrix = Eigen::Matrix<double, nb, nb>;
@@ -50,10 +51,8 @@ class RKMoment {
   /// The matrix of lane q (Scalar an Eigen array). A member template, so that the explicit
   /// instantiations of the scalar class leave it out.
   template <class S = Scalar>
-  [[nodiscard]] RKMoment<Order> lane(int q) const
-    requires(!std::is_arithmetic_v<S>)
-  {
-    RKMoment<Order> m;
+  [[nodiscard]] RKMoment<dim, Order> lane(int q) const requires(!std::is_arithmetic_v<S>) {
+    RKMoment<dim, Order> m;
     for (int e = 0; e < entries; ++e) m.upper_[e] = upper_[e][q];
     return m;
   }
@@ -67,18 +66,21 @@ class RKMoment {
     return m;
   }
 
-  /// M^-1 into `inverse` (explicitly: 3 x 3 by cofactors, 6 x 6 by Cholesky) and the
-  /// reciprocal condition number; -1 when M is singular (inverse then undefined).
+  /// M^-1 into `inverse` (explicitly: 3 x 3 and 4 x 4 by cofactors, 6 x 6 and 10 x 10 by
+  /// Cholesky) and the reciprocal condition number; -1 when M is singular (inverse then
+  /// undefined).
   [[nodiscard]] double invert(Matrix& inverse) const
     requires std::is_arithmetic_v<Scalar>;
 
  private:
-  template <int, class>
+  template <int, int, class>
   friend class RKMoment;
   std::array<Scalar, entries> upper_;
 };
 
-extern template class RKMoment<1>;
-extern template class RKMoment<2>;
+extern template class RKMoment<2, 1>;
+extern template class RKMoment<2, 2>;
+extern template class RKMoment<3, 1>;
+extern template class RKMoment<3, 2>;
 
 }  // namespace mfree
