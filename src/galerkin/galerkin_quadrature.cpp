@@ -96,7 +96,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   // stays exact.
   GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
   const double trial_max = trial.max_support_radius();
-  const CellList node_cells(trial.nodes(), trial_max);
+  const CellList<2> node_cells(trial.nodes(), trial_max);
   const bool circular = trial.settings().support == SupportShape::circular &&
                         quadrature_functions.settings().support == SupportShape::circular;
   const std::shared_ptr<const SupportObstacles>& obstacles = trial.settings().obstacles;

@@ -199,7 +199,7 @@ RKShapeFunctions::RKShapeFunctions(std::vector<Vec2> nodes, RKSettings settings)
   }
   // Cells of half the support: a query's box of side 2a then covers about (5 a / 2)^2 of
   // candidates instead of (3 a)^2, 30 % fewer to test.
-  cells_ = CellList(nodes_, 0.5 * max_radius_);
+  cells_ = CellList<2>(nodes_, 0.5 * max_radius_);
   if (settings_.rule != SupportRule::plain && settings_.obstacles && !settings_.obstacles->empty()) {
     if (settings_.rule == SupportRule::geodesic && settings_.support != SupportShape::circular)
       throw InputError(
@@ -225,7 +225,7 @@ void throw_moment_failure(const Vec2& x, std::size_t n, const RKSettings& s, dou
 
 std::vector<double> nodal_support_radii(const std::vector<Vec2>& nodes, double h, double factor,
                                         int k) {
-  const CellList cells(nodes, 2.0 * h);
+  const CellList<2> cells(nodes, 2.0 * h);
   std::vector<double> radii(nodes.size());
   parallel_blocks(static_cast<Index>(nodes.size()), 1024, [&](Index begin, Index end) {
     std::vector<double> d2;

@@ -337,7 +337,7 @@ std::optional<Bridge> find_bridge(const std::vector<Vec2>& nodes, const std::vec
   if (obstacles.empty() || nodes.empty()) return std::nullopt;
   // Paths searched up to 2 radii: a node within the radius whose path is longer bridges.
   const SupportPaths paths(obstacles, SupportRule::geodesic, 2.0 * radius);
-  const CellList cells(nodes, radius);
+  const CellList<2> cells(nodes, radius);
   const Index n = static_cast<Index>(points.size());
   std::vector<std::optional<Bridge>> found(points.size());
   parallel_blocks(n, 256, [&](Index begin, Index end) {

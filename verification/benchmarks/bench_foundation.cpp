@@ -68,7 +68,7 @@ void BM_search_cell_list(benchmark::State& state) {
   const std::vector<Vec2>& points = c.points;
   const double h = c.h;
   for (auto _ : state) {
-    const CellList cells(points, 2.0 * h);
+    const CellList<2> cells(points, 2.0 * h);
     const std::size_t found = total_neighbours(static_cast<Index>(points.size()), [&](Index i) {
       thread_local std::vector<Index> out;
       cells.within(points[i], 2.0 * h, out);

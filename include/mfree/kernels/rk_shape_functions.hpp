@@ -109,7 +109,7 @@ class RKShapeFunctions {
   std::vector<Vec2> nodes_;
   RKSettings settings_;
   double max_radius_ = 0.0;
-  CellList cells_;
+  CellList<2> cells_;
   std::shared_ptr<const SupportPaths> paths_;  ///< null: plain supports
 };
 
