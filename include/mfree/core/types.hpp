@@ -2,16 +2,24 @@
 // Basic types shared by every part of mfree.
 //
 // Coordinates are in the problem's own length unit; mfree never assumes one.
-// Points are 2D (x, y). Indices of points into clouds are 32-bit: a cloud holds at
-// most 2^31 - 1 points, far above what fits the memory of the machines we target.
+// Points of the dimension-generic parts are Point<dim> (dim = 2 or 3, explicitly
+// instantiated in the .cpp files); the plane parts use Vec2 = Point<2>. Indices of points
+// into clouds are 32-bit: a cloud holds at most 2^31 - 1 points, far above what fits the
+// memory of the machines we target.
 
 #include <Eigen/Core>
 #include <cstdint>
 
 namespace mfree {
 
-using Vec2 = Eigen::Vector2d;
-using Mat2 = Eigen::Matrix2d;
+template <int dim>
+using Point = Eigen::Matrix<double, dim, 1>;
+/// A second-order tensor (dim x dim): deformation gradients, stresses.
+template <int dim>
+using Tensor2 = Eigen::Matrix<double, dim, dim>;
+
+using Vec2 = Point<2>;
+using Mat2 = Tensor2<2>;
 using Index = std::int32_t;
 
 /// Axis-aligned box [lo.x, hi.x] x [lo.y, hi.y].

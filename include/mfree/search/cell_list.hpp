@@ -19,7 +19,7 @@ namespace mfree {
 template <int dim>
 class CellList {
  public:
-  using Point = Eigen::Matrix<double, dim, 1>;
+  using Point = mfree::Point<dim>;
 
   CellList() = default;
   /// Sorts `points` into cells of side `cell_size` > 0 covering their bounding box.
