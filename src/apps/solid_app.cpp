@@ -59,7 +59,7 @@ QuadratureRule error_rule(const ElasticityScene& scene) {
 }  // namespace
 
 int run_static(const ElasticityScene& scene) {
-  std::cout << fmt::format("mfree run: {} (total-Lagrangian statics, {} material, {} thread(s))\n",
+  std::cout << fmt::format("mfree run: {} (total-Lagrangian statics, {}, {} thread(s))\n",
                            scene.file.string(), scene.law_names(), thread_count());
   std::cout << scene.describe_conditions();
   StageTimer timer;
@@ -416,7 +416,7 @@ double energy_drift(const std::vector<EnergyRecord>& energy) {
 
 int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   const DynamicsSettings& s = scene.dynamics->settings;
-  std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {} material, {} thread(s))\n",
+  std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {}, {} thread(s))\n",
                            scene.file.string(), to_string(s.scheme), scene.law_names(), thread_count());
   std::cout << scene.describe_conditions();
   if (checkpoints) checkpoints->restore_output(scene.output.folder);

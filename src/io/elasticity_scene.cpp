@@ -485,8 +485,9 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
            t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error", "weights"}))
         out.output.fields.insert(f);
     if (out.output.wants("plastic_strain") && !out.law_with(has_history))
-      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
-                                    out.law_names()));
+      t.error("fields",
+              fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not the {}",
+                          out.law_names()));
     out.output.vtk = t.boolean_or("vtk", true);
     if (out.output.wants("velocity") && !out.dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
     if (t.has("probe")) {
@@ -581,7 +582,7 @@ SolidProblem ElasticityScene::solid_problem() const {
 BodyForce ElasticityScene::loads_body_force() const {
   // Gravity in a region of its own density: the nearest region's at X.
   std::function<double(const Vec2&)> rho = [rho = density](const Vec2&) { return rho; };
-  if (!region_densities.empty())
+  if (gravity && !region_densities.empty())
     rho = [at = std::make_shared<const Domain>(domain), d = region_densities](const Vec2& x) {
       return d[static_cast<std::size_t>(at->nearest_region(x).first)];
     };
@@ -600,6 +601,12 @@ VectorField ElasticityScene::static_body_force() const {
   return e ? e->body_force : VectorField{};
 }
 
+const Material& ElasticityScene::law_at(const Vec2& x) const {
+  return region_materials.empty()
+             ? material
+             : region_materials[static_cast<std::size_t>(domain.nearest_region(x).first)];
+}
+
 const Material* ElasticityScene::law_with(bool (*property)(const Material&)) const {
   if (region_materials.empty()) return property(material) ? &material : nullptr;
   for (const Material& m : region_materials)
@@ -608,10 +615,10 @@ const Material* ElasticityScene::law_with(bool (*property)(const Material&)) con
 }
 
 std::string ElasticityScene::law_names() const {
-  if (region_materials.empty()) return fmt::format("'{}'", name(material));
-  std::string out;
+  if (region_materials.empty()) return fmt::format("{} material", name(material));
+  std::string out = "materials ";
   for (std::size_t r = 0; r < region_materials.size(); ++r)
-    out += fmt::format("{}'{}' in '{}'", r ? ", " : "", name(region_materials[r]), domain.regions()[r].name);
+    out += fmt::format("{}{} in '{}'", r ? ", " : "", name(region_materials[r]), domain.regions()[r].name);
   return out;
 }
 

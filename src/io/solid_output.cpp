@@ -44,8 +44,7 @@ SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& dis
   points_ = std::move(tri.points);
   samples_ = std::move(tri.samples);
   // Each sample lies in its face's region: its law there.
-  const SolidProblem laws = scene.solid_problem();
-  for (const Vec2& x : samples_) law_.push_back(laws.law_at(scene.domain, x));
+  for (const Vec2& x : samples_) law_.push_back(scene.law_at(x));
   triangles_ = std::move(tri.triangles);
   const bool gradients = !model_ && (output_.wants("stress") || output_.wants("von_mises") || output_.wants("error"));
   at_ = sample_shape_functions(*disc.trial, samples_, gradients);

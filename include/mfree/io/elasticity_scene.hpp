@@ -170,9 +170,11 @@ struct ElasticityScene {
   [[nodiscard]] VectorField static_body_force() const;
   /// A line per [[boundary]]: name, type, what it selects and the length selected.
   [[nodiscard]] std::string describe_conditions() const;
+  /// The law at X (its region's; on the boundary, the nearest region's).
+  [[nodiscard]] const Material& law_at(const Vec2& x) const;
   /// The first law with the property (is_linear, has_history, ...), or null when none has it.
   [[nodiscard]] const Material* law_with(bool (*property)(const Material&)) const;
-  /// The laws by name, for messages: 'j2', or 'j2' in 'matrix', 'plane_strain' in 'fibre'.
+  /// The laws by name, for messages: "j2 material", or "materials j2 in 'matrix', plane_strain in 'fibre'".
   [[nodiscard]] std::string law_names() const;
   /// True when the scene is solved by the total-Lagrangian path (Newton or dynamics).
   [[nodiscard]] bool nonlinear() const {
