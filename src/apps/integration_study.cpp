@@ -145,7 +145,7 @@ std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings
               // Irregular clouds: nodes beside a gap reach across it (nodal_support_radii).
               if (kind != CloudKind::lattice)
                 rs.node_radii = nodal_support_radii(cloud, h, factor * s.random_factor_scale);
-              const RKShapeFunctions rk(cloud, rs);
+              const RKShapeFunctions<2> rk(cloud, rs);
               const BackgroundLattice lattice(domain, h / s.lattice_refinement,
                                               order == RKOrder::linear ? 1 : 2);
               const std::vector<double> w = rk_quadrature_weights(rk, lattice);

@@ -52,7 +52,7 @@ double room_at_tip(const Domain& domain, std::size_t c, int end) {
 
 }  // namespace
 
-std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
+std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions<2>& trial,
                                                 const Eigen::VectorXd& d, const LawAt& law_at, double h,
                                                 const std::vector<std::string>& face_conditions) {
   std::vector<TipIntensity> out;

@@ -125,7 +125,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
                     domain.cracks().front().name));
   res.nodes = timer.time("clouds", [&] { return split_on_cracks(domain, make_cloud(domain, s.nodes), h); });
   res.trial = timer.time("shape functions", [&] {
-    return std::make_unique<RKShapeFunctions>(
+    return std::make_unique<RKShapeFunctions<2>>(
         res.nodes, rk_settings(domain, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
 
@@ -138,7 +138,7 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         const double hq = h / std::sqrt(s.quadrature_ratio);
         const std::vector<Vec2> xq =
             split_on_cracks(domain, make_quadrature_cloud(domain, qc, s.quadrature_ratio), hq);
-        const RKShapeFunctions quad(
+        const RKShapeFunctions<2> quad(
             xq,
             rk_settings(domain, xq, qc.kind, hq, s.quadrature_order, s,
                         s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain))));

@@ -7,7 +7,7 @@
 
 namespace mfree {
 
-ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorXd& d, const LawAt& law_at,
+ElasticErrors elastic_errors(const RKShapeFunctions<2>& trial, const Eigen::VectorXd& d, const LawAt& law_at,
                              const ExactElasticity& exact, const QuadratureRule& rule) {
   // Streamed over the points (fine rules have ~150 points per node): per-thread sums of
   // |u^h - u|^2, |u|^2, energy and stress norms, added in thread order.
@@ -15,7 +15,7 @@ ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorX
   std::vector<Sums> partial(thread_count(), Sums::Zero());
   const auto tensor_norm2 = [](const Eigen::Vector3d& v) { return v[0] * v[0] + v[1] * v[1] + 2.0 * v[2] * v[2]; };
   parallel_ranges(static_cast<Index>(rule.size()), [&](int t, Index begin, Index end) {
-    ShapeValues v;
+    ShapeValues<2> v;
     Sums sum = Sums::Zero();
     for (Index k = begin; k < end; ++k) {
       const Vec2& x = rule.points[k];

@@ -17,7 +17,7 @@ namespace {
 /// Fills the CSR rows of q from per-point evaluations of `trial`, each row sorted by node
 /// index so that row lookups elsewhere can bisect. Each block of points appends its rows to
 /// arrays of its own (no allocation per point); the blocks are then copied into place.
-void fill_rows(const RKShapeFunctions& trial, GalerkinQuadrature& q, bool with_gradient) {
+void fill_rows(const RKShapeFunctions<2>& trial, GalerkinQuadrature& q, bool with_gradient) {
   const Index n = q.size();
   constexpr Index block = 1024;
   struct Rows {
@@ -29,7 +29,7 @@ void fill_rows(const RKShapeFunctions& trial, GalerkinQuadrature& q, bool with_g
   q.offsets.assign(n + 1, 0);
   parallel_blocks(n, block, [&](Index begin, Index end) {
     Rows& out = blocks[begin / block];
-    ShapeValues v;
+    ShapeValues<2> v;
     std::vector<Index> order;
     for (Index k = begin; k < end; ++k) {
       trial.evaluate(q.points[k], v, with_gradient);
@@ -59,7 +59,7 @@ void fill_rows(const RKShapeFunctions& trial, GalerkinQuadrature& q, bool with_g
 
 }  // namespace
 
-GalerkinQuadrature sample_shape_functions(const RKShapeFunctions& trial, const std::vector<Vec2>& points,
+GalerkinQuadrature sample_shape_functions(const RKShapeFunctions<2>& trial, const std::vector<Vec2>& points,
                                           bool with_gradient) {
   GalerkinQuadrature q;
   q.points = points;
@@ -69,7 +69,7 @@ GalerkinQuadrature sample_shape_functions(const RKShapeFunctions& trial, const s
   return q;
 }
 
-GalerkinQuadrature direct_quadrature(const RKShapeFunctions& trial, const QuadratureRule& rule) {
+GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const QuadratureRule& rule) {
   GalerkinQuadrature q;
   q.points = rule.points;
   q.weights = rule.weights;
@@ -78,8 +78,8 @@ GalerkinQuadrature direct_quadrature(const RKShapeFunctions& trial, const Quadra
   return q;
 }
 
-GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
-                                        const RKShapeFunctions& quadrature_functions,
+GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
+                                        const RKShapeFunctions<2>& quadrature_functions,
                                         const BackgroundLattice& lattice) {
   GalerkinQuadrature q;
   q.points = quadrature_functions.nodes();
@@ -142,7 +142,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
   std::vector<Index> missing(nq, 0);
   std::vector<Vec2> moment(nq, Vec2::Zero());
   const auto& lp = lattice.points();
-  std::vector<ShapeValues> phii(
+  std::vector<ShapeValues<2>> phii(
       static_cast<std::size_t>(std::min(lattice_chunk, static_cast<Index>(lp.size()))));
   for_lattice_terms(
       quadrature_functions, lattice, [&](Index local, Index v) { trial.evaluate(lp[v], phii[local], true); },
@@ -150,7 +150,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
         w[k] += c;
         moment[k] += c * lp[v];
         const auto row_first = q.nodes.begin() + q.offsets[k], row_last = q.nodes.begin() + q.offsets[k + 1];
-        const ShapeValues& gi = phii[local];
+        const ShapeValues<2>& gi = phii[local];
         for (std::size_t i = 0; i < gi.size(); ++i) {
           const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
           if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below

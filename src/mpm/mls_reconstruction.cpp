@@ -169,7 +169,7 @@ void MLSReconstruction::interior_cells(const std::vector<Vec2>& positions,
 /// particles of the cells their supports reach: the tensor window is a product, so the two
 /// x and two y offsets of a particle give its four windows from four 1D evaluations, and
 /// the four moment matrices fill side by side, one per lane of an Eigen::Array4d
-/// (rk_moment.hpp). The same functions as RKShapeFunctions with the particles as nodes
+/// (rk_moment.hpp). The same functions as RKShapeFunctions<2> with the particles as nodes
 /// (quadratic spline window, tensor support of half width a), summed in another order.
 template <int Order>
 std::vector<unsigned char> MLSReconstruction::update_rows(const std::vector<Vec2>& positions) {

@@ -10,8 +10,8 @@ namespace mfree {
 ParticleProbe::ParticleProbe(const Particles& particles, const Vec2& X, double spacing) : point_(X) {
   RKSettings s;
   s.radius = 2.0 * spacing;
-  const RKShapeFunctions rk(particles.reference, s);
-  ShapeValues v;
+  const RKShapeFunctions<2> rk(particles.reference, s);
+  ShapeValues<2> v;
   try {
     rk.evaluate(X, v, false);
   } catch (const NumericalError& e) {

@@ -4,7 +4,7 @@
 
 namespace mfree {
 
-std::vector<double> rk_quadrature_weights(const RKShapeFunctions& quadrature_functions,
+std::vector<double> rk_quadrature_weights(const RKShapeFunctions<2>& quadrature_functions,
                                           const BackgroundLattice& lattice) {
   std::vector<double> w(quadrature_functions.nodes().size(), 0.0);
   for_lattice_terms(

@@ -19,9 +19,9 @@ int main() {
   const std::vector<Vec2> nodes = make_cloud(square, c);
   RKSettings s;
   s.radius = 2.0 * c.spacing;
-  const RKShapeFunctions rk(nodes, s);
+  const RKShapeFunctions<2> rk(nodes, s);
   double worst = 0.0;
-  ShapeValues v;
+  ShapeValues<2> v;
   for (const Vec2 x : {Vec2(0.05, 0.5), Vec2(0.33, 0.71), Vec2(0.99, 0.01)}) {
     rk.evaluate(x, v, false);
     Vec2 sum = Vec2::Zero();

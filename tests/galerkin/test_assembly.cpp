@@ -45,7 +45,7 @@ struct Cantilever {
   Domain domain = Domain::rectangle(Vec2(0.0, -6.0), Vec2(48.0, 6.0));
   double h = 3.0;
   std::vector<Vec2> nodes;
-  std::unique_ptr<RKShapeFunctions> trial;
+  std::unique_ptr<RKShapeFunctions<2>> trial;
   GalerkinQuadrature q;
   BoundaryQuadrature bq;
   GalerkinQuadrature at_boundary;
@@ -57,7 +57,7 @@ struct Cantilever {
     nodes = make_cloud(domain, c);
     RKSettings rk;
     rk.radius = 2.0 * h;
-    trial = std::make_unique<RKShapeFunctions>(nodes, rk);
+    trial = std::make_unique<RKShapeFunctions<2>>(nodes, rk);
     q = direct_quadrature(*trial, gauss_cell_rule(domain, h, 3));
     bq = boundary_quadrature(domain, h, 2);
     at_boundary = boundary_functions(*trial, bq);

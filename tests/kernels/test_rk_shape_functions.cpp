@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <random>
 
@@ -34,10 +35,10 @@ TEST_CASE("RK shape functions reproduce their basis, values and gradients, on ra
         s.window = window;
         s.support = shape;
         s.radius = (order == RKOrder::linear ? 2.5 : 3.5) * h;
-        const RKShapeFunctions rk(nodes, s);
+        const RKShapeFunctions<2> rk(nodes, s);
         std::mt19937_64 rng(11);
         std::uniform_real_distribution<double> u(0.2, 0.8);
-        ShapeValues v;
+        ShapeValues<2> v;
         double worst_value = 0.0, worst_grad = 0.0;
         for (int trial = 0; trial < 200; ++trial) {
           const Vec2 x(u(rng), u(rng));
@@ -84,9 +85,9 @@ TEST_CASE("RK gradients are the derivatives of the values (central differences)"
     RKSettings s;
     s.order = order;
     s.radius = (order == RKOrder::linear ? 2.2 : 3.2) / 12.0;
-    const RKShapeFunctions rk(nodes, s);
+    const RKShapeFunctions<2> rk(nodes, s);
     const Vec2 x(0.43, 0.57);
-    ShapeValues v, vp, vm;
+    ShapeValues<2> v, vp, vm;
     rk.evaluate(x, v);
     const double e = 1e-6;
     for (int dir = 0; dir < 2; ++dir) {
@@ -107,8 +108,8 @@ TEST_CASE("a point whose neighbours cannot span the basis gets a clear error", "
   for (int i = 0; i < 10; ++i) line.emplace_back(0.1 * i, 0.0);
   RKSettings s;
   s.radius = 0.35;
-  const RKShapeFunctions rk(line, s);
-  ShapeValues v;
+  const RKShapeFunctions<2> rk(line, s);
+  ShapeValues<2> v;
   REQUIRE_THROWS_AS(rk.evaluate(Vec2(0.45, 0.01), v), NumericalError);
   REQUIRE_THROWS_WITH(rk.evaluate(Vec2(0.45, 0.01), v),
                       Catch::Contains("(0.45, 0.01)") && Catch::Contains("neighbour") &&
@@ -119,12 +120,115 @@ TEST_CASE("a point whose neighbours cannot span the basis gets a clear error", "
     for (int i = 0; i < 10; ++i) grid.emplace_back(0.1 * i, 0.1 * j);
   s.order = RKOrder::quadratic;
   s.radius = 0.11;
-  const RKShapeFunctions small(grid, s);
+  const RKShapeFunctions<2> small(grid, s);
   REQUIRE_THROWS_WITH(small.evaluate(Vec2(0.45, 0.45), v),
                       Catch::Contains("4 neighbour(s)") && Catch::Contains("at least 6"));
   // The same grid with an adequate support works.
   s.radius = 0.3;
-  const RKShapeFunctions ok(grid, s);
+  const RKShapeFunctions<2> ok(grid, s);
   REQUIRE_NOTHROW(ok.evaluate(Vec2(0.45, 0.45), v));
-  CHECK_THROWS_AS(RKShapeFunctions(grid, RKSettings{}), InputError);  // radius 0
+  CHECK_THROWS_AS(RKShapeFunctions<2>(grid, RKSettings{}), InputError);  // radius 0
+}
+
+TEST_CASE(
+    "RK shape functions in 3D reproduce their basis and its gradients on random clouds, and are "
+    "differentiable",
+    "[kernels][3d]") {
+  using P3 = Point<3>;
+  const int n = 8;
+  const double h = 1.0 / n;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<P3> nodes;  // one point per lattice cell, anywhere in it
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) nodes.emplace_back((i + u(rng)) * h, (j + u(rng)) * h, (k + u(rng)) * h);
+  // The monomials of the quadratic basis in x, and their gradients.
+  const auto monomials = [](const P3& x) {
+    return std::array<double, 10>{1.0,         x[0],        x[1],        x[2],        x[0] * x[0],
+                                  x[0] * x[1], x[0] * x[2], x[1] * x[1], x[1] * x[2], x[2] * x[2]};
+  };
+  const auto monomial_gradients = [](const P3& x) {
+    std::array<P3, 10> g;
+    g[0] = P3::Zero();
+    g[1] = P3(1, 0, 0), g[2] = P3(0, 1, 0), g[3] = P3(0, 0, 1);
+    g[4] = P3(2 * x[0], 0, 0), g[5] = P3(x[1], x[0], 0), g[6] = P3(x[2], 0, x[0]);
+    g[7] = P3(0, 2 * x[1], 0), g[8] = P3(0, x[2], x[1]), g[9] = P3(0, 0, 2 * x[2]);
+    return g;
+  };
+  for (RKOrder order : {RKOrder::linear, RKOrder::quadratic})
+    for (SupportShape shape : {SupportShape::circular, SupportShape::tensor}) {
+      CAPTURE(to_string(order), to_string(shape));
+      RKSettings s;
+      s.order = order;
+      s.support = shape;
+      s.radius = (order == RKOrder::linear ? 2.5 : 3.5) * h;
+      const RKShapeFunctions<3> rk(nodes, s);
+      CHECK(rk.basis_size() == (order == RKOrder::linear ? 4 : 10));
+      const int terms = rk.basis_size();
+      std::uniform_real_distribution<double> inner(0.3, 0.7);
+      ShapeValues<3> v, plus, minus;
+      double worst_value = 0.0, worst_grad = 0.0, worst_fd = 0.0;
+      for (int trial = 0; trial < 50; ++trial) {
+        const P3 x(inner(rng), inner(rng), inner(rng));
+        rk.evaluate(x, v);
+        std::array<double, 10> sum{};
+        std::array<P3, 10> grad_sum;
+        grad_sum.fill(P3::Zero());
+        for (std::size_t k = 0; k < v.size(); ++k) {
+          const auto m = monomials(nodes[v.nodes[k]]);
+          for (int t = 0; t < terms; ++t) {
+            sum[t] += v.phi[k] * m[t];
+            grad_sum[t] += m[t] * v.grad[k];
+          }
+        }
+        const auto m = monomials(x);
+        const auto g = monomial_gradients(x);
+        for (int t = 0; t < terms; ++t) {
+          worst_value = std::max(worst_value, std::abs(sum[t] - m[t]));
+          worst_grad = std::max(worst_grad, (grad_sum[t] - g[t]).norm());
+        }
+        // grad phi_I against central differences of phi_I, node by node.
+        const double d = 1e-6;
+        for (int c = 0; c < 3; ++c) {
+          P3 e = P3::Zero();
+          e[c] = d;
+          rk.evaluate(x + e, plus, false);
+          rk.evaluate(x - e, minus, false);
+          // A node whose support edge lies within d of x is in one list only; its window and
+          // the window's slope vanish there, so it counts with phi = 0 where it is missing.
+          const auto phi_of = [](const ShapeValues<3>& w, Index node) {
+            const auto at = std::find(w.nodes.begin(), w.nodes.end(), node);
+            return at == w.nodes.end() ? 0.0 : w.phi[at - w.nodes.begin()];
+          };
+          for (std::size_t k = 0; k < v.size(); ++k)
+            worst_fd = std::max(
+                worst_fd,
+                std::abs((phi_of(plus, v.nodes[k]) - phi_of(minus, v.nodes[k])) / (2 * d) - v.grad[k][c]));
+        }
+      }
+      CHECK(worst_value < 1e-12);
+      CHECK(worst_grad < 1e-10);
+      CHECK(worst_fd < 1e-6);
+    }
+}
+
+TEST_CASE("a 3D point whose neighbours lie in one plane cannot take a linear basis", "[kernels][3d]") {
+  std::vector<Point<3>> nodes;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) nodes.emplace_back(0.25 * i, 0.25 * j, 0.0);
+  RKSettings s;
+  s.radius = 0.6;
+  const RKShapeFunctions<3> rk(nodes, s);
+  ShapeValues<3> v;
+  CHECK_THROWS_WITH(
+      rk.evaluate(Point<3>(0.5, 0.5, 0.1), v),
+      Catch::Contains("point (0.5, 0.5, 0.1) is singular") && Catch::Contains("not all on one plane"));
+  // The same nodes lifted off the plane, one by one in a checkerboard, span it.
+  for (std::size_t i = 0; i < nodes.size(); i += 2) nodes[i][2] = 0.2;
+  const RKShapeFunctions<3> lifted(nodes, s);
+  lifted.evaluate(Point<3>(0.5, 0.5, 0.1), v);
+  double sum = 0.0;
+  for (double p : v.phi) sum += p;
+  CHECK(std::abs(sum - 1.0) < 1e-13);
 }

@@ -68,8 +68,8 @@ TEST_CASE("MLS reconstruction equals the RK shape functions with the particles a
       s.window = Window::quadratic_spline;
       s.support = SupportShape::tensor;
       s.radius = support * h;
-      const RKShapeFunctions rk(x, s);
-      ShapeValues v;
+      const RKShapeFunctions<2> rk(x, s);
+      ShapeValues<2> v;
       double random_difference = 0.0, poly_error = 0.0;
       for (Index g = 0; g < mls.gauss_count(); ++g) {
         rk.evaluate(mls.gauss_points()[g], v, false);
@@ -117,8 +117,8 @@ TEST_CASE(
     s.window = Window::quadratic_spline;
     s.support = SupportShape::tensor;
     s.radius = 1.5 * h;
-    const RKShapeFunctions rk(x, s);
-    ShapeValues v;
+    const RKShapeFunctions<2> rk(x, s);
+    ShapeValues<2> v;
     const double offset = 0.5 / std::sqrt(3.0);
     std::vector<unsigned char> expected(8 * 6, 0);  // the cells returned to particle quadrature
     for (int c = 0; c < 8 * 6; ++c)

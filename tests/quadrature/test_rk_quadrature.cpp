@@ -30,7 +30,7 @@ std::pair<std::vector<Vec2>, std::vector<double>> rk_rule(const Domain& d, Cloud
   rs.order = order;
   rs.radius = factor * h;
   if (kind != CloudKind::lattice) rs.node_radii = nodal_support_radii(x, h, factor * 1.25);
-  const RKShapeFunctions rk(x, rs);
+  const RKShapeFunctions<2> rk(x, rs);
   const BackgroundLattice lattice(d, h / 2, order == RKOrder::linear ? 1 : 2);
   return {x, rk_quadrature_weights(rk, lattice)};
 }

@@ -114,18 +114,18 @@ void BM_rk_value_gradient(benchmark::State& state) {
   RKSettings s;
   s.order = order;
   s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
-  const RKShapeFunctions rk(nodes, s);
+  const RKShapeFunctions<2> rk(nodes, s);
   // Evaluation points: a lattice offset from the nodes, as many as nodes.
   std::vector<Vec2> x(nodes.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = nodes[i] + Vec2(0.31 * h, 0.17 * h);
   std::size_t neighbours = 0;
   for (auto _ : state) {
     std::size_t total = 0;
-    rk.for_each(x, true, [&](Index, const ShapeValues& v) {
+    rk.for_each(x, true, [&](Index, const ShapeValues<2>& v) {
       benchmark::DoNotOptimize(v.grad.data());
       if (v.size() == 0) std::abort();
     });
-    ShapeValues v;
+    ShapeValues<2> v;
     rk.evaluate(x[x.size() / 2], v);
     total = v.size();
     neighbours = total;
@@ -153,11 +153,11 @@ void BM_rk_supports_near_cracks(benchmark::State& state) {
   s.radius = 2.0 * h;
   s.rule = static_cast<SupportRule>(state.range(1));
   s.obstacles = std::make_shared<const SupportObstacles>(support_obstacles(domain, s.radius));
-  const RKShapeFunctions rk(nodes, s);
+  const RKShapeFunctions<2> rk(nodes, s);
   std::vector<Vec2> x(nodes.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = nodes[i] + Vec2(0.31 * h, 0.17 * h);
   for (auto _ : state)
-    rk.for_each(x, true, [&](Index, const ShapeValues& v) { benchmark::DoNotOptimize(v.grad.data()); });
+    rk.for_each(x, true, [&](Index, const ShapeValues<2>& v) { benchmark::DoNotOptimize(v.grad.data()); });
   const SupportPaths paths(*s.obstacles, SupportRule::visibility, s.radius);
   PathScratch scratch;
   std::size_t near = 0;
@@ -177,7 +177,7 @@ void BM_quadrature_weights(benchmark::State& state) {
   s.order = order;
   s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
   for (auto _ : state) {
-    const RKShapeFunctions rk(points, s);
+    const RKShapeFunctions<2> rk(points, s);
     const BackgroundLattice lattice(rectangle(), h / 2.0, order == RKOrder::linear ? 1 : 2);
     const std::vector<double> w = rk_quadrature_weights(rk, lattice);
     benchmark::DoNotOptimize(w.data());

@@ -39,7 +39,7 @@ struct TipIntensity {
 /// cracks and interfaces, so it lies in that region). `face_conditions`: per crack, the name
 /// of a condition on its faces, empty when they are traction free (or an empty list: all
 /// free); such a crack's tips are listed with loaded_by set and no K.
-std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions& trial,
+std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKShapeFunctions<2>& trial,
                                                 const Eigen::VectorXd& d, const LawAt& law_at, double h,
                                                 const std::vector<std::string>& face_conditions = {});
 

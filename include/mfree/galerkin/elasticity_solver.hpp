@@ -92,7 +92,7 @@ struct ElasticitySettings {
 /// quadrature with its (corrected) gradients, the boundary Gauss points.
 struct Discretisation {
   std::vector<Vec2> nodes;
-  std::unique_ptr<RKShapeFunctions> trial;
+  std::unique_ptr<RKShapeFunctions<2>> trial;
   GalerkinQuadrature quadrature;
   std::vector<Vec2> test_gradients;     ///< VCI's test gradients; empty otherwise
   BoundaryQuadrature boundary;

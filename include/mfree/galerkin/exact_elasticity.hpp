@@ -36,7 +36,7 @@ using LawAt = std::function<const LinearElastic&(const Vec2&)>;
 
 /// Errors of u^h = sum phi_I d_I (strain from the true gradients of phi_I) on the rule, the
 /// energy and the stress of the error by the law at each point.
-ElasticErrors elastic_errors(const RKShapeFunctions& trial, const Eigen::VectorXd& d, const LawAt& law_at,
+ElasticErrors elastic_errors(const RKShapeFunctions<2>& trial, const Eigen::VectorXd& d, const LawAt& law_at,
                              const ExactElasticity& exact, const QuadratureRule& rule);
 
 }  // namespace mfree

@@ -41,16 +41,16 @@ struct GalerkinQuadrature {
 };
 
 /// The projected construction on a quadrature cloud with its RK functions.
-GalerkinQuadrature projected_quadrature(const RKShapeFunctions& trial,
-                                        const RKShapeFunctions& quadrature_functions,
+GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
+                                        const RKShapeFunctions<2>& quadrature_functions,
                                         const BackgroundLattice& lattice);
 
 /// The direct construction on a given rule.
-GalerkinQuadrature direct_quadrature(const RKShapeFunctions& trial, const QuadratureRule& rule);
+GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const QuadratureRule& rule);
 
 /// Values and gradients of the trial functions at arbitrary points (boundary points,
 /// error points, output points), row by row like a GalerkinQuadrature with unit weights.
-GalerkinQuadrature sample_shape_functions(const RKShapeFunctions& trial, const std::vector<Vec2>& points,
+GalerkinQuadrature sample_shape_functions(const RKShapeFunctions<2>& trial, const std::vector<Vec2>& points,
                                           bool with_gradient);
 
 }  // namespace mfree

@@ -27,7 +27,7 @@ struct MotionErrors {
 class MotionErrorSampler {
  public:
   /// law_at: the law at each of the rule's points (asked once per point).
-  MotionErrorSampler(const RKShapeFunctions& trial, const QuadratureRule& rule, const MaterialAt& law_at);
+  MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule& rule, const MaterialAt& law_at);
   [[nodiscard]] MotionErrors operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
                                         const ExactMotion& exact) const;
 

@@ -33,13 +33,13 @@ inline constexpr Index lattice_chunk = Index{1} << 15;
 /// every sum over v is taken in one fixed order, so a run gives the same numbers bit for bit
 /// on any number of threads.
 template <class AtVertex, class Term>
-void for_lattice_terms(const RKShapeFunctions& quadrature_functions, const BackgroundLattice& lattice,
+void for_lattice_terms(const RKShapeFunctions<2>& quadrature_functions, const BackgroundLattice& lattice,
                        AtVertex&& at_vertex, Term&& term) {
   const auto& lp = lattice.points();
   const auto& lc = lattice.weights();
   const Index nl = static_cast<Index>(lp.size());
   const Index nq = static_cast<Index>(quadrature_functions.nodes().size());
-  std::vector<ShapeValues> phik(static_cast<std::size_t>(std::min(lattice_chunk, nl)));
+  std::vector<ShapeValues<2>> phik(static_cast<std::size_t>(std::min(lattice_chunk, nl)));
   // K's terms from first[K]: the chunk's lattice point and its coefficient c_v phi_K(v),
   // computed here once and read by `term` from memory (so that no caller's compiler fuses
   // the product into its sums: every caller adds the same rounded coefficients).
@@ -76,7 +76,7 @@ void for_lattice_terms(const RKShapeFunctions& quadrature_functions, const Backg
 
 /// w_K for every point of `quadrature_functions` (for_lattice_terms); each lattice vertex is
 /// evaluated once.
-std::vector<double> rk_quadrature_weights(const RKShapeFunctions& quadrature_functions,
+std::vector<double> rk_quadrature_weights(const RKShapeFunctions<2>& quadrature_functions,
                                           const BackgroundLattice& lattice);
 
 /// Count and most negative value of the negative weights (quadratic RK makes some).
