@@ -211,7 +211,7 @@ CheckpointState save_run(const MPMSolver& solver, const MPMRun& run, const std::
   s.put("particles.stress_zz", P.stress_zz);
   std::vector<Mat2> plastic;
   std::vector<double> plastic_zz, alpha, dissipation;
-  for (const MaterialState& m : P.state) {
+  for (const MaterialState<2>& m : P.state) {
     plastic.push_back(m.plastic_strain);
     plastic_zz.push_back(m.plastic_strain_zz);
     alpha.push_back(m.alpha);

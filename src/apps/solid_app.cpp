@@ -172,10 +172,10 @@ Eigen::VectorXd get_vector(const CheckpointState& s, const std::string& name) {
 }
 
 /// Material states as 7 numbers each: E_p (xx, yx, xy, yy), E_p,zz, alpha, dissipation.
-void put_history(CheckpointState& s, const std::string& name, const std::vector<MaterialState>& states) {
+void put_history(CheckpointState& s, const std::string& name, const std::vector<MaterialState<2>>& states) {
   std::vector<double> v;
   v.reserve(7 * states.size());
-  for (const MaterialState& m : states)
+  for (const MaterialState<2>& m : states)
     v.insert(v.end(), {m.plastic_strain(0, 0), m.plastic_strain(1, 0), m.plastic_strain(0, 1), m.plastic_strain(1, 1),
                        m.plastic_strain_zz, m.alpha, m.dissipation});
   s.put(name, std::move(v));
@@ -183,10 +183,10 @@ void put_history(CheckpointState& s, const std::string& name, const std::vector<
 
 /// The states put_history() wrote: whole records, alpha (the equivalent plastic strain) 0 or
 /// more. Their number is checked against the model by integrate_dynamics.
-std::vector<MaterialState> get_history(const CheckpointState& s, const std::string& name) {
+std::vector<MaterialState<2>> get_history(const CheckpointState& s, const std::string& name) {
   const std::vector<double>& v = s.get(name);
   if (v.size() % 7 != 0) s.refuse(name, fmt::format("it holds {} numbers, not 7 per point", v.size()));
-  std::vector<MaterialState> states(v.size() / 7);
+  std::vector<MaterialState<2>> states(v.size() / 7);
   for (std::size_t k = 0; k < states.size(); ++k) {
     const double* x = v.data() + 7 * k;
     if (!(x[5] >= 0.0))

@@ -103,7 +103,7 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
           g += Vec2(d[2 * i], d[2 * i + 1]) * at.grad[e].transpose();
         }
         gradients[k] = g;
-        const Mat2 s = material.stress(Mat2::Identity() + g);
+        const Mat2 s = material.stress(Mat2(Mat2::Identity() + g));
         stresses[k] = Eigen::Vector3d(s(0, 0), s(1, 1), s(0, 1));
       }
       t.k = interaction_integral(t.frame, material, weight, points, weights, gradients, stresses);

@@ -119,12 +119,12 @@ Eigen::VectorXd gather_nodes(const RowIncidence& rows, Value&& value) {
 
 /// (A : (e_k g^T)) N for k = 0, 1 as the columns of a 2 x 2 matrix: the traction change of
 /// the increment phi e_k with gradient g.
-Mat2 traction_operator(const Tangent& a, const Vec2& g, const Vec2& n) {
+Mat2 traction_operator(const Tangent<2>& a, const Vec2& g, const Vec2& n) {
   Mat2 t = Mat2::Zero();
   for (int i = 0; i < 2; ++i)
     for (int k = 0; k < 2; ++k)
       for (int m = 0; m < 2; ++m)
-        for (int l = 0; l < 2; ++l) t(i, k) += a(tensor_index(i, m), tensor_index(k, l)) * g[l] * n[m];
+        for (int l = 0; l < 2; ++l) t(i, k) += a(tensor_index<2>(i, m), tensor_index<2>(k, l)) * g[l] * n[m];
   return t;
 }
 
@@ -178,7 +178,7 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
     linear_ = linear_ && is_linear(m);
     small_strain = small_strain && is_small_strain(m);
     symmetric_tangents = symmetric_tangents && has_symmetric_tangent(m);
-    reference_tangents_.push_back(mfree::tangent(m, Mat2::Identity()));
+    reference_tangents_.push_back(mfree::tangent(m, Mat2(Mat2::Identity())));
     penalty_of_law_.push_back(problem_.nitsche_beta * p_wave_modulus(m) / problem_.spacing);
   }
   const bool linear = linear_;
@@ -269,20 +269,20 @@ TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Ind
   symmetric_ = domain_symmetric_ && follower_.empty() &&
                (linear || (nitsche_.empty() && ties_.empty() && !history_laws_));
   if (history_laws_) {
-    history_.domain.assign(q.size(), MaterialState{});
-    history_.boundary.assign(nitsche_.size() + 2 * ties_.size(), MaterialState{});
+    history_.domain.assign(q.size(), MaterialState<2>{});
+    history_.boundary.assign(nitsche_.size() + 2 * ties_.size(), MaterialState<2>{});
   }
 }
 
-MaterialUpdate TotalLagrangian::domain_update(Index k, const Mat2& f, bool with_tangent) const {
-  static const MaterialState none;
+MaterialUpdate<2> TotalLagrangian::domain_update(Index k, const Mat2& f, bool with_tangent) const {
+  static const MaterialState<2> none;
   return at_point("quadrature", q_.points, k, [&] {
     return update(problem_.law(law_of_point_[k]), f, history_laws_ ? history_.domain[k] : none, with_tangent);
   });
 }
 
-MaterialUpdate TotalLagrangian::boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const {
-  static const MaterialState none;
+MaterialUpdate<2> TotalLagrangian::boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const {
+  static const MaterialState<2> none;
   return at_point("boundary", bq_.points, nitsche_[b].point, [&] {
     return update(problem_.law(law_of_boundary_[nitsche_[b].point]), f,
                   history_laws_ ? history_.boundary[b] : none, with_tangent);
@@ -297,7 +297,7 @@ Mat2 TotalLagrangian::boundary_deformation_gradient(Index point, const Eigen::Ve
 }
 
 void TotalLagrangian::commit_boundary(const Eigen::VectorXd& d) {
-  std::vector<MaterialState> next(history_.boundary.size());
+  std::vector<MaterialState<2>> next(history_.boundary.size());
   for (std::size_t b = 0; b < nitsche_.size(); ++b)
     next[b] = boundary_update(b, boundary_deformation_gradient(nitsche_[b].point, d), false).state;
   for (std::size_t t = 0; t < ties_.size(); ++t)
@@ -345,7 +345,7 @@ double TotalLagrangian::plastic_area() const {
 
 TotalLagrangian::PointResponse TotalLagrangian::response(Index k, const Eigen::VectorXd& d) const {
   const Mat2 f = deformation_gradient(k, d);
-  const MaterialUpdate u = domain_update(k, f, false);
+  const MaterialUpdate<2> u = domain_update(k, f, false);
   return {cauchy_stress(problem_.law(law_of_point_[k]), u.stress, f), u.stress_zz, u.state};
 }
 
@@ -357,11 +357,12 @@ Mat2 TotalLagrangian::deformation_gradient(Index k, const Eigen::VectorXd& d) co
 
 Eigen::VectorXd TotalLagrangian::internal_force(const Eigen::VectorXd& d) const { return domain_force(d, nullptr); }
 
-Eigen::VectorXd TotalLagrangian::domain_force(const Eigen::VectorXd& d, std::vector<MaterialState>* commit) const {
+Eigen::VectorXd TotalLagrangian::domain_force(const Eigen::VectorXd& d,
+                                              std::vector<MaterialState<2>>* commit) const {
   std::vector<Mat2> wp(q_.size());
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index k = begin; k < end; ++k) {
-      const MaterialUpdate u = domain_update(k, deformation_gradient(k, d), false);  // reads state k
+      const MaterialUpdate<2> u = domain_update(k, deformation_gradient(k, d), false);  // reads state k
       wp[k] = q_.weights[k] * u.stress;
       if (commit) (*commit)[k] = u.state;  // then replaces it
     }
@@ -406,9 +407,9 @@ TotalLagrangian::NitscheValues TotalLagrangian::nitsche_values(std::size_t b, co
   return {p.point, p.condition, traction, gap, p.penalty};
 }
 
-MaterialUpdate TotalLagrangian::tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
-                                           bool with_tangent) const {
-  static const MaterialState none;
+MaterialUpdate<2> TotalLagrangian::tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
+                                              bool with_tangent) const {
+  static const MaterialState<2> none;
   const Index p = face == 0 ? ties_[tie].plus : ties_[tie].minus;
   return at_point("interface", bq_.points, p, [&] {
     return update(problem_.law(law_of_boundary_[p]), boundary_deformation_gradient(p, d),
@@ -451,8 +452,8 @@ void TotalLagrangian::add_tie_tangent(const Eigen::VectorXd& d, double* values) 
     slots.clear();
     signs.clear();
     for (const TieSide side : {TieSide{t.plus, 1.0}, TieSide{t.minus, -1.0}}) {
-      const Tangent a = linear_ ? reference_tangents_[law_of_boundary_[side.point]]
-                                : tie_update(i, side.sign > 0.0 ? 0 : 1, d, true).tangent;
+      const Tangent<2> a = linear_ ? reference_tangents_[law_of_boundary_[side.point]]
+                                   : tie_update(i, side.sign > 0.0 ? 0 : 1, d, true).tangent;
       for (Index s = at_boundary_.row_begin(side.point); s < at_boundary_.row_end(side.point); ++s) {
         traction.push_back(linear_ ? reference_traction_[s] : traction_operator(a, at_boundary_.grad[s], n));
         slots.push_back(s);
@@ -516,7 +517,7 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   double* values = k.valuePtr();
 
   // Domain: w_K A(F_K), then K_IJ(i, k) = t_I,M [w A_iMkL g_J,L].
-  std::vector<Tangent> wa(q_.size());
+  std::vector<Tangent<2>> wa(q_.size());
   const bool linear = linear_;
   parallel_blocks(q_.size(), 1024, [&](Index begin, Index end) {
     for (Index p = begin; p < end; ++p)
@@ -526,12 +527,13 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   add_column_blocks(q_, domain_rows_, pattern_, domain_symmetric_, values, [&](Index kk, Index slot_j) {
     const Vec2& g = q_.grad[slot_j];
     Eigen::Matrix<double, 4, 2> ag;  // ag(2 i + M, k) = w A_iMkL g_L
-    for (int c = 0; c < 2; ++c) ag.col(c) = wa[kk].col(tensor_index(c, 0)) * g.x() + wa[kk].col(tensor_index(c, 1)) * g.y();
+    for (int c = 0; c < 2; ++c)
+      ag.col(c) = wa[kk].col(tensor_index<2>(c, 0)) * g.x() + wa[kk].col(tensor_index<2>(c, 1)) * g.y();
     return [this, ag](Index s) {
       const Vec2& t = test_[s];
       Eigen::Matrix2d b;
-      b.row(0) = t.x() * ag.row(tensor_index(0, 0)) + t.y() * ag.row(tensor_index(0, 1));
-      b.row(1) = t.x() * ag.row(tensor_index(1, 0)) + t.y() * ag.row(tensor_index(1, 1));
+      b.row(0) = t.x() * ag.row(tensor_index<2>(0, 0)) + t.y() * ag.row(tensor_index<2>(0, 1));
+      b.row(1) = t.x() * ag.row(tensor_index<2>(1, 0)) + t.y() * ag.row(tensor_index<2>(1, 1));
       return b;
     };
   });
@@ -541,8 +543,8 @@ void TotalLagrangian::tangent(const Eigen::VectorXd& d, const LoadState& load, S
   for (std::size_t b = 0; b < nitsche_.size(); ++b) {
     const NitschePoint& p = nitsche_[b];
     const Index begin = at_boundary_.row_begin(p.point), end = at_boundary_.row_end(p.point), m = end - begin;
-    const Tangent a = linear ? reference_tangents_[law_of_boundary_[p.point]]
-                             : boundary_update(b, boundary_deformation_gradient(p.point, d), true).tangent;
+    const Tangent<2> a = linear ? reference_tangents_[law_of_boundary_[p.point]]
+                                : boundary_update(b, boundary_deformation_gradient(p.point, d), true).tangent;
     const Vec2& n = bq_.normals[p.point];
     const double w = bq_.weights[p.point];
     t.resize(m);
@@ -585,7 +587,7 @@ double TotalLagrangian::strain_energy(const Eigen::VectorXd& d) const {
     for (Index k = begin; k < end; ++k)
       sum += q_.weights[k] * at_point("quadrature", q_.points, k, [&] {
                return energy(problem_.law(law_of_point_[k]), deformation_gradient(k, d),
-                             history_laws_ ? history_.domain[k] : MaterialState{});
+                             history_laws_ ? history_.domain[k] : MaterialState<2>{});
              });
     partial[thread] = sum;
   });

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "drucker_prager_return.hpp"
 #include "mfree/core/error.hpp"
-#include "plastic_update.hpp"
 
 namespace mfree {
 
@@ -23,43 +23,6 @@ double intercept(double angle) {
   const double t = std::tan(angle);
   return 3.0 / std::sqrt(9.0 + 12.0 * t * t);
 }
-
-/// The return of drucker_prager.hpp in the scalar type S.
-struct DPReturn {
-  const DruckerPrager& law;
-
-  template <class S>
-  plastic::Sym<S> return_map(const plastic::Sym<S>& trial, const MaterialState&, S& dalpha) const {
-    const double g = law.lame.mu, k = law.lame.lambda + 2.0 * law.lame.mu / 3.0;
-    const double eta = law.eta(), eta_bar = law.eta_bar(), xi_c = law.xi() * law.cohesion;
-    const double p_max = law.largest_mean_stress();
-    const S p_tr = trial.trace() / 3.0;
-    const plastic::Sym<S> s_tr = trial.deviator();
-    const S q_tr = plastic::safe_sqrt(S(0.5 * plastic::dot(s_tr, s_tr)));  // sqrt(J2^tr)
-    const S f_tr = q_tr + eta * p_tr - xi_c;
-    const plastic::Sym<S> unit{S(1.0), S(1.0), S(0.0), S(1.0)};
-    plastic::Sym<S> out = trial;
-    if (plastic::value(f_tr) <= 0.0 && plastic::value(p_tr) <= p_max) return trial;  // 1. elastic
-    bool done = false;
-    if (plastic::value(f_tr) > 0.0) {  // 2. the cone
-      const S dgamma = f_tr / (g + k * eta * eta_bar);
-      const S q = q_tr - g * dgamma;
-      const S p = p_tr - k * eta_bar * dgamma;
-      if (plastic::value(q) >= 0.0 && plastic::value(p) <= p_max) {
-        out = (q / q_tr) * s_tr + p * unit;
-        done = true;
-      }
-    }
-    if (!done) {  // 3. the cutoff plane, its corner with the cone, or the apex
-      const double q_max = std::max(0.0, xi_c - eta * p_max);
-      const plastic::Sym<S> s = plastic::value(q_tr) <= q_max ? s_tr : S(q_max / q_tr) * s_tr;
-      out = s + S(p_max) * unit;
-    }
-    const plastic::Sym<S> dp = plastic::elastic_strain(law.lame, trial - out);
-    dalpha = plastic::safe_sqrt(plastic::dot(dp, dp));
-    return out;
-  }
-};
 
 }  // namespace
 
@@ -85,13 +48,7 @@ void DruckerPrager::validate() const {
   if (std::isnan(tension_cutoff)) throw InputError("Drucker–Prager: the tension cutoff is not a number");
 }
 
-double DruckerPrager::energy(const Mat2& f, const MaterialState& state) const {
-  return plastic::stored_energy(DPReturn{*this}, lame, kinematics, f, state);
-}
-
-MaterialUpdate DruckerPrager::update(const Mat2& f, const MaterialState& state, bool with_tangent) const {
-  (void)checked_jacobian(f, "Drucker–Prager");
-  return plastic::evaluate(DPReturn{*this}, lame, kinematics, f, state, with_tangent);
-}
+template double DruckerPrager::energy(const Tensor2<2>&, const MaterialState<2>&) const;
+template MaterialUpdate<2> DruckerPrager::update(const Tensor2<2>&, const MaterialState<2>&, bool) const;
 
 }  // namespace mfree

@@ -23,10 +23,10 @@ template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
 /// The update of an elastic law: no history.
-template <class Law>
-MaterialUpdate elastic_update(const Law& law, const Mat2& f, const MaterialState& state, bool with_tangent,
-                              double stress_zz) {
-  MaterialUpdate u;
+template <class Law, int dim>
+MaterialUpdate<dim> elastic_update(const Law& law, const Tensor2<dim>& f, const MaterialState<dim>& state,
+                                   bool with_tangent, double stress_zz) {
+  MaterialUpdate<dim> u;
   u.stress = law.stress(f);
   u.stress_zz = stress_zz;
   u.state = state;
@@ -36,28 +36,39 @@ MaterialUpdate elastic_update(const Law& law, const Mat2& f, const MaterialState
 
 }  // namespace
 
-MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& state, bool with_tangent) {
+template <int dim>
+MaterialUpdate<dim> update(const Material& m, const Tensor2<dim>& f, const MaterialState<dim>& state,
+                           bool with_tangent) {
+  // sigma_zz of the plane laws (plane strain); a 3D law has none.
+  const auto plane = [](auto zz) { return dim == 2 ? zz() : 0.0; };
   return std::visit(
-      Overloaded{
-          [&](const LinearElastic& l) {
-            const Mat2 s = l.stress(f);
-            return elastic_update(l, f, state, with_tangent, l.out_of_plane_stress({s(0, 0), s(1, 1), s(0, 1)}));
-          },
-          [&](const NeoHookean& n) {
-            const double j = checked_jacobian(f, "Neo-Hookean");
-            return elastic_update(n, f, state, with_tangent, n.lame.lambda * std::log(j) / j);  // P_zz = lambda ln J
-          },
-          [&](const StVenantKirchhoff& s) {
-            const double tr_e = 0.5 * ((f.transpose() * f).trace() - 2.0);
-            // S_zz = lambda tr E, sigma_zz = S_zz / J
-            return elastic_update(s, f, state, with_tangent, s.lame.lambda * tr_e / checked_jacobian(f, "St. Venant–Kirchhoff"));
-          },
-          [&](const J2Plasticity& j) { return j.update(f, state, with_tangent); },
-          [&](const DruckerPrager& d) { return d.update(f, state, with_tangent); }},
+      Overloaded{[&](const LinearElastic& l) {
+                   return elastic_update(l, f, state, with_tangent, plane([&] {
+                                           const Tensor2<dim> s = l.stress(f);
+                                           return l.out_of_plane_stress({s(0, 0), s(1, 1), s(0, 1)});
+                                         }));
+                 },
+                 [&](const NeoHookean& n) {
+                   const double j = checked_jacobian(f, "Neo-Hookean");
+                   return elastic_update(n, f, state, with_tangent, plane([&] {
+                                           return n.lame.lambda * std::log(j) / j;
+                                         }));  // P_zz = lambda ln J
+                 },
+                 [&](const StVenantKirchhoff& s) {
+                   const double j = checked_jacobian(f, "St. Venant–Kirchhoff");
+                   // S_zz = lambda tr E, sigma_zz = S_zz / J
+                   return elastic_update(s, f, state, with_tangent, plane([&] {
+                                           const double tr_e = 0.5 * ((f.transpose() * f).trace() - 2.0);
+                                           return s.lame.lambda * tr_e / j;
+                                         }));
+                 },
+                 [&](const J2Plasticity& j) { return j.update(f, state, with_tangent); },
+                 [&](const DruckerPrager& d) { return d.update(f, state, with_tangent); }},
       m);
 }
 
-double energy(const Material& m, const Mat2& f, const MaterialState& state) {
+template <int dim>
+double energy(const Material& m, const Tensor2<dim>& f, const MaterialState<dim>& state) {
   return std::visit(Overloaded{[&](const LinearElastic& l) { return l.energy(f); },
                                [&](const NeoHookean& n) { return n.energy(f); },
                                [&](const StVenantKirchhoff& s) { return s.energy(f); },
@@ -80,7 +91,8 @@ bool has_symmetric_tangent(const Material& m) {
                     m);
 }
 
-std::pair<Mat2, double> plastic_strain(const Material& m, const MaterialState& state) {
+template <int dim>
+std::pair<Tensor2<dim>, double> plastic_strain(const Material& m, const MaterialState<dim>& state) {
   const auto kinematics = std::visit(
       Overloaded{[](const LinearElastic&) { return std::optional<Kinematics>(); },
                  [](const NeoHookean&) { return std::optional<Kinematics>(); },
@@ -88,13 +100,13 @@ std::pair<Mat2, double> plastic_strain(const Material& m, const MaterialState& s
                  [](const J2Plasticity& j) { return std::optional<Kinematics>(j.kinematics); },
                  [](const DruckerPrager& d) { return std::optional<Kinematics>(d.kinematics); }},
       m);
-  if (!kinematics) return {Mat2::Zero(), 0.0};
+  if (!kinematics) return {Tensor2<dim>::Zero(), 0.0};
   if (*kinematics != Kinematics::multiplicative) return {state.plastic_strain, state.plastic_strain_zz};
   // -1/2 ln of the symmetric positive definite C_p^-1, by its eigen-decomposition.
-  const Eigen::SelfAdjointEigenSolver<Mat2> eigen(Mat2::Identity() + state.plastic_strain);
-  const Mat2 log = eigen.eigenvectors() * eigen.eigenvalues().array().log().matrix().asDiagonal() *
-                   eigen.eigenvectors().transpose();
-  return {-0.5 * log, -0.5 * std::log1p(state.plastic_strain_zz)};
+  const Eigen::SelfAdjointEigenSolver<Tensor2<dim>> eigen(Tensor2<dim>::Identity() + state.plastic_strain);
+  const Tensor2<dim> log = eigen.eigenvectors() * eigen.eigenvalues().array().log().matrix().asDiagonal() *
+                           eigen.eigenvectors().transpose();
+  return {-0.5 * log, dim == 2 ? -0.5 * std::log1p(state.plastic_strain_zz) : 0.0};
 }
 
 bool is_small_strain(const Material& m) {
@@ -106,9 +118,19 @@ bool is_small_strain(const Material& m) {
       m);
 }
 
-Mat2 cauchy_stress(const Material& m, const Mat2& p, const Mat2& f) {
-  return is_small_strain(m) ? p : Mat2(p * f.transpose() / f.determinant());
+template <int dim>
+Tensor2<dim> cauchy_stress(const Material& m, const Tensor2<dim>& p, const Tensor2<dim>& f) {
+  return is_small_strain(m) ? p : Tensor2<dim>(p * f.transpose() / f.determinant());
 }
+
+template MaterialUpdate<2> update(const Material&, const Tensor2<2>&, const MaterialState<2>&, bool);
+template MaterialUpdate<3> update(const Material&, const Tensor2<3>&, const MaterialState<3>&, bool);
+template double energy(const Material&, const Tensor2<2>&, const MaterialState<2>&);
+template double energy(const Material&, const Tensor2<3>&, const MaterialState<3>&);
+template std::pair<Tensor2<2>, double> plastic_strain(const Material&, const MaterialState<2>&);
+template std::pair<Tensor2<3>, double> plastic_strain(const Material&, const MaterialState<3>&);
+template Tensor2<2> cauchy_stress(const Material&, const Tensor2<2>&, const Tensor2<2>&);
+template Tensor2<3> cauchy_stress(const Material&, const Tensor2<3>&, const Tensor2<3>&);
 
 std::string_view name(const Material& m) {
   return std::visit(
@@ -175,7 +197,7 @@ Material make_material(std::string_view model, double youngs_modulus, double poi
   return make_material(model, p);
 }
 
-double p_wave_modulus(const Material& m) { return tangent(m, Mat2::Identity())(0, 0); }
+double p_wave_modulus(const Material& m) { return tangent(m, Mat2(Mat2::Identity()))(0, 0); }
 
 double wave_speed(const Material& m, double density) {
   if (!(density > 0.0)) throw InputError(fmt::format("density must be positive, got {}", density));

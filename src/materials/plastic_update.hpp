@@ -29,26 +29,45 @@
 // and T : d(ln C) gives (dq = (C - m I) : dC, dm = I : dC / 2)
 //   S = 1/2 tr(T) C^-1 + (T : (C - m I)) (g_q (C - m I) + g_m / 2 I) + g (T - tr(T) / 2 I)
 // (in-plane T; T_zz does not enter: C_zz = 1 and E_zz = 0).
+//
+// In three dimensions (dim = 3) the same steps on full symmetric tensors (Sym3), with ln and
+// exp of a symmetric 3 x 3 by its eigen-decomposition A = Q diag(lambda) Q^T, and their
+// derivatives (the dual numbers' parts) by the Daleckii–Krein formula
+//   d f(A)[dA] = Q (G o (Q^T dA Q)) Q^T,  G_ij = (f(l_i) - f(l_j)) / (l_i - l_j), G_ii = f'(l_i)
+// (Bhatia 1997, Theorem V.3.3), exact at repeated eigenvalues (F = I). Only first
+// derivatives are taken through it, so the 3D laws take multiplicative and small-strain
+// kinematics; the logarithmic (Lagrangian) one needs the second derivative of ln C for its
+// tangent and is plane only.
 
-#include <unsupported/Eigen/AutoDiff>
-
+#include <Eigen/Eigenvalues>
+#include <array>
 #include <cmath>
 #include <optional>
+#include <type_traits>
+#include <unsupported/Eigen/AutoDiff>
 
+#include "mfree/core/error.hpp"
 #include "mfree/materials/finite_strain.hpp"
 #include "mfree/materials/material_state.hpp"
 
 namespace mfree::plastic {
 
-using Dual = Eigen::AutoDiffScalar<Eigen::Vector4d>;
+/// A dual number with d/dF of a dim x dim F (dim^2 components).
+template <int dim>
+using Dual = Eigen::AutoDiffScalar<Eigen::Matrix<double, dim * dim, 1>>;
 
 inline double value(double x) { return x; }
-inline double value(const Dual& x) { return x.value(); }
+template <class D>
+double value(const Eigen::AutoDiffScalar<D>& x) {
+  return x.value();
+}
 
 /// A symmetric plane-strain tensor: the in-plane block and the zz component.
 template <class S>
 struct Sym {
+  using Scalar = S;
   S xx, yy, xy, zz;
+  static Sym identity() { return {S(1.0), S(1.0), S(0.0), S(1.0)}; }
   friend Sym operator+(const Sym& a, const Sym& b) { return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy, a.zz + b.zz}; }
   friend Sym operator-(const Sym& a, const Sym& b) { return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy, a.zz - b.zz}; }
   friend Sym operator*(const S& c, const Sym& a) { return {c * a.xx, c * a.yy, c * a.xy, c * a.zz}; }
@@ -64,6 +83,47 @@ S dot(const Sym<S>& a, const Sym<S>& b) {
   return a.xx * b.xx + a.yy * b.yy + 2.0 * a.xy * b.xy + a.zz * b.zz;
 }
 
+/// A symmetric 3 x 3 tensor.
+template <class S>
+struct Sym3 {
+  using Scalar = S;
+  S xx, yy, zz, xy, xz, yz;
+  static Sym3 identity() { return {S(1.0), S(1.0), S(1.0), S(0.0), S(0.0), S(0.0)}; }
+  friend Sym3 operator+(const Sym3& a, const Sym3& b) {
+    return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.xz + b.xz, a.yz + b.yz};
+  }
+  friend Sym3 operator-(const Sym3& a, const Sym3& b) {
+    return {a.xx - b.xx, a.yy - b.yy, a.zz - b.zz, a.xy - b.xy, a.xz - b.xz, a.yz - b.yz};
+  }
+  friend Sym3 operator*(const S& c, const Sym3& a) {
+    return {c * a.xx, c * a.yy, c * a.zz, c * a.xy, c * a.xz, c * a.yz};
+  }
+  [[nodiscard]] S trace() const { return xx + yy + zz; }
+  [[nodiscard]] Sym3 deviator() const {
+    const S m = trace() / 3.0;
+    return {xx - m, yy - m, zz - m, xy, xz, yz};
+  }
+  [[nodiscard]] Eigen::Matrix<S, 3, 3> matrix() const {
+    Eigen::Matrix<S, 3, 3> a;
+    a << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+    return a;
+  }
+  /// The symmetric part of a 3 x 3.
+  static Sym3 of(const Eigen::Matrix<S, 3, 3>& a) {
+    return {a(0, 0),
+            a(1, 1),
+            a(2, 2),
+            0.5 * (a(0, 1) + a(1, 0)),
+            0.5 * (a(0, 2) + a(2, 0)),
+            0.5 * (a(1, 2) + a(2, 1))};
+  }
+};
+
+template <class S>
+S dot(const Sym3<S>& a, const Sym3<S>& b) {
+  return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.xy * b.xy + a.xz * b.xz + a.yz * b.yz);
+}
+
 /// sqrt(x) with zero derivatives at x = 0 (a norm of a zero tensor: only compared there).
 template <class S>
 S safe_sqrt(const S& x) {
@@ -72,9 +132,19 @@ S safe_sqrt(const S& x) {
 }
 
 template <class S>
-Sym<S> sym_of(const MaterialState& s) {
+Sym<S> sym_of(const MaterialState<2>& s) {
   return {S(s.plastic_strain(0, 0)), S(s.plastic_strain(1, 1)), S(0.5 * (s.plastic_strain(0, 1) + s.plastic_strain(1, 0))),
           S(s.plastic_strain_zz)};
+}
+template <class S>
+Sym3<S> sym_of(const MaterialState<3>& s) {
+  const auto& e = s.plastic_strain;
+  return {S(e(0, 0)),
+          S(e(1, 1)),
+          S(e(2, 2)),
+          S(0.5 * (e(0, 1) + e(1, 0))),
+          S(0.5 * (e(0, 2) + e(2, 0))),
+          S(0.5 * (e(1, 2) + e(2, 1)))};
 }
 
 /// T = lambda tr(E) 1 + 2 mu E, and its inverse.
@@ -90,6 +160,87 @@ Sym<S> elastic_strain(const Lame& l, const Sym<S>& t) {
   const Sym<S> dev = t.deviator();
   const S ev = mean / (3.0 * bulk);
   return {dev.xx / (2.0 * l.mu) + ev, dev.yy / (2.0 * l.mu) + ev, dev.xy / (2.0 * l.mu), dev.zz / (2.0 * l.mu) + ev};
+}
+
+template <class S>
+Sym3<S> elastic_stress(const Lame& l, const Sym3<S>& e) {
+  const S volumetric = l.lambda * e.trace();
+  return {volumetric + 2.0 * l.mu * e.xx,
+          volumetric + 2.0 * l.mu * e.yy,
+          volumetric + 2.0 * l.mu * e.zz,
+          2.0 * l.mu * e.xy,
+          2.0 * l.mu * e.xz,
+          2.0 * l.mu * e.yz};
+}
+template <class S>
+Sym3<S> elastic_strain(const Lame& l, const Sym3<S>& t) {
+  const double bulk = l.lambda + 2.0 * l.mu / 3.0;
+  const S ev = t.trace() / 3.0 / (3.0 * bulk);
+  const Sym3<S> dev = t.deviator();
+  const S c = 1.0 / (2.0 * l.mu);
+  return {c * dev.xx + ev, c * dev.yy + ev, c * dev.zz + ev, c * dev.xy, c * dev.xz, c * dev.yz};
+}
+
+/// f(A) of a symmetric 3 x 3 (above): f and its first divided difference
+/// divided(l_i, l_j) = (f(l_i) - f(l_j)) / (l_i - l_j), f'(l_i) when equal.
+template <class S, class F, class Divided>
+Sym3<S> spectral(const Sym3<S>& a, F f, Divided divided) {
+  Eigen::Matrix3d a0;
+  a0 << value(a.xx), value(a.xy), value(a.xz), value(a.xy), value(a.yy), value(a.yz), value(a.xz),
+      value(a.yz), value(a.zz);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(a0);
+  const Eigen::Matrix3d& q = eigen.eigenvectors();
+  const Eigen::Vector3d l = eigen.eigenvalues();
+  const Eigen::Matrix3d fa = q * l.unaryExpr(f).asDiagonal() * q.transpose();
+  if constexpr (std::is_same_v<S, double>) {
+    return Sym3<double>::of(fa);
+  } else {
+    Eigen::Matrix3d g;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) g(i, j) = divided(l[i], l[j]);
+    const auto n = a.xx.derivatives().size();
+    using Derivatives = std::decay_t<decltype(a.xx.derivatives())>;
+    Derivatives dxx = a.xx.derivatives(), dyy = dxx, dzz = dxx, dxy = dxx, dxz = dxx, dyz = dxx;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      Eigen::Matrix3d da;
+      da << a.xx.derivatives()[k], a.xy.derivatives()[k], a.xz.derivatives()[k], a.xy.derivatives()[k],
+          a.yy.derivatives()[k], a.yz.derivatives()[k], a.xz.derivatives()[k], a.yz.derivatives()[k],
+          a.zz.derivatives()[k];
+      const Eigen::Matrix3d df = q * g.cwiseProduct(q.transpose() * da * q) * q.transpose();
+      dxx[k] = df(0, 0), dyy[k] = df(1, 1), dzz[k] = df(2, 2);
+      dxy[k] = 0.5 * (df(0, 1) + df(1, 0)), dxz[k] = 0.5 * (df(0, 2) + df(2, 0)),
+      dyz[k] = 0.5 * (df(1, 2) + df(2, 1));
+    }
+    return {S(fa(0, 0), dxx),
+            S(fa(1, 1), dyy),
+            S(fa(2, 2), dzz),
+            S(0.5 * (fa(0, 1) + fa(1, 0)), dxy),
+            S(0.5 * (fa(0, 2) + fa(2, 0)), dxz),
+            S(0.5 * (fa(1, 2) + fa(2, 1)), dyz)};
+  }
+}
+
+/// ln A of a symmetric positive definite 3 x 3.
+template <class S>
+Sym3<S> log_sym3(const Sym3<S>& a) {
+  return spectral(
+      a, [](double x) { return std::log(x); },
+      [](double x, double y) {
+        // (ln x - ln y) / (x - y) = log1p(t) / (t y), t = (x - y) / y: accurate as x -> y.
+        const double t = (x - y) / y;
+        return t == 0.0 ? 1.0 / y : std::log1p(t) / (t * y);
+      });
+}
+
+/// exp B of a symmetric 3 x 3.
+template <class S>
+Sym3<S> exp_sym3(const Sym3<S>& b) {
+  return spectral(
+      b, [](double x) { return std::exp(x); },
+      [](double x, double y) {
+        const double d = x - y;
+        return d == 0.0 ? std::exp(y) : std::exp(y) * std::expm1(d) / d;
+      });
 }
 
 /// phi(x) = atanh(sqrt(x)) / sqrt(x) and phi'(x), 0 <= x < 1 (series below 1e-3).
@@ -184,11 +335,12 @@ void exp_sym2(const S& bxx, const S& byy, const S& bxy, S& exx, S& eyy, S& exy) 
 }
 
 /// What an update yields in the scalar type S.
-template <class S>
+template <class S, int dim>
 struct Result {
-  S p[4];            // P_xx, P_xy, P_yx, P_yy (row-major, tensor_index)
-  Sym<S> stress;     // T after the return
-  Sym<S> plastic;    // E_p after the update
+  using Tensor = std::conditional_t<dim == 2, Sym<S>, Sym3<S>>;
+  S p[dim * dim];  // P row-major (tensor_index): P_xx, P_xy, P_yx, P_yy in 2D
+  Tensor stress;   // T after the return
+  Tensor plastic;  // E_p after the update
   S alpha;
   S dissipation;
   S energy;          // 1/2 E_e : D : E_e
@@ -197,8 +349,9 @@ struct Result {
 
 /// Steps 1-5 above; `law.return_map(trial, state, lame, alpha_increment)` returns T.
 template <class S, class Law>
-Result<S> update(const Law& law, const Lame& lame, Kinematics kinematics, const S f[4], const MaterialState& n) {
-  Result<S> r;
+Result<S, 2> update(const Law& law, const Lame& lame, Kinematics kinematics, const S f[4],
+                    const MaterialState<2>& n) {
+  Result<S, 2> r;
   r.jacobian = f[0] * f[3] - f[1] * f[2];
   if (kinematics == Kinematics::multiplicative) {
     using std::exp;
@@ -272,34 +425,104 @@ Result<S> update(const Law& law, const Lame& lame, Kinematics kinematics, const 
   return r;
 }
 
+/// Steps 1-5 in 3D (multiplicative or small strain; above).
+template <class S, class Law>
+Result<S, 3> update(const Law& law, const Lame& lame, Kinematics kinematics, const S f[9],
+                    const MaterialState<3>& n) {
+  using M3 = Eigen::Matrix<S, 3, 3>;
+  M3 fm;
+  for (int k = 0; k < 9; ++k) fm(k / 3, k % 3) = f[k];
+  Result<S, 3> r;
+  r.jacobian = fm.determinant();
+  const Sym3<S> plastic_n = sym_of<S>(n);
+  if (kinematics == Kinematics::multiplicative) {
+    // b_e^tr = F C_p^-1 F^T, eps_e^tr = 1/2 ln b_e^tr
+    const M3 be_trial = fm * (Sym3<S>::identity() + plastic_n).matrix() * fm.transpose();
+    const Sym3<S> strain = S(0.5) * log_sym3(Sym3<S>::of(be_trial));
+    const Sym3<S> trial = elastic_stress(lame, strain);  // Kirchhoff
+    S dalpha(0.0);
+    r.stress = law.return_map(trial, n, dalpha);
+    const Sym3<S> elastic = elastic_strain(lame, r.stress);
+    const M3 be = exp_sym3(S(2.0) * elastic).matrix();
+    // F^-1 by cofactors: the adjugate over J.
+    M3 finv;
+    finv(0, 0) = fm(1, 1) * fm(2, 2) - fm(1, 2) * fm(2, 1);
+    finv(0, 1) = fm(0, 2) * fm(2, 1) - fm(0, 1) * fm(2, 2);
+    finv(0, 2) = fm(0, 1) * fm(1, 2) - fm(0, 2) * fm(1, 1);
+    finv(1, 0) = fm(1, 2) * fm(2, 0) - fm(1, 0) * fm(2, 2);
+    finv(1, 1) = fm(0, 0) * fm(2, 2) - fm(0, 2) * fm(2, 0);
+    finv(1, 2) = fm(0, 2) * fm(1, 0) - fm(0, 0) * fm(1, 2);
+    finv(2, 0) = fm(1, 0) * fm(2, 1) - fm(1, 1) * fm(2, 0);
+    finv(2, 1) = fm(0, 1) * fm(2, 0) - fm(0, 0) * fm(2, 1);
+    finv(2, 2) = fm(0, 0) * fm(1, 1) - fm(0, 1) * fm(1, 0);
+    finv *= S(1.0) / r.jacobian;
+    r.plastic = Sym3<S>::of(M3(finv * be * finv.transpose())) - Sym3<S>::identity();  // C_p^-1 - I
+    r.alpha = n.alpha + dalpha;
+    r.dissipation = n.dissipation + dot(r.stress, elastic_strain(lame, trial - r.stress));
+    r.energy = 0.5 * dot(r.stress, elastic);
+    const M3 p = r.stress.matrix() * finv.transpose();  // P = tau F^-T
+    for (int k = 0; k < 9; ++k) r.p[k] = p(k / 3, k % 3);
+    return r;
+  }
+  if (kinematics != Kinematics::small_strain)
+    throw InputError(
+        "the logarithmic (Lagrangian) kinematics of the plastic laws is plane only; a solid takes "
+        "multiplicative (the default) or small_strain");
+  const Sym3<S> strain = Sym3<S>::of(fm) - Sym3<S>::identity();
+  const Sym3<S> trial = elastic_stress(lame, strain - plastic_n);
+  S dalpha(0.0);
+  r.stress = law.return_map(trial, n, dalpha);
+  const Sym3<S> dplastic = elastic_strain(lame, trial - r.stress);
+  r.plastic = plastic_n + dplastic;
+  r.alpha = n.alpha + dalpha;
+  r.dissipation = n.dissipation + dot(r.stress, dplastic);
+  r.energy = 0.5 * dot(r.stress, elastic_strain(lame, r.stress));
+  const M3 p = r.stress.matrix();
+  for (int k = 0; k < 9; ++k) r.p[k] = p(k / 3, k % 3);
+  return r;
+}
+
+/// F row-major, as the updates take it.
+template <int dim>
+std::array<double, dim * dim> components(const Tensor2<dim>& f) {
+  std::array<double, dim * dim> c;
+  for (int k = 0; k < dim * dim; ++k) c[k] = f(k / dim, k % dim);
+  return c;
+}
+
 /// The stored (elastic) energy 1/2 T : E_e after the update of F from the state n.
-template <class Law>
-double stored_energy(const Law& law, const Lame& lame, Kinematics kinematics, const Mat2& f, const MaterialState& n) {
-  const double fd[4] = {f(0, 0), f(0, 1), f(1, 0), f(1, 1)};
-  return update<double>(law, lame, kinematics, fd, n).energy;
+template <class Law, int dim>
+double stored_energy(const Law& law, const Lame& lame, Kinematics kinematics, const Tensor2<dim>& f,
+                     const MaterialState<dim>& n) {
+  return update<double>(law, lame, kinematics, components(f).data(), n).energy;
 }
 
 /// The update of a law in double precision and, with_tangent, again with dual numbers for
 /// dP/dF (the same code: the consistent tangent).
-template <class Law>
-MaterialUpdate evaluate(const Law& law, const Lame& lame, Kinematics kinematics, const Mat2& f, const MaterialState& n,
-                        bool with_tangent) {
-  const double fd[4] = {f(0, 0), f(0, 1), f(1, 0), f(1, 1)};
-  const Result<double> r = update<double>(law, lame, kinematics, fd, n);
-  MaterialUpdate out;
-  out.stress << r.p[0], r.p[1], r.p[2], r.p[3];
-  out.state.plastic_strain << r.plastic.xx, r.plastic.xy, r.plastic.xy, r.plastic.yy;
-  out.state.plastic_strain_zz = r.plastic.zz;
+template <class Law, int dim>
+MaterialUpdate<dim> evaluate(const Law& law, const Lame& lame, Kinematics kinematics, const Tensor2<dim>& f,
+                             const MaterialState<dim>& n, bool with_tangent) {
+  constexpr int nf = dim * dim;
+  const std::array<double, nf> fd = components(f);
+  const Result<double, dim> r = update<double>(law, lame, kinematics, fd.data(), n);
+  MaterialUpdate<dim> out;
+  for (int k = 0; k < nf; ++k) out.stress(k / dim, k % dim) = r.p[k];
+  if constexpr (dim == 2) {
+    out.state.plastic_strain << r.plastic.xx, r.plastic.xy, r.plastic.xy, r.plastic.yy;
+    out.state.plastic_strain_zz = r.plastic.zz;
+    // sigma_zz = T_zz / J (logarithmic: S_zz = T_zz since C_zz = 1), T_zz (small strain).
+    // multiplicative: tau_zz / J.
+    out.stress_zz = kinematics != Kinematics::small_strain ? r.stress.zz / r.jacobian : r.stress.zz;
+  } else {
+    out.state.plastic_strain = r.plastic.matrix();
+  }
   out.state.alpha = r.alpha;
   out.state.dissipation = r.dissipation;
-  // sigma_zz = T_zz / J (logarithmic: S_zz = T_zz since C_zz = 1), T_zz (small strain).
-  // multiplicative: tau_zz / J.
-  out.stress_zz = kinematics != Kinematics::small_strain ? r.stress.zz / r.jacobian : r.stress.zz;
   if (with_tangent) {
-    Dual fx[4];
-    for (int k = 0; k < 4; ++k) fx[k] = Dual(fd[k], 4, k);
-    const Result<Dual> d = update<Dual>(law, lame, kinematics, fx, n);
-    for (int k = 0; k < 4; ++k) out.tangent.row(k) = d.p[k].derivatives().transpose();
+    Dual<dim> fx[nf];
+    for (int k = 0; k < nf; ++k) fx[k] = Dual<dim>(fd[k], nf, k);
+    const Result<Dual<dim>, dim> d = update<Dual<dim>>(law, lame, kinematics, fx, n);
+    for (int k = 0; k < nf; ++k) out.tangent.row(k) = d.p[k].derivatives().transpose();
   }
   return out;
 }

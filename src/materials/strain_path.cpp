@@ -32,7 +32,7 @@ std::vector<PathRecord> run_strain_path(const Material& m, const DeformationPath
                            s.record_every, rows));
   std::vector<PathRecord> out;
   out.reserve(rows);
-  MaterialState state;  // virgin
+  MaterialState<2> state;  // virgin
   for (int n = 0; n <= s.increments; ++n) {
     // t_n = (t_end n) / N, not n dt: t_N = t_end exactly, and a turning point of the path at
     // a whole increment is met exactly (t_end = 3, N = 3000: t_1000 = 3000 / 3000 = 1).
@@ -43,7 +43,7 @@ std::vector<PathRecord> run_strain_path(const Material& m, const DeformationPath
     const Mat2 f = path(t);
     if (!f.allFinite())
       throw failed(fmt::format("F = [[{}, {}], [{}, {}]] is not finite", f(0, 0), f(0, 1), f(1, 0), f(1, 1)));
-    const MaterialUpdate u = [&] {
+    const MaterialUpdate<2> u = [&] {
       try {
         return update(m, f, state, false);
       } catch (const NumericalError& e) {

@@ -142,7 +142,7 @@ Particles seed_bodies(const std::vector<MPMBody>& bodies, const std::vector<MPMM
   P.deformation.assign(P.mass.size(), Mat2::Identity());
   P.stress.assign(P.mass.size(), Mat2::Zero());
   P.stress_zz.assign(P.mass.size(), 0.0);
-  P.state.assign(P.mass.size(), MaterialState{});
+  P.state.assign(P.mass.size(), MaterialState<2>{});
   return P;
 }
 

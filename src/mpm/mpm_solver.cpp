@@ -312,7 +312,7 @@ MPMSolver::MPMSolver(MPMProblem problem, MPMSettings settings, Particles particl
                                    particles_.material[p], problem_.materials.size()));
     bodies_ = std::max(bodies_, particles_.body[p] + 1);
     const Material& law = problem_.materials[particles_.material[p]].law;
-    const MaterialUpdate u = update(law, particles_.deformation[p], particles_.state[p], false);
+    const MaterialUpdate<2> u = update(law, particles_.deformation[p], particles_.state[p], false);
     particles_.stress[p] = cauchy_stress(law, u.stress, particles_.deformation[p]);
     particles_.stress_zz[p] = u.stress_zz;
     if (!particles_.stress[p].allFinite())
@@ -605,7 +605,7 @@ void MPMSolver::update_stress(double dt) {
       // eqs. (37) and (41): the law's update from the particle's state, committed at once
       // (an explicit step is always accepted).
       const Material& law = materials[material[p]].law;
-      const MaterialUpdate u = update(law, F, P.state[p], false);
+      const MaterialUpdate<2> u = update(law, F, P.state[p], false);
       P.state[p] = u.state;
       P.stress[p] = cauchy_stress(law, u.stress, F);
       P.stress_zz[p] = u.stress_zz;

@@ -34,7 +34,7 @@ Particles fill_box(const Box& box, double h, int per_side, double density, bool 
   p.deformation.assign(n, Mat2::Identity());
   p.stress.assign(n, Mat2::Zero());
   p.stress_zz.assign(n, 0.0);
-  p.state.assign(n, MaterialState{});
+  p.state.assign(n, MaterialState<2>{});
   if (with_domains) p.half_size.assign(n, Vec2(0.5 * d, 0.5 * d));
   p.body.assign(n, 0);
   p.material.assign(n, 0);

@@ -33,7 +33,7 @@ int main() {
   const double lambda = e * nu / ((1 + nu) * (1 - 2 * nu)), mu = e / (2 * (1 + nu));
   Mat2 f = Mat2::Identity();
   f(0, 0) = a;
-  const MaterialUpdate u = update(make_material("neo_hookean", e, nu), f, MaterialState{}, true);
+  const MaterialUpdate<2> u = update(make_material("neo_hookean", e, nu), f, MaterialState<2>{}, true);
   const double stress = std::abs(u.stress(0, 0) - (mu * (a - 1 / a) + lambda * std::log(a) / a)) / e;
   std::printf("mfree consumer: %zu nodes, largest error of linear reproduction %.3e, of a material update %.3e\n",
               nodes.size(), worst, stress);

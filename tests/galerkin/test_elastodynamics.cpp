@@ -207,7 +207,7 @@ TEST_CASE("J2 body in free motion: kinetic + stored + dissipated energy stays co
       model, disc.nodes, [](const Vec2& x) { return Vec2(0.0, 2.0 * std::cos(2.0 * M_PI * x.x())); }, {});
   for (TimeScheme scheme : {TimeScheme::central_difference, TimeScheme::newmark}) {
     CAPTURE(to_string(scheme));
-    model.set_history({std::vector<MaterialState>(disc.quadrature.size()), {}});  // a fresh body
+    model.set_history({std::vector<MaterialState<2>>(disc.quadrature.size()), {}});  // a fresh body
     DynamicsSettings s;
     s.scheme = scheme;
     s.end_time = 0.15;  // about one and a half periods of the lowest shear mode

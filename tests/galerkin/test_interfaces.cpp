@@ -315,8 +315,8 @@ TEST_CASE(
   // The exact path: at each factor the strain split that balances P_yy (bisection), the
   // J2 point committed after each.
   const auto uniaxial = [](double eps) { return Mat2(Eigen::Vector2d(1.0, 1.0 - eps).asDiagonal()); };
-  MaterialState point;
-  MaterialUpdate last;
+  MaterialState<2> point;
+  MaterialUpdate<2> last;
   double eps1 = 0.0;
   for (const double f : s.load_factors) {
     double lo = 0.0, hi = 2.0 * f * delta;
@@ -347,7 +347,7 @@ TEST_CASE(
         std::max(worst_alpha, std::abs(model.response(k, sol.coefficients).state.alpha - point.alpha));
   }
   // Boundary states: the Nitsche points', then two faces per tie point, one of each layer.
-  const std::vector<MaterialState>& faces = model.history().boundary;
+  const std::vector<MaterialState<2>>& faces = model.history().boundary;
   const std::size_t ties = (faces.size() - model.nitsche_points()) / 2;
   std::size_t plastic_faces = 0;
   for (std::size_t b = 0; b < faces.size(); ++b) {

@@ -281,8 +281,8 @@ TEST_CASE("TL with J2 and Drucker–Prager: the tangent at a plastic state with 
   model.commit(d1);
   const double alpha_max = [&] {
     double a = 0.0;
-    for (const MaterialState& s : model.history().domain) a = std::max(a, s.alpha);
-    for (const MaterialState& s : model.history().boundary) a = std::max(a, s.alpha);
+    for (const MaterialState<2>& s : model.history().domain) a = std::max(a, s.alpha);
+    for (const MaterialState<2>& s : model.history().boundary) a = std::max(a, s.alpha);
     return a;
   }();
   INFO("largest equivalent plastic strain " << alpha_max);
@@ -335,8 +335,8 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
   const StaticSolution sol = solve_logged(model, s, log);
   INFO(log.str());
   // The material point along the same path.
-  MaterialState point;
-  MaterialUpdate last;
+  MaterialState<2> point;
+  MaterialUpdate<2> last;
   for (const double f : s.load_factors) {
     last = update(Material(law), Mat2(Eigen::Vector2d(1.0, 1.0 - f * delta).asDiagonal()), point, false);
     point = last.state;
@@ -350,7 +350,7 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
     worst_stress = std::max(worst_stress, (cauchy_stress(law, last.stress, f) - r.cauchy).norm() / scale);
     worst_alpha = std::max(worst_alpha, std::abs(r.state.alpha - point.alpha) / point.alpha);
   }
-  for (const MaterialState& b : model.history().boundary)
+  for (const MaterialState<2>& b : model.history().boundary)
     worst_alpha = std::max(worst_alpha, std::abs(b.alpha - point.alpha) / point.alpha);
   INFO("worst relative stress difference " << worst_stress << ", plastic strain " << worst_alpha);
   CHECK(worst_stress <= 1e-8);

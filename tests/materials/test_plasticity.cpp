@@ -48,9 +48,9 @@ DruckerPrager sand(Kinematics k, double cohesion, double cutoff) {
 
 /// Largest |A - A_fd| / |A| with A_fd by central differences of P, step 1e-7 |F|.
 template <class Law>
-double tangent_error(const Law& law, const Mat2& f, const MaterialState& state) {
-  const MaterialUpdate u = law.update(f, state, true);
-  Tangent fd;
+double tangent_error(const Law& law, const Mat2& f, const MaterialState<2>& state) {
+  const MaterialUpdate<2> u = law.update(f, state, true);
+  Tangent<2> fd;
   const double h = 1e-7;
   for (int k = 0; k < 4; ++k) {
     Mat2 plus = f, minus = f;
@@ -87,14 +87,14 @@ TEST_CASE("J2: the consistent tangent matches central differences on elastic, pl
                          << law.kinematic_modulus << ", saturation " << law.saturation_stress);
       const double angle = k == Kinematics::small_strain ? 0.0 : 0.4;
       const auto deformation = [&](double stretch, double shear) { return ::deformation(stretch, shear, angle); };
-      const MaterialState virgin;
+      const MaterialState<2> virgin;
       // Elastic: well below yield (strain 2e-4 against a yield strain of about 1.6e-3).
       const Mat2 elastic = deformation(2e-4, 1e-4);
       CHECK(law.update(elastic, virgin, false).state.alpha == 0.0);
       CHECK(tangent_error(law, elastic, virgin) < 1e-6);
       // Plastic: through yield, from the virgin state.
       const Mat2 loaded = deformation(0.02, 0.01);
-      const MaterialUpdate plastic = law.update(loaded, virgin, false);
+      const MaterialUpdate<2> plastic = law.update(loaded, virgin, false);
       CHECK(plastic.state.alpha > 0.0);
       CHECK(tangent_error(law, loaded, virgin) < 1e-6);
       // Unloading: from the plastic state back towards F = I (elastic), and a second plastic
@@ -115,11 +115,11 @@ TEST_CASE("J2 and Drucker–Prager at finite strain are objective: P(QF) = Q P(F
   const Mat2 f = deformation(0.05, 0.04, 0.4);
   for (const double angle : {0.3, 1.7, -2.9}) {
     const Mat2 q = rotation(angle);
-    const MaterialUpdate a = metal.update(f, {}, false), b = metal.update(q * f, {}, false);
+    const MaterialUpdate<2> a = metal.update(f, {}, false), b = metal.update(Mat2(q * f), {}, false);
     CHECK((b.stress - q * a.stress).norm() <= 1e-12 * a.stress.norm());
     CHECK((b.state.plastic_strain - a.state.plastic_strain).norm() <= 1e-12 * a.state.plastic_strain.norm());
     CHECK(b.state.alpha == Approx(a.state.alpha).epsilon(1e-12));
-    const MaterialUpdate c = soil.update(f, {}, false), d = soil.update(q * f, {}, false);
+    const MaterialUpdate<2> c = soil.update(f, {}, false), d = soil.update(Mat2(q * f), {}, false);
     CHECK((d.stress - q * c.stress).norm() <= 1e-12 * c.stress.norm());
     CHECK(d.state.alpha == Approx(c.state.alpha).epsilon(1e-12));
   }
@@ -136,8 +136,8 @@ TEST_CASE("Drucker–Prager, multiplicative: simple shear keeps its friction at 
   soil.dilatancy_angle = 0.0;
   const double squeeze = 2e-3;
   const auto ratio_at = [&](double until) {
-    MaterialState state;
-    MaterialUpdate u;
+    MaterialState<2> state;
+    MaterialUpdate<2> u;
     const int steps = static_cast<int>(until / 0.005);
     for (int n = 1; n <= steps; ++n) {
       Mat2 f;
@@ -173,10 +173,11 @@ TEST_CASE("J2 is the textbook radial return: uniaxial strain through yield and b
     const auto stretch = [&](double e) { return k == Kinematics::small_strain ? 1.0 + e : std::exp(e); };
     const auto first_piola = [&](double t, double e) { return k == Kinematics::small_strain ? t : t / stretch(e); };
     for (const double e : {0.5e-3, 4e-3, 0.02}) {
-      const MaterialUpdate one = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(e), 1.0).toDenseMatrix(), {}, false);
+      const MaterialUpdate<2> one =
+          law.update(Eigen::DiagonalMatrix<double, 2>(stretch(e), 1.0).toDenseMatrix(), {}, false);
       // In 200 increments: the same (the path is radial).
-      MaterialState s;
-      MaterialUpdate many;
+      MaterialState<2> s;
+      MaterialUpdate<2> many;
       for (int n = 1; n <= 200; ++n) {
         many = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(e * n / 200), 1.0).toDenseMatrix(), s, false);
         s = many.state;
@@ -191,9 +192,10 @@ TEST_CASE("J2 is the textbook radial return: uniaxial strain through yield and b
     }
     // Unloading from e = 0.004 to 0.002 is elastic (reverse yielding would start below
     // e = 0.72e-3): the plastic strain stays, T_xx = lambda e + 2 mu (e - e_p,xx).
-    const MaterialUpdate loaded = law.update(Eigen::DiagonalMatrix<double, 2>(stretch(0.004), 1.0).toDenseMatrix(), {}, false);
-    const MaterialUpdate back =
-        law.update(Eigen::DiagonalMatrix<double, 2>(stretch(0.002), 1.0).toDenseMatrix(), loaded.state, false);
+    const MaterialUpdate<2> loaded =
+        law.update(Eigen::DiagonalMatrix<double, 2>(stretch(0.004), 1.0).toDenseMatrix(), {}, false);
+    const MaterialUpdate<2> back = law.update(
+        Eigen::DiagonalMatrix<double, 2>(stretch(0.002), 1.0).toDenseMatrix(), loaded.state, false);
     CHECK(back.state.alpha == loaded.state.alpha);
     const double unloaded = lambda * 0.002 + 2 * mu * (0.002 - loaded.state.plastic_strain(0, 0));
     CHECK(back.stress(0, 0) == Approx(first_piola(unloaded, 0.002)).epsilon(1e-12));
@@ -214,7 +216,7 @@ TEST_CASE("J2 in the logarithmic space tends to the small-strain return as the s
     a.saturation_stress = b.saturation_stress = 0.5 * scale * 2 * steel.mu;
     Mat2 f;
     f << 1.0 + scale, 0.7 * scale, -0.2 * scale, 1.0 - 0.5 * scale;
-    const MaterialUpdate u = a.update(f, {}, false), v = b.update(f, {}, false);
+    const MaterialUpdate<2> u = a.update(f, {}, false), v = b.update(f, {}, false);
     CHECK(u.state.alpha > 0.0);
     const double difference = (u.stress - v.stress).norm() / u.stress.norm();
     CHECK(difference < 5 * scale);  // first order in the strain
@@ -228,7 +230,7 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     const DruckerPrager cohesive = sand(k, 20e3, 1e300);  // cutoff at the apex
     const DruckerPrager cut = sand(k, 20e3, 5e3);          // cutoff below the apex
     const double eta = cohesive.eta(), xi = cohesive.xi();
-    const auto invariants = [&](const MaterialUpdate& u, const Mat2& f) {
+    const auto invariants = [&](const MaterialUpdate<2>& u, const Mat2& f) {
       // p and sqrt(J2) of the Cauchy stress (with sigma_zz), for the checks below.
       const Mat2 sigma = k == Kinematics::small_strain ? u.stress : Mat2(u.stress * f.transpose() / f.determinant());
       const double p = (sigma.trace() + u.stress_zz) / 3.0;
@@ -239,7 +241,7 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     // Shear under confinement: the cone; sqrt(J2) + eta p = xi c after the return.
     Mat2 shear;
     shear << 0.998, 0.02, 0.0, 0.997;
-    const MaterialUpdate cone = cohesive.update(shear, {}, true);
+    const MaterialUpdate<2> cone = cohesive.update(shear, {}, true);
     CHECK(cone.state.alpha > 0.0);
     if (k == Kinematics::small_strain) {
       const auto [p, q] = invariants(cone, shear);
@@ -248,7 +250,7 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     CHECK(tangent_error(cohesive, shear, {}) < 1e-6);
     // Pure expansion: past the apex, the stress is the apex, p = xi c / eta, s = 0.
     const Mat2 expansion = Eigen::DiagonalMatrix<double, 2>(1.01, 1.01).toDenseMatrix();
-    const MaterialUpdate apex = cohesive.update(expansion, {}, false);
+    const MaterialUpdate<2> apex = cohesive.update(expansion, {}, false);
     if (k == Kinematics::small_strain) {
       const auto [p, q] = invariants(apex, expansion);
       CHECK(p == Approx(xi * 20e3 / eta).epsilon(1e-12));
@@ -256,7 +258,7 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     }
     // With the cutoff below the apex: p = p_t, and the shear kept when inside the cone there.
     const Mat2 stretch = Eigen::DiagonalMatrix<double, 2>(1.001, 1.0).toDenseMatrix();
-    const MaterialUpdate cutoff = cut.update(stretch, {}, true);
+    const MaterialUpdate<2> cutoff = cut.update(stretch, {}, true);
     if (k == Kinematics::small_strain) {
       const auto [p, q] = invariants(cutoff, stretch);
       CHECK(p == Approx(5e3).epsilon(1e-12));
@@ -268,10 +270,10 @@ TEST_CASE("Drucker–Prager: cone, cutoff and apex returns; the tangent on each;
     CHECK(cone.state.dissipation >= 0.0);
     DruckerPrager associative = cohesive;
     associative.dilatancy_angle = associative.friction_angle;
-    const MaterialUpdate dilating = associative.update(shear, {}, false);
+    const MaterialUpdate<2> dilating = associative.update(shear, {}, false);
     // The plastic volume change ln J_p: tr E_p, or -1/2 ln det C_p^-1 (multiplicative: the state
     // holds C_p^-1 - I).
-    const auto volume = [&](const MaterialState& st) {
+    const auto volume = [&](const MaterialState<2>& st) {
       if (k != Kinematics::multiplicative) return st.plastic_strain.trace() + st.plastic_strain_zz;
       return -0.5 * std::log((Mat2::Identity() + st.plastic_strain).determinant() * (1.0 + st.plastic_strain_zz));
     };
@@ -290,7 +292,7 @@ TEST_CASE("plastic_strain() is one measure for every kinematics: coaxial stretch
   // must equal the logarithmic state's E_p.
   const Mat2 f1 = Eigen::Vector2d(1.03, 0.98).asDiagonal(), f2 = Eigen::Vector2d(1.05, 0.97).asDiagonal();
   const Material log_law = j2(Kinematics::logarithmic, 1e9, 0.0, 400e6), mult_law = j2(Kinematics::multiplicative, 1e9, 0.0, 400e6);
-  MaterialState a, b;
+  MaterialState<2> a, b;
   for (const Mat2& f : {f1, f2}) {
     a = update(log_law, f, a, false).state;
     b = update(mult_law, f, b, false).state;

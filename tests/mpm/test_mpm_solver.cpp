@@ -555,24 +555,25 @@ TEST_CASE("a J2 block carries each particle's history: every method and scheme u
   j2.yield_stress = 1e4;
   j2.isotropic_modulus = 1e5;
   const Material law = j2;
-  const MaterialState history = update(law, Mat2(Eigen::Vector2d(1.01, 0.99).asDiagonal()), {}, false).state;
+  const MaterialState<2> history =
+      update(law, Mat2(Eigen::Vector2d(1.01, 0.99).asDiagonal()), {}, false).state;
   REQUIRE(history.alpha > 0.0);
   const MPMProblem problem{unit, {{"metal", law, 1000.0}}, {rectangle_body("block", unit)}, {}};
   for (const Method& m : methods)
     for (UpdateScheme s : schemes) {
       Particles start = motion.particles(uses_domains(m.method));
-      for (MaterialState& state : start.state) state = history;
+      for (MaterialState<2>& state : start.state) state = history;
       MPMSolver solver(problem, settings_for(m, s, 64), start);
       solver.step();
       const double dt = solver.time_step();
       auto series = [](const Mat2& A) { return Mat2(Mat2::Identity() + A + 0.5 * A * A); };
-      MaterialState state = history;
+      MaterialState<2> state = history;
       Mat2 f = s == UpdateScheme::verlet ? series(dt * L * Mat2(Mat2::Identity() + 0.5 * dt * L).inverse()) : series(dt * L);
       if (s == UpdateScheme::usavg) {
         state = update(law, series(0.5 * dt * L), state, false).state;
         f = series(0.5 * dt * L) * series(0.5 * dt * L);
       }
-      const MaterialUpdate expected = update(law, f, state, false);
+      const MaterialUpdate<2> expected = update(law, f, state, false);
       const Mat2 sigma = cauchy_stress(law, expected.stress, f);
       const Particles& P = solver.particles();
       double worst_stress = 0.0, worst_state = 0.0;

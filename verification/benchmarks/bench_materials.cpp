@@ -39,11 +39,11 @@ void BM_material_update(benchmark::State& state, const std::string& model, bool 
   std::uniform_real_distribution<double> u(-1e-3, 1e-3);
   std::vector<Mat2> f(4096);
   for (Mat2& x : f) x << 1.02 + u(rng), 0.01 + u(rng), u(rng), 0.99 + u(rng);
-  const MaterialState virgin;
+  const MaterialState<2> virgin;
   double sum = 0.0;
   for (auto _ : state)
     for (const Mat2& x : f) {
-      const MaterialUpdate r = update(m, x, virgin, with_tangent);
+      const MaterialUpdate<2> r = update(m, x, virgin, with_tangent);
       sum += r.stress(0, 0) + r.tangent(0, 0);
     }
   benchmark::DoNotOptimize(sum);

@@ -39,7 +39,7 @@
 // point holds a state of its own, as a Nitsche point does.
 //
 // Laws with history (J2, Drucker–Prager; materials/material_state.hpp): every quadrature
-// point, every Nitsche point and each face of every tie point holds a MaterialState, the
+// point, every Nitsche point and each face of every tie point holds a MaterialState<2>, the
 // committed state_n. The forces and tangents at d are those of update(F(d), state_n) with the
 // consistent tangent, so Newton iterates on one step without touching the history; commit(d)
 // makes state_{n+1} the history once the step is accepted (a converged load step, a time
@@ -109,10 +109,10 @@ inline constexpr double max_poisson_ratio = 0.49;
 
 /// The committed material states of a model's points (laws with history; empty otherwise).
 struct PointHistory {
-  std::vector<MaterialState> domain;    ///< per quadrature point
+  std::vector<MaterialState<2>> domain;  ///< per quadrature point
   /// Per Nitsche point (boundary quadrature points of essential conditions), then per tie
   /// point of an interface its two faces (+, -).
-  std::vector<MaterialState> boundary;
+  std::vector<MaterialState<2>> boundary;
 };
 
 struct SolidProblem {
@@ -222,7 +222,7 @@ class TotalLagrangian {
   struct PointResponse {
     Mat2 cauchy = Mat2::Zero();
     double cauchy_zz = 0.0;
-    MaterialState state;
+    MaterialState<2> state;
   };
   [[nodiscard]] PointResponse response(Index k, const Eigen::VectorXd& d) const;
 
@@ -256,11 +256,12 @@ class TotalLagrangian {
   };
 
   /// The update at quadrature point k (or Nitsche point b) from its committed state.
-  [[nodiscard]] MaterialUpdate domain_update(Index k, const Mat2& f, bool with_tangent) const;
-  [[nodiscard]] MaterialUpdate boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<2> domain_update(Index k, const Mat2& f, bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<2> boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const;
   /// sum_K w_K P(F_K) t_I from the committed states; with `commit`, each point's new state
   /// written into it after its update.
-  [[nodiscard]] Eigen::VectorXd domain_force(const Eigen::VectorXd& d, std::vector<MaterialState>* commit) const;
+  [[nodiscard]] Eigen::VectorXd domain_force(const Eigen::VectorXd& d,
+                                             std::vector<MaterialState<2>>* commit) const;
   /// x,S = T + sum_J d_J (grad phi_J . T) at follower point p: the current boundary's
   /// stretch vector per reference length.
   [[nodiscard]] Vec2 follower_stretch(Index p, const Eigen::VectorXd& d) const;
@@ -270,8 +271,8 @@ class TotalLagrangian {
   void add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const;
   void add_tie_tangent(const Eigen::VectorXd& d, double* values) const;
   /// The update at face `face` (0: +, 1: -) of tie point `tie` with its law, from its committed state.
-  [[nodiscard]] MaterialUpdate tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
-                                          bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<2> tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
+                                             bool with_tangent) const;
   /// Where the state of a tie point's face lives in history_.boundary.
   [[nodiscard]] std::size_t tie_state(std::size_t tie, int face) const {
     return nitsche_.size() + 2 * tie + static_cast<std::size_t>(face);
@@ -292,7 +293,7 @@ class TotalLagrangian {
   std::vector<TiePoint> ties_;
   std::vector<int> law_of_point_;            ///< per quadrature point, its region's law
   std::vector<int> law_of_boundary_;         ///< per boundary point
-  std::vector<Tangent> reference_tangents_;  ///< per law, C = A(I)
+  std::vector<Tangent<2>> reference_tangents_;  ///< per law, C = A(I)
   std::vector<double> penalty_of_law_;       ///< per law, beta M / h
   bool linear_ = true;                       ///< every law linear
   std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures

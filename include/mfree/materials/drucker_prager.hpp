@@ -40,9 +40,12 @@ struct DruckerPrager {
   [[nodiscard]] double largest_mean_stress() const;
   /// InputError for angles out of range, a negative cohesion or psi > phi.
   void validate() const;
-  [[nodiscard]] MaterialUpdate update(const Mat2& f, const MaterialState& state, bool with_tangent) const;
+  template <int dim>
+  [[nodiscard]] MaterialUpdate<dim> update(const Tensor2<dim>& f, const MaterialState<dim>& state,
+                                           bool with_tangent) const;
   /// The stored (elastic) energy 1/2 T : E_e per unit reference volume after that update.
-  [[nodiscard]] double energy(const Mat2& f, const MaterialState& state) const;
+  template <int dim>
+  [[nodiscard]] double energy(const Tensor2<dim>& f, const MaterialState<dim>& state) const;
 };
 
 }  // namespace mfree

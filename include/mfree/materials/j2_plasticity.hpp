@@ -46,9 +46,12 @@ struct J2Plasticity {
   void validate() const;
   /// P, sigma_zz and the state after F; with_tangent: the consistent tangent too.
   /// NumericalError for J <= 0.
-  [[nodiscard]] MaterialUpdate update(const Mat2& f, const MaterialState& state, bool with_tangent) const;
+  template <int dim>
+  [[nodiscard]] MaterialUpdate<dim> update(const Tensor2<dim>& f, const MaterialState<dim>& state,
+                                           bool with_tangent) const;
   /// The stored (elastic) energy 1/2 T : E_e per unit reference volume after that update.
-  [[nodiscard]] double energy(const Mat2& f, const MaterialState& state) const;
+  template <int dim>
+  [[nodiscard]] double energy(const Tensor2<dim>& f, const MaterialState<dim>& state) const;
 };
 
 }  // namespace mfree

@@ -1,5 +1,6 @@
 #pragma once
-// Small-strain linear elasticity in 2D, plane stress or plane strain.
+// Small-strain linear elasticity in 2D, plane stress or plane strain, and in 3D (the law
+// whose plane reduction plane strain is; plane stress has no 3D form).
 //
 // Voigt order (xx, yy, xy) with engineering shear strain gamma_xy = 2 eps_xy, so that
 // sigma = D eps and the strain energy density is eps . D eps / 2. Units: E in stress units
@@ -54,9 +55,9 @@ struct LinearElastic {
     return p;
   }
   /// A(2 i + J, 2 k + L) = D(v(iJ), v(kL)): the shear strain gamma = H_xy + H_yx takes both.
-  [[nodiscard]] Tangent tangent(const Mat2&) const {
+  [[nodiscard]] Tangent<2> tangent(const Mat2&) const {
     const Eigen::Matrix3d d = voigt_tangent();
-    Tangent a;
+    Tangent<2> a;
     for (int t = 0; t < 4; ++t)
       for (int s = 0; s < 4; ++s) a(t, s) = d(voigt_of(t), voigt_of(s));
     return a;
@@ -64,6 +65,13 @@ struct LinearElastic {
   static Eigen::Vector3d voigt_strain(const Mat2& f) {
     return {f(0, 0) - 1.0, f(1, 1) - 1.0, f(0, 1) + f(1, 0)};
   }
+
+  /// The 3D law: sigma = lambda tr(eps) I + 2 mu eps, eps = sym(F) - I; InputError for the
+  /// plane-stress model.
+  [[nodiscard]] double energy(const Tensor2<3>& f) const;
+  [[nodiscard]] Tensor2<3> stress(const Tensor2<3>& f) const;
+  /// A_iJkL = lambda d_iJ d_kL + mu (d_ik d_JL + d_iL d_Jk).
+  [[nodiscard]] Tangent<3> tangent(const Tensor2<3>& f) const;
 
   /// sigma_zz of an in-plane Voigt stress: nu (sigma_xx + sigma_yy) in plane strain, 0 in
   /// plane stress.

@@ -2,17 +2,17 @@
 // The materials both solvers take, as one value type: a variant of the laws, chosen by a
 // scene's material model.
 //
-//   LinearElastic       small strain, plane stress or plane strain (not objective)
-//   StVenantKirchhoff   plane strain
-//   NeoHookean          compressible, plane strain (SPEC section 5)
+//   LinearElastic       small strain, plane stress or plane strain, 3D (not objective)
+//   StVenantKirchhoff   plane strain, 3D
+//   NeoHookean          compressible, plane strain, 3D (SPEC section 5)
 //   J2Plasticity        von Mises plasticity, radial return (j2_plasticity.hpp)
 //   DruckerPrager       pressure-dependent plasticity with a tension cutoff (drucker_prager.hpp)
 //
-// One interface for every law: update(m, F_{n+1}, state_n) -> (P, sigma_zz, energy, state_{n+1},
-// and A = dP/dF when asked), material_state.hpp; the elastic laws leave the state as it is.
-// The dispatch names every law (a law missing from it does not compile). stress(), tangent()
-// and energy() are the response of a point without history: the elastic laws, and the
-// reference state of any law (wave speeds, the reference tangent).
+// One interface for every law, in the plane (dim = 2) and in 3D: update(m, F_{n+1}, state_n)
+// -> (P, sigma_zz, energy, state_{n+1}, and A = dP/dF when asked), material_state.hpp; the elastic laws leave
+// the state as it is. The dispatch names every law (a law missing from it does not compile). stress(),
+// tangent() and energy() are the response of a point without history: the elastic laws, and the reference
+// state of any law (wave speeds, the reference tangent).
 
 #include <functional>
 #include <string_view>
@@ -33,11 +33,16 @@ using Material = std::variant<LinearElastic, StVenantKirchhoff, NeoHookean, J2Pl
 /// The law at a reference position X (a body of several materials: its region's).
 using MaterialAt = std::function<const Material&(const Vec2& x)>;
 
-/// The update of any law (above). NumericalError for J <= 0 (finite-strain laws).
-MaterialUpdate update(const Material& m, const Mat2& f, const MaterialState& state, bool with_tangent);
+/// The update of any law (above), in dim = 2 (plane) or 3 dimensions. NumericalError for
+/// J <= 0 (finite-strain laws); InputError for a plane-only law in 3D (plane stress, the
+/// logarithmic kinematics).
+template <int dim>
+MaterialUpdate<dim> update(const Material& m, const Tensor2<dim>& f, const MaterialState<dim>& state,
+                           bool with_tangent);
 /// The stored (elastic) energy per unit reference volume at F after the state (W(F) of the
 /// elastic laws, 1/2 T : E_e of the plastic ones); the plastic work is state.dissipation.
-double energy(const Material& m, const Mat2& f, const MaterialState& state);
+template <int dim>
+double energy(const Material& m, const Tensor2<dim>& f, const MaterialState<dim>& state);
 /// True for the laws whose response depends on their state (J2, Drucker–Prager).
 bool has_history(const Material& m);
 /// True when the tangent A = dP/dF has major symmetry, A_iJkL = A_kLiJ: the hyperelastic laws
@@ -45,25 +50,41 @@ bool has_history(const Material& m);
 /// cutoff returns): a stiffness assembled from it is not symmetric.
 bool has_symmetric_tangent(const Material& m);
 
-inline double energy(const Material& m, const Mat2& f) { return energy(m, f, MaterialState{}); }
+template <int dim>
+double energy(const Material& m, const Tensor2<dim>& f) {
+  return energy(m, f, MaterialState<dim>{});
+}
 /// First Piola–Kirchhoff stress P (force per reference area) of a point without history.
-inline Mat2 stress(const Material& m, const Mat2& f) { return update(m, f, {}, false).stress; }
-inline Tangent tangent(const Material& m, const Mat2& f) { return update(m, f, {}, true).tangent; }
-/// The plastic strain a state holds, in-plane block and zz, as one measure for every
-/// kinematics: E_p (small strain, logarithmic), or the Lagrangian plastic log strain
-/// 1/2 ln C_p = -1/2 ln C_p^-1 (multiplicative, whose state holds C_p^-1 - I); zero for the
-/// elastic laws.
-std::pair<Mat2, double> plastic_strain(const Material& m, const MaterialState& state);
+template <int dim>
+Tensor2<dim> stress(const Material& m, const Tensor2<dim>& f) {
+  return update(m, f, MaterialState<dim>{}, false).stress;
+}
+template <int dim>
+Tangent<dim> tangent(const Material& m, const Tensor2<dim>& f) {
+  return update(m, f, MaterialState<dim>{}, true).tangent;
+}
+/// The plastic strain a state holds (2D: in-plane block and zz; 3D: the tensor and 0), as one
+/// measure for every kinematics: E_p (small strain, logarithmic), or the Lagrangian plastic
+/// log strain 1/2 ln C_p = -1/2 ln C_p^-1 (multiplicative, whose state holds C_p^-1 - I);
+/// zero for the elastic laws.
+template <int dim>
+std::pair<Tensor2<dim>, double> plastic_strain(const Material& m, const MaterialState<dim>& state);
 /// True for the laws of the small strain (LinearElastic, plastic laws with small-strain
 /// kinematics), whose P is sigma.
 bool is_small_strain(const Material& m);
 /// Cauchy stress of the first Piola–Kirchhoff stress P at F: P F^T / J, or P (small strain).
-Mat2 cauchy_stress(const Material& m, const Mat2& p, const Mat2& f);
+template <int dim>
+Tensor2<dim> cauchy_stress(const Material& m, const Tensor2<dim>& p, const Tensor2<dim>& f);
 /// Cauchy stress of a point without history at F.
-inline Mat2 cauchy_stress(const Material& m, const Mat2& f) { return cauchy_stress(m, stress(m, f), f); }
-/// The out-of-plane Cauchy stress sigma_zz of a point without history (plane strain: F_zz = 1;
-/// plane stress: 0); update() gives it with history.
-inline double out_of_plane_stress(const Material& m, const Mat2& f) { return update(m, f, {}, false).stress_zz; }
+template <int dim>
+Tensor2<dim> cauchy_stress(const Material& m, const Tensor2<dim>& f) {
+  return cauchy_stress(m, stress(m, f), f);
+}
+/// The out-of-plane Cauchy stress sigma_zz of a plane point without history (plane strain:
+/// F_zz = 1; plane stress: 0); update() gives it with history.
+inline double out_of_plane_stress(const Material& m, const Mat2& f) {
+  return update(m, f, MaterialState<2>{}, false).stress_zz;
+}
 /// True for the small-strain elastic law, whose tangent is the same at every F.
 inline bool is_linear(const Material& m) { return std::holds_alternative<LinearElastic>(m); }
 std::string_view name(const Material& m);
@@ -94,7 +115,7 @@ Material make_material(std::string_view model, const MaterialParameters& paramet
 Material make_material(std::string_view model, double youngs_modulus, double poisson_ratio);
 
 /// P-wave modulus [Pa] of the reference state, the normal component A_xxxx of the tangent at
-/// F = I: lambda + 2 mu in plane strain, E / (1 - nu^2) in plane stress. The stiffness of the
+/// F = I: lambda + 2 mu in plane strain and in 3D, E / (1 - nu^2) in plane stress. The stiffness of the
 /// stiffest traction: Nitsche penalties scale with it.
 double p_wave_modulus(const Material& m);
 

@@ -55,7 +55,7 @@ struct PathRecord {
   Mat2 first_piola = Mat2::Zero();      ///< P
   Mat2 cauchy = Mat2::Zero();           ///< sigma = cauchy_stress(m, P, F)
   double stress_zz = 0.0;               ///< sigma_zz
-  MaterialState state;                  ///< after the update: E_p, alpha, plastic work
+  MaterialState<2> state;               ///< after the update: E_p, alpha, plastic work
   double stored_energy = 0.0;           ///< energy(m, F, state): the elastic energy stored
 };
 

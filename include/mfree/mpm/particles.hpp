@@ -31,7 +31,7 @@ struct Particles {
   std::vector<double> stress_zz;   ///< its out-of-plane component sigma_zz (plane strain)
   /// The material's history (plastic laws; materials/material_state.hpp), updated where the
   /// stress is: the solver fills it with virgin states when it is empty.
-  std::vector<MaterialState> state;
+  std::vector<MaterialState<2>> state;
   /// Reference half sizes (l_x, l_y) of the particle domain: only for the methods whose
   /// weights need the domain (uses_domains() in particle_basis.hpp; empty otherwise).
   std::vector<Vec2> half_size;
