@@ -146,8 +146,8 @@ std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings
               if (kind != CloudKind::lattice)
                 rs.node_radii = nodal_support_radii(cloud, h, factor * s.random_factor_scale);
               const RKShapeFunctions<2> rk(cloud, rs);
-              const BackgroundLattice lattice(domain, h / s.lattice_refinement,
-                                              order == RKOrder::linear ? 1 : 2);
+              const BackgroundLattice<2> lattice(domain, h / s.lattice_refinement,
+                                                 order == RKOrder::linear ? 1 : 2);
               const std::vector<double> w = rk_quadrature_weights(rk, lattice);
               record(cname, std::string(to_string(order)), sname, level, cloud, w, seconds_since(t0));
             }

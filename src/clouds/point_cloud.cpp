@@ -1,7 +1,9 @@
 #include "mfree/clouds/point_cloud.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <array>
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -22,39 +24,68 @@ namespace {
 /// Steps of a lattice of nominal spacing h spanning a length L (at least one).
 int steps(double length, double h) { return std::max(1, static_cast<int>(std::lround(length / h))); }
 
+/// The corners and the measure of the plane and the solid bounding boxes.
+Vec2 lower(const Box& b) { return b.lo; }
+Vec2 upper(const Box& b) { return b.hi; }
+double box_measure(const Box& b) { return b.area(); }
+Point<3> lower(const AlignedBox<3>& b) { return b.min(); }
+Point<3> upper(const AlignedBox<3>& b) { return b.max(); }
+double box_measure(const AlignedBox<3>& b) { return b.volume(); }
+double measure(const Domain& d) { return d.area(); }
+double measure(const Solid& s) { return s.measure(); }
+
+/// h^dim.
+template <int dim>
+double power(double h) {
+  return dim == 2 ? h * h : h * h * h;
+}
+
 /// Inside the closed domain up to round-off: lattice coordinates such as -1 + 12.5 * 0.08
 /// land 2e-17 off a boundary they are meant to lie on, and dropping that row would leave a
 /// gap of a whole spacing along the edge.
-bool inside_up_to_roundoff(const Domain& domain, const Vec2& p, double h) {
+template <int dim, class D>
+bool inside_up_to_roundoff(const D& domain, const Point<dim>& p, double h) {
   if (domain.contains(p)) return true;
   const double e = 1e-9 * h;
-  return domain.contains(p + Vec2(e, 0)) || domain.contains(p - Vec2(e, 0)) ||
-         domain.contains(p + Vec2(0, e)) || domain.contains(p - Vec2(0, e));
+  for (int c = 0; c < dim; ++c) {
+    Point<dim> step = Point<dim>::Zero();
+    step[c] = e;
+    if (domain.contains(Point<dim>(p + step)) || domain.contains(Point<dim>(p - step))) return true;
+  }
+  return false;
 }
 
-std::vector<Vec2> lattice(const Domain& domain, double h, bool cell_centred) {
-  const Box box = domain.bounding_box();
-  const Vec2 size = box.size();
-  const int nx = steps(size.x(), h), ny = steps(size.y(), h);
-  const double hx = size.x() / nx, hy = size.y() / ny;
+/// The lattice points in the domain, x fastest, then y (then z).
+template <int dim, class D>
+std::vector<Point<dim>> lattice(const D& domain, double h, bool cell_centred) {
+  const auto box = domain.bounding_box();
+  const Point<dim> lo = lower(box), hi = upper(box), size = hi - lo;
   const double shift = cell_centred ? 0.5 : 0.0;
-  const int px = cell_centred ? nx : nx + 1, py = cell_centred ? ny : ny + 1;
-  std::vector<Vec2> points;
-  points.reserve(static_cast<std::size_t>(px) * py);
-  for (int j = 0; j < py; ++j)
-    for (int i = 0; i < px; ++i) {
-      // Snap the last vertex to the box edge exactly, so boundary nodes lie on the boundary.
-      const double x = (!cell_centred && i == nx) ? box.hi.x() : box.lo.x() + (i + shift) * hx;
-      const double y = (!cell_centred && j == ny) ? box.hi.y() : box.lo.y() + (j + shift) * hy;
-      const Vec2 p(x, y);
-      if (inside_up_to_roundoff(domain, p, h)) points.push_back(p);
-    }
+  std::array<int, dim> n, count;
+  Point<dim> step;
+  std::size_t total = 1;
+  for (int c = 0; c < dim; ++c) {
+    n[c] = steps(size[c], h);
+    step[c] = size[c] / n[c];
+    count[c] = cell_centred ? n[c] : n[c] + 1;
+    total *= static_cast<std::size_t>(count[c]);
+  }
+  std::vector<Point<dim>> points;
+  points.reserve(total);
+  std::array<int, dim> i{};
+  for (std::size_t t = 0; t < total; ++t) {
+    Point<dim> p;
+    // Snap the last vertex to the box's face exactly, so boundary nodes lie on the boundary.
+    for (int c = 0; c < dim; ++c)
+      p[c] = (!cell_centred && i[c] == n[c]) ? hi[c] : lo[c] + (i[c] + shift) * step[c];
+    if (inside_up_to_roundoff<dim>(domain, p, h)) points.push_back(p);
+    for (int c = 0; c < dim && ++i[c] == count[c]; ++c) i[c] = 0;  // next index, x fastest
+  }
   return points;
 }
 
-}  // namespace
-
-std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) {
+template <int dim, class D>
+std::vector<Point<dim>> cloud_in(const D& domain, const CloudSettings& s) {
   if (!(s.spacing > 0.0) || !std::isfinite(s.spacing))
     throw InputError(fmt::format("cloud: spacing must be positive, got {}", s.spacing));
   if (!(s.perturbation >= 0.0 && s.perturbation <= 1.0))
@@ -62,23 +93,30 @@ std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) {
                                  "spacing), got {}",
                                  s.perturbation));
   // Counted in floating point before any point is made: no spacing overflows the index.
-  const double expected = domain.bounding_box().area() / (s.spacing * s.spacing);
+  const double expected = box_measure(domain.bounding_box()) / power<dim>(s.spacing);
   if (!(expected <= std::numeric_limits<Index>::max()))
     throw InputError(fmt::format("cloud: spacing {} gives about {:.3g} points, more than the {} a cloud may hold",
                                  s.spacing, expected, std::numeric_limits<Index>::max()));
-  check_memory(expected * sizeof(Vec2) * 2.0, fmt::format("a cloud of spacing {} ({:.3g} points)", s.spacing, expected));
+  check_memory(expected * sizeof(Point<dim>) * 2.0,
+               fmt::format("a cloud of spacing {} ({:.3g} points)", s.spacing, expected));
+  // The draws of a point's coordinates go last axis first: the order of the plane clouds of
+  // earlier versions, so that a seed gives the same cloud as it always did.
   std::mt19937_64 rng(s.seed);
   std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  std::vector<Vec2> points;
+  std::vector<Point<dim>> points;
 
   switch (s.kind) {
-    case CloudKind::lattice: points = lattice(domain, s.spacing, s.cell_centred); break;
+    case CloudKind::lattice:
+      points = lattice<dim>(domain, s.spacing, s.cell_centred);
+      break;
     case CloudKind::perturbed: {
-      points = lattice(domain, s.spacing, s.cell_centred);
+      points = lattice<dim>(domain, s.spacing, s.cell_centred);
       const double amplitude = s.perturbation * s.spacing;
-      for (Vec2& p : points) {
+      for (Point<dim>& p : points) {
         for (int attempt = 0; attempt < 16; ++attempt) {
-          const Vec2 q = p + amplitude * Vec2(unit(rng), unit(rng));
+          Point<dim> offset;
+          for (int c = dim - 1; c >= 0; --c) offset[c] = unit(rng);  // last axis first (below)
+          const Point<dim> q = p + amplitude * offset;
           if (domain.contains(q)) {
             p = q;
             break;
@@ -88,12 +126,15 @@ std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) {
       break;
     }
     case CloudKind::random: {
-      const Box box = domain.bounding_box();
-      const auto n = static_cast<std::size_t>(std::llround(domain.area() / (s.spacing * s.spacing)));
+      const auto box = domain.bounding_box();
+      const auto n = static_cast<std::size_t>(std::llround(measure(domain) / power<dim>(s.spacing)));
       points.reserve(n);
-      std::uniform_real_distribution<double> ux(box.lo.x(), box.hi.x()), uy(box.lo.y(), box.hi.y());
+      std::array<std::uniform_real_distribution<double>, dim> u;
+      for (int c = 0; c < dim; ++c)
+        u[c] = std::uniform_real_distribution<double>(lower(box)[c], upper(box)[c]);
       while (points.size() < n) {
-        const Vec2 p(ux(rng), uy(rng));
+        Point<dim> p;
+        for (int c = dim - 1; c >= 0; --c) p[c] = u[c](rng);
         if (domain.contains(p)) points.push_back(p);
       }
       break;
@@ -105,17 +146,29 @@ std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) {
   return points;
 }
 
-std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes,
-                                        double ratio) {
+template <int dim, class D>
+std::vector<Point<dim>> quadrature_cloud_in(const D& domain, const CloudSettings& nodes, double ratio) {
   if (!(ratio >= 1.0) || !std::isfinite(ratio))
     throw InputError(fmt::format("quadrature cloud: ratio of quadrature points to nodes must be "
                                  ">= 1, got {}",
                                  ratio));
   CloudSettings q = nodes;
-  q.spacing = nodes.spacing / std::sqrt(ratio);
+  q.spacing = dim == 2 ? nodes.spacing / std::sqrt(ratio) : nodes.spacing / std::cbrt(ratio);
   q.cell_centred = true;
   q.seed = nodes.seed * 0x9E3779B97F4A7C15ull + 1;  // a stream independent of the nodes'
-  return make_cloud(domain, q);
+  return cloud_in<dim>(domain, q);
+}
+
+}  // namespace
+
+std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& s) { return cloud_in<2>(domain, s); }
+std::vector<Point<3>> make_cloud(const Solid& solid, const CloudSettings& s) { return cloud_in<3>(solid, s); }
+
+std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes, double ratio) {
+  return quadrature_cloud_in<2>(domain, nodes, ratio);
+}
+std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSettings& nodes, double ratio) {
+  return quadrature_cloud_in<3>(solid, nodes, ratio);
 }
 
 }  // namespace mfree

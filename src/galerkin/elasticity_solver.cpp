@@ -142,7 +142,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
             xq,
             rk_settings(domain, xq, qc.kind, hq, s.quadrature_order, s,
                         s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain))));
-        const BackgroundLattice lattice(domain, hq / s.lattice_refinement, s.quadrature_order == RKOrder::linear ? 1 : 2);
+        const BackgroundLattice<2> lattice(domain, hq / s.lattice_refinement,
+                                           s.quadrature_order == RKOrder::linear ? 1 : 2);
         return projected_quadrature(*res.trial, quad, lattice);
       }
       case QuadratureScheme::gauss_cells:

@@ -80,7 +80,7 @@ GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const Qua
 
 GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
                                         const RKShapeFunctions<2>& quadrature_functions,
-                                        const BackgroundLattice& lattice) {
+                                        const BackgroundLattice<2>& lattice) {
   GalerkinQuadrature q;
   q.points = quadrature_functions.nodes();
   const Index nq = q.size();

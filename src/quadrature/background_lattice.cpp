@@ -8,9 +8,10 @@
 #include <cmath>
 
 #include "mfree/core/error.hpp"
+#include "mfree/core/memory.hpp"
 #include "mfree/core/parallel.hpp"
-#include "mfree/geometry/polygon_integrals.hpp"
 #include "mfree/geometry/crack_faces.hpp"
+#include "mfree/geometry/polygon_integrals.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 #include "mfree/quadrature/rule_on_cracks.hpp"
@@ -118,6 +119,17 @@ void cut_cell_rule(const Domain& domain, const std::vector<Ring>& rings, const V
   }
 }
 
+/// InputError for a spacing that is not positive or an order other than 1 and 2.
+void check_lattice(double spacing, int order) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing))
+    throw InputError(fmt::format("background lattice: spacing must be positive, got {}", spacing));
+  if (order < 1 || order > max_order)
+    throw InputError(
+        fmt::format("background lattice: order must be 1 (trapezoid) or 2 (Simpson), "
+                    "got {}",
+                    order));
+}
+
 }  // namespace
 
 void lagrange_cell_integrals(const std::vector<Ring>& rings, const Vec2& lo, double side,
@@ -149,14 +161,10 @@ void lagrange_cell_integrals(const std::vector<Ring>& rings, const Vec2& lo, dou
   for (int k = 0; k < n * n; ++k) out[k] *= side * side;
 }
 
-BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int order)
+template <>
+BackgroundLattice<2>::BackgroundLattice(const Domain& domain, double spacing, int order)
     : spacing_(spacing), order_(order) {
-  if (!(spacing > 0.0) || !std::isfinite(spacing))
-    throw InputError(fmt::format("background lattice: spacing must be positive, got {}", spacing));
-  if (order < 1 || order > max_order)
-    throw InputError(fmt::format("background lattice: order must be 1 (trapezoid) or 2 (Simpson), "
-                                 "got {}",
-                                 order));
+  check_lattice(spacing, order);
   const Box box = domain.bounding_box();
   const double side = order * spacing;  // integration cell side
   const Index ncx = std::max<Index>(1, static_cast<Index>(std::ceil(box.size().x() / side - 1e-9)));
@@ -261,5 +269,52 @@ BackgroundLattice::BackgroundLattice(const Domain& domain, double spacing, int o
   weights_ = std::move(split.weights);
   cells_ = ncells;
 }
+
+template <>
+BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int order)
+    : spacing_(spacing), order_(order) {
+  check_lattice(spacing, order);
+  const AlignedBox<3>& box = solid.bounding_box();
+  const Point<3> size = box.sizes();
+  // Per axis: cells of side size / cells (about order * spacing), and the composite
+  // Newton–Cotes weight of each vertex: the sum over the cells holding it of its weight,
+  // side {1/2, 1/2} (trapezoid) or side {1/6, 2/3, 1/6} (Simpson).
+  std::array<std::vector<double>, 3> axis;
+  std::array<double, 3> step;
+  double vertices = 1.0;
+  for (int c = 0; c < 3; ++c) {
+    const Index cells = std::max<Index>(1, static_cast<Index>(std::ceil(size[c] / (order * spacing) - 1e-9)));
+    const double side = size[c] / cells;
+    step[c] = side / order;
+    axis[c].assign(static_cast<std::size_t>(cells) * order + 1, 0.0);
+    for (Index cell = 0; cell < cells; ++cell)
+      for (int i = 0; i <= order; ++i)
+        axis[c][static_cast<std::size_t>(cell) * order + i] +=
+            side * (order == 1 ? 0.5 : (i == 1 ? 2.0 / 3.0 : 1.0 / 6.0));
+    vertices *= static_cast<double>(axis[c].size());
+    cells_ = c == 0 ? cells : cells_ * cells;
+  }
+  if (vertices > 2e9)
+    throw InputError(
+        fmt::format("background lattice: {} x {} x {} vertices is too many; increase the lattice spacing",
+                    axis[0].size(), axis[1].size(), axis[2].size()));
+  check_memory(vertices * (sizeof(Point<3>) + sizeof(double)),
+               fmt::format("a background lattice of {:.3g} vertices", vertices));
+  points_.reserve(static_cast<std::size_t>(vertices));
+  weights_.reserve(static_cast<std::size_t>(vertices));
+  // The last vertex of each axis snapped onto the box's face.
+  const auto coordinate = [&](int c, std::size_t i) {
+    return i + 1 == axis[c].size() ? box.max()[c] : box.min()[c] + static_cast<double>(i) * step[c];
+  };
+  for (std::size_t k = 0; k < axis[2].size(); ++k)
+    for (std::size_t j = 0; j < axis[1].size(); ++j)
+      for (std::size_t i = 0; i < axis[0].size(); ++i) {
+        points_.emplace_back(coordinate(0, i), coordinate(1, j), coordinate(2, k));
+        weights_.push_back(axis[0][i] * axis[1][j] * axis[2][k]);
+      }
+}
+
+template class BackgroundLattice<2>;
+template class BackgroundLattice<3>;
 
 }  // namespace mfree

@@ -114,7 +114,7 @@ TEST_CASE("projected quadrature: its weights are the integration study's rk_quad
   const RKShapeFunctions<2> trial(nodes, rs);
   rs.node_radii = nodal_support_radii(points, cs.spacing, 2.5);
   const RKShapeFunctions<2> quadrature_functions(points, rs);
-  const BackgroundLattice lattice(domain, cs.spacing / 2, 1);
+  const BackgroundLattice<2> lattice(domain, cs.spacing / 2, 1);
   const int threads = omp_get_max_threads();
   for (const int t : {1, std::max(2, threads)}) {
     omp_set_num_threads(t);

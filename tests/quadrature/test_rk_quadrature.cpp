@@ -31,7 +31,7 @@ std::pair<std::vector<Vec2>, std::vector<double>> rk_rule(const Domain& d, Cloud
   rs.radius = factor * h;
   if (kind != CloudKind::lattice) rs.node_radii = nodal_support_radii(x, h, factor * 1.25);
   const RKShapeFunctions<2> rk(x, rs);
-  const BackgroundLattice lattice(d, h / 2, order == RKOrder::linear ? 1 : 2);
+  const BackgroundLattice<2> lattice(d, h / 2, order == RKOrder::linear ? 1 : 2);
   return {x, rk_quadrature_weights(rk, lattice)};
 }
 
@@ -56,7 +56,7 @@ TEST_CASE("background lattice weights integrate 1 and x exactly on every mesh", 
     const Domain d = mesh(name);
     for (int order : {1, 2}) {
       CAPTURE(name, order);
-      const BackgroundLattice lattice(d, 0.037, order);
+      const BackgroundLattice<2> lattice(d, 0.037, order);
       double s = 0.0;
       Vec2 m = Vec2::Zero();
       for (std::size_t v = 0; v < lattice.points().size(); ++v) {

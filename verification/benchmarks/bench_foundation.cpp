@@ -178,7 +178,7 @@ void BM_quadrature_weights(benchmark::State& state) {
   s.radius = (order == RKOrder::linear ? 2.0 : 3.0) * h;
   for (auto _ : state) {
     const RKShapeFunctions<2> rk(points, s);
-    const BackgroundLattice lattice(rectangle(), h / 2.0, order == RKOrder::linear ? 1 : 2);
+    const BackgroundLattice<2> lattice(rectangle(), h / 2.0, order == RKOrder::linear ? 1 : 2);
     const std::vector<double> w = rk_quadrature_weights(rk, lattice);
     benchmark::DoNotOptimize(w.data());
   }

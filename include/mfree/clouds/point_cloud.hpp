@@ -1,5 +1,5 @@
 #pragma once
-// Point clouds on a domain: DOF nodes and quadrature points.
+// Point clouds on a domain (a plane Domain or a Solid): DOF nodes and quadrature points.
 //
 // Every generator is seeded and reproducible: the same settings give the same points,
 // bit for bit, on every run and thread count.
@@ -8,10 +8,10 @@
 //              (the spacing per axis is adjusted so an integer number of steps spans it);
 //              vertex lattice (points on the box edges) or cell-centred lattice.
 //   perturbed  the lattice, each point moved by a uniform random offset in
-//              [-f h/2, f h/2]^2 (f: perturbation, a fraction of the spacing); a move that
+//              [-f h/2, f h/2]^dim (f: perturbation, a fraction of the spacing); a move that
 //              leaves the domain is redrawn (up to 16 times, then the point stays put), so
 //              points on the boundary stay in the closed domain.
-//   random     round(|Omega| / h^2) points uniformly distributed in the domain.
+//   random     round(|Omega| / h^dim) points uniformly distributed in the domain.
 //
 // Only points inside the closed domain are kept (lattice points up to round-off: a point
 // meant to lie on the boundary may land a few ulps outside it).
@@ -22,6 +22,7 @@
 #include "mfree/core/name_table.hpp"
 #include "mfree/core/types.hpp"
 #include "mfree/geometry/domain.hpp"
+#include "mfree/geometry/solid.hpp"
 
 namespace mfree {
 
@@ -38,11 +39,12 @@ struct CloudSettings {
 /// The points of a cloud inside the domain. Throws InputError for a bad spacing or
 /// perturbation, or when no point falls inside the domain.
 std::vector<Vec2> make_cloud(const Domain& domain, const CloudSettings& settings);
+std::vector<Point<3>> make_cloud(const Solid& solid, const CloudSettings& settings);
 
 /// A quadrature cloud for a DOF cloud: about `ratio` points per node (ratio >= 1), of the
-/// same kind, spacing h / sqrt(ratio), cell-centred, seeded differently from the nodes.
-std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes,
-                                        double ratio);
+/// same kind, spacing h / ratio^(1/dim), cell-centred, seeded differently from the nodes.
+std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSettings& nodes, double ratio);
+std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSettings& nodes, double ratio);
 
 /// lattice, perturbed, random: the names scenes use.
 const NameTable<CloudKind>& cloud_kind_names();

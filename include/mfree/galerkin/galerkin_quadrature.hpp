@@ -43,7 +43,7 @@ struct GalerkinQuadrature {
 /// The projected construction on a quadrature cloud with its RK functions.
 GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
                                         const RKShapeFunctions<2>& quadrature_functions,
-                                        const BackgroundLattice& lattice);
+                                        const BackgroundLattice<2>& lattice);
 
 /// The direct construction on a given rule.
 GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const QuadratureRule& rule);

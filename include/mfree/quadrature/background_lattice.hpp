@@ -24,23 +24,34 @@
 // on a crack or an interface is two, one on each face with half its weight
 // (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy.
 
+#include <type_traits>
 #include <vector>
 
 #include "mfree/core/types.hpp"
 #include "mfree/geometry/domain.hpp"
+#include "mfree/geometry/solid.hpp"
 
 namespace mfree {
 
+/// The lattice of a plane Domain (above) or of a Solid (dim = 3). A solid's lattice is fitted
+/// to its bounding box, the cell sides order * spacing adjusted per axis so that a whole
+/// number of cells spans it: every cell of a box solid is whole, and c_v is the tensor
+/// product of the composite Newton–Cotes weights along the three axes. (Cut cells against a
+/// solid's surfaces come with the solids from gmsh.)
+template <int dim>
 class BackgroundLattice {
  public:
-  /// Lattice of vertex spacing `spacing` > 0 and Newton–Cotes order 1 or 2 over the domain.
-  BackgroundLattice(const Domain& domain, double spacing, int order);
+  using DomainType = std::conditional_t<dim == 2, Domain, Solid>;
 
+  /// Lattice of vertex spacing `spacing` > 0 and Newton–Cotes order 1 or 2 over the domain.
+  BackgroundLattice(const DomainType& domain, double spacing, int order);
+
+  /// The nominal vertex spacing (a solid's is adjusted per axis, above).
   [[nodiscard]] double spacing() const { return spacing_; }
   [[nodiscard]] int order() const { return order_; }
   /// Lattice vertices with a non-zero weight, in lattice order, then the cut cells' points
   /// (each on a crack as its two face copies).
-  [[nodiscard]] const std::vector<Vec2>& points() const { return points_; }
+  [[nodiscard]] const std::vector<Point<dim>>& points() const { return points_; }
   /// The weight of each of points(); cut cells' weights may be negative.
   [[nodiscard]] const std::vector<double>& weights() const { return weights_; }
   [[nodiscard]] Index cut_cells() const { return cut_cells_; }
@@ -49,11 +60,16 @@ class BackgroundLattice {
  private:
   double spacing_;
   int order_;
-  std::vector<Vec2> points_;
+  std::vector<Point<dim>> points_;
   std::vector<double> weights_;
   Index cut_cells_ = 0;
   Index cells_ = 0;
 };
+
+template <>
+BackgroundLattice<2>::BackgroundLattice(const Domain& domain, double spacing, int order);
+template <>
+BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int order);
 
 /// Integrals over the region bounded by `rings` (Green's theorem orientation: outer
 /// counter-clockwise, holes clockwise) of the (order+1)^2 tensor Lagrange functions of

@@ -32,14 +32,14 @@ inline constexpr Index lattice_chunk = Index{1} << 15;
 /// the point's index in its chunk). The terms run in parallel over K, each K on one thread:
 /// every sum over v is taken in one fixed order, so a run gives the same numbers bit for bit
 /// on any number of threads.
-template <class AtVertex, class Term>
-void for_lattice_terms(const RKShapeFunctions<2>& quadrature_functions, const BackgroundLattice& lattice,
-                       AtVertex&& at_vertex, Term&& term) {
+template <int dim, class AtVertex, class Term>
+void for_lattice_terms(const RKShapeFunctions<dim>& quadrature_functions,
+                       const BackgroundLattice<dim>& lattice, AtVertex&& at_vertex, Term&& term) {
   const auto& lp = lattice.points();
   const auto& lc = lattice.weights();
   const Index nl = static_cast<Index>(lp.size());
   const Index nq = static_cast<Index>(quadrature_functions.nodes().size());
-  std::vector<ShapeValues<2>> phik(static_cast<std::size_t>(std::min(lattice_chunk, nl)));
+  std::vector<ShapeValues<dim>> phik(static_cast<std::size_t>(std::min(lattice_chunk, nl)));
   // K's terms from first[K]: the chunk's lattice point and its coefficient c_v phi_K(v),
   // computed here once and read by `term` from memory (so that no caller's compiler fuses
   // the product into its sums: every caller adds the same rounded coefficients).
@@ -76,8 +76,9 @@ void for_lattice_terms(const RKShapeFunctions<2>& quadrature_functions, const Ba
 
 /// w_K for every point of `quadrature_functions` (for_lattice_terms); each lattice vertex is
 /// evaluated once.
-std::vector<double> rk_quadrature_weights(const RKShapeFunctions<2>& quadrature_functions,
-                                          const BackgroundLattice& lattice);
+template <int dim>
+std::vector<double> rk_quadrature_weights(const RKShapeFunctions<dim>& quadrature_functions,
+                                          const BackgroundLattice<dim>& lattice);
 
 /// Count and most negative value of the negative weights (quadratic RK makes some).
 struct NegativeWeights {
