@@ -1,5 +1,6 @@
 #include "mfree/linalg/krylov_solver.hpp"
 
+#include <fmt/format.h>
 #include <petscksp.h>
 
 #include <algorithm>
@@ -8,11 +9,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <fmt/format.h>
 #include <stdexcept>
 #include <vector>
 
 #include "mfree/core/error.hpp"
+#include "mfree/linalg/rigid_body_modes.hpp"
 
 namespace mfree {
 
@@ -156,19 +157,12 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
     const auto nodes = static_cast<Index>(system_.nodes.size());
     if (nodes * bs != n)
       throw std::logic_error(fmt::format("KrylovSolver: {} nodes for {} unknowns of block size {}", nodes, n, bs));
-    std::vector<Eigen::VectorXd> modes(3, Eigen::VectorXd::Zero(n));
-    for (Index i = 0; i < nodes; ++i) {
-      const Vec2& x = system_.nodes[i];
-      if (bs == 1) {
-        modes[0][i] = 1.0, modes[1][i] = x.x(), modes[2][i] = x.y();
-      } else {
-        modes[0][2 * i] = 1.0, modes[1][2 * i + 1] = 1.0;
-        modes[2][2 * i] = -x.y(), modes[2][2 * i + 1] = x.x();
-      }
-    }
+    const Eigen::MatrixXd r = rigid_body_modes<2>(system_.nodes, bs, Vec2::Zero());
+    std::vector<Eigen::VectorXd> modes;
+    for (Eigen::Index j = 0; j < r.cols(); ++j) modes.emplace_back(r.col(j));
     orthonormalise(modes);
-    Vec vecs[3];
-    for (int k = 0; k < 3; ++k) {
+    std::vector<Vec> vecs(modes.size());
+    for (std::size_t k = 0; k < modes.size(); ++k) {
       check(VecCreateSeq(PETSC_COMM_SELF, n, &vecs[k]), "VecCreateSeq");
       PetscScalar* v = nullptr;
       check(VecGetArray(vecs[k], &v), "VecGetArray");
@@ -176,7 +170,9 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
       check(VecRestoreArray(vecs[k], &v), "VecRestoreArray");
     }
     MatNullSpace space = nullptr;
-    check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, 3, vecs, &space), "MatNullSpaceCreate");
+    check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vecs.size()), vecs.data(),
+                             &space),
+          "MatNullSpaceCreate");
     check(MatSetNearNullSpace(p.a, space), "MatSetNearNullSpace");
     MatNullSpaceDestroy(&space);
     for (Vec& v : vecs) VecDestroy(&v);
