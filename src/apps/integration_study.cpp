@@ -173,7 +173,7 @@ std::vector<IntegrationRow> run_integration_study(const IntegrationStudySettings
       // Independent of the clouds: n x n points per cell of side n h, as many points as a
       // lattice cloud of this level.
       const auto t0 = Clock::now();
-      const QuadratureRule g = gauss_cell_rule(domain, s.gauss_points * h, s.gauss_points);
+      const QuadratureRule<2> g = gauss_cell_rule(domain, s.gauss_points * h, s.gauss_points);
       record("-", "-", "gauss_cells", level, g.points, g.weights, seconds_since(t0));
     }
     log << fmt::format("  level {}/{}: {} points across, {:.1f} s elapsed, {} thread(s)\n", li + 1,

@@ -42,7 +42,8 @@ std::optional<ExactMotion> scaled_static(const ElasticityScene& scene) {
 }
 
 /// The trial functions at the scene's probe, sampled once for the whole run.
-std::optional<GalerkinQuadrature> probe_functions(const ElasticityScene& scene, const Discretisation& disc) {
+std::optional<GalerkinQuadrature<2>> probe_functions(const ElasticityScene& scene,
+                                                     const Discretisation& disc) {
   if (!scene.output.probe) return std::nullopt;
   return sample_shape_functions(*disc.trial, {*scene.output.probe}, false);
 }
@@ -52,7 +53,7 @@ MaterialAt law_at(const TotalLagrangian& model, const Domain& domain) {
   return [&model, &domain](const Vec2& x) -> const Material& { return model.problem().law_at(domain, x); };
 }
 
-QuadratureRule error_rule(const ElasticityScene& scene) {
+QuadratureRule<2> error_rule(const ElasticityScene& scene) {
   return gauss_cell_rule(scene.domain, 0.5 * scene.settings.nodes.spacing, scene.settings.error_gauss_points);
 }
 
@@ -85,7 +86,7 @@ int run_static(const ElasticityScene& scene) {
   std::optional<SolidFrames> frames;
   if (o.vtk && !o.fields.empty()) frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
 
-  const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
+  const std::optional<GalerkinQuadrature<2>> probe_at = probe_functions(scene, disc);
   NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
   ns.solver = scene.settings.solver;
   ns.log = &std::cout;
@@ -319,7 +320,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   std::optional<SolidFrames> frames;
   if (verbose && o.vtk && !o.fields.empty() && dyn.frames > 0)
     frames.emplace(scene, disc, exact ? &*exact : nullptr, &model);
-  const std::optional<GalerkinQuadrature> probe_at = probe_functions(scene, disc);
+  const std::optional<GalerkinQuadrature<2>> probe_at = probe_functions(scene, disc);
   if (verbose) run.reactions.emplace("time", essential_parts(model.problem()), true);
   std::size_t next_error = 0;
   double next_frame = 0.0;

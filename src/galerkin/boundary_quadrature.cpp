@@ -75,8 +75,8 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
   return bq;
 }
 
-GalerkinQuadrature boundary_functions(const RKShapeFunctions<2>& trial, const BoundaryQuadrature& bq) {
-  GalerkinQuadrature at = sample_shape_functions(trial, bq.samples, true);
+GalerkinQuadrature<2> boundary_functions(const RKShapeFunctions<2>& trial, const BoundaryQuadrature& bq) {
+  GalerkinQuadrature<2> at = sample_shape_functions(trial, bq.samples, true);
   for (Index p = 0; p < at.size(); ++p) {
     at.points[p] = bq.points[p];
     const Vec2 back = bq.points[p] - bq.samples[p];

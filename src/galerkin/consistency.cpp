@@ -18,8 +18,8 @@ const NameTable<Consistency>& consistency_names() {
 
 std::string_view to_string(Consistency c) { return consistency_names().name(c); }
 
-ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                             const GalerkinQuadrature& at_boundary,
+ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
+                                             const GalerkinQuadrature<2>& at_boundary,
                                              const BoundaryQuadrature& bq, RKOrder order)
     : q_(q),
       nodes_(nodes),
@@ -133,7 +133,7 @@ namespace {
 
 /// Three nodes spanning a large triangle in each set of nodes that the rows join (union-find
 /// over the rows): the pins of the symmetric correction's null space.
-std::vector<Index> pinned_nodes(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes) {
+std::vector<Index> pinned_nodes(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes) {
   const Index n = static_cast<Index>(nodes.size());
   std::vector<Index> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -167,8 +167,9 @@ std::vector<Index> pinned_nodes(const GalerkinQuadrature& q, const std::vector<V
 
 }  // namespace
 
-SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                                              const std::vector<Vec2>& residuals, const SolverSettings& settings) {
+SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
+                                              const std::vector<Vec2>& residuals,
+                                              const SolverSettings& settings) {
   const Index nk = q.size();
   const Index n = static_cast<Index>(nodes.size());
   // Per row: centre, scale and the inverse Gram matrix (P^T P)^-1 of P = [1, (x_I - x_K) / s].

@@ -57,7 +57,7 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
                                                 const std::vector<std::string>& face_conditions) {
   std::vector<TipIntensity> out;
   if (domain.cracks().empty()) return out;
-  const QuadratureRule rule = gauss_cell_rule(domain, 0.5 * h, 4);
+  const QuadratureRule<2> rule = gauss_cell_rule(domain, 0.5 * h, 4);
   for (std::size_t c = 0; c < domain.cracks().size(); ++c) {
     const Crack& crack = domain.cracks()[c];
     for (int end = 0; end < 2; ++end) {
@@ -93,7 +93,7 @@ std::vector<TipIntensity> crack_tip_intensities(const Domain& domain, const RKSh
           points.push_back(rule.points[p]);
           weights.push_back(rule.weights[p]);
         }
-      const GalerkinQuadrature at = sample_shape_functions(trial, points, true);
+      const GalerkinQuadrature<2> at = sample_shape_functions(trial, points, true);
       std::vector<Mat2> gradients(points.size());
       std::vector<Eigen::Vector3d> stresses(points.size());
       for (Index k = 0; k < at.size(); ++k) {

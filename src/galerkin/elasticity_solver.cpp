@@ -39,7 +39,7 @@ Consistency default_consistency(QuadratureScheme s) {
 }
 
 std::vector<Vec2> Discretisation::displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const {
-  const GalerkinQuadrature at = sample_shape_functions(*trial, points, false);
+  const GalerkinQuadrature<2> at = sample_shape_functions(*trial, points, false);
   std::vector<Vec2> u(points.size());
   for (Index k = 0; k < at.size(); ++k) u[k] = displacement_at(at, k, d);
   return u;
@@ -150,7 +150,8 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
         return direct_quadrature(
             *res.trial, gauss_cell_rule(domain, h, s.gauss_points.value_or(default_gauss_points(s.order))));
       case QuadratureScheme::nodal:
-        return direct_quadrature(*res.trial, QuadratureRule{res.nodes, voronoi_weights(res.nodes, domain)});
+        return direct_quadrature(*res.trial,
+                                 QuadratureRule<2>{res.nodes, voronoi_weights(res.nodes, domain)});
     }
     throw Error("unknown quadrature scheme");
   });

@@ -21,7 +21,7 @@ Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const V
                                  const std::function<Vec2(const Vec2&)>& field,
                                  const SolverSettings& settings) {
   // M v = int rho0 phi v0 with M's own densities: M^-1 of the rows is the L2 projection in rho0's weight.
-  const GalerkinQuadrature& q = model.quadrature();
+  const GalerkinQuadrature<2>& q = model.quadrature();
   const SparseMatrix m = model.mass_matrix();
   const std::vector<double> rho = model.point_densities();
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(model.dofs());

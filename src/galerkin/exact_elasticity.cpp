@@ -8,7 +8,7 @@
 namespace mfree {
 
 ElasticErrors elastic_errors(const RKShapeFunctions<2>& trial, const Eigen::VectorXd& d, const LawAt& law_at,
-                             const ExactElasticity& exact, const QuadratureRule& rule) {
+                             const ExactElasticity& exact, const QuadratureRule<2>& rule) {
   // Streamed over the points (fine rules have ~150 points per node): per-thread sums of
   // |u^h - u|^2, |u|^2, energy and stress norms, added in thread order.
   using Sums = Eigen::Matrix<double, 7, 1>;

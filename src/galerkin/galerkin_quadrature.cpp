@@ -1,6 +1,7 @@
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <numeric>
@@ -17,19 +18,20 @@ namespace {
 /// Fills the CSR rows of q from per-point evaluations of `trial`, each row sorted by node
 /// index so that row lookups elsewhere can bisect. Each block of points appends its rows to
 /// arrays of its own (no allocation per point); the blocks are then copied into place.
-void fill_rows(const RKShapeFunctions<2>& trial, GalerkinQuadrature& q, bool with_gradient) {
+template <int dim>
+void fill_rows(const RKShapeFunctions<dim>& trial, GalerkinQuadrature<dim>& q, bool with_gradient) {
   const Index n = q.size();
   constexpr Index block = 1024;
   struct Rows {
     std::vector<Index> nodes;
     std::vector<double> phi;
-    std::vector<Vec2> grad;
+    std::vector<Point<dim>> grad;
   };
   std::vector<Rows> blocks((n + block - 1) / block);
   q.offsets.assign(n + 1, 0);
   parallel_blocks(n, block, [&](Index begin, Index end) {
     Rows& out = blocks[begin / block];
-    ShapeValues<2> v;
+    ShapeValues<dim> v;
     std::vector<Index> order;
     for (Index k = begin; k < end; ++k) {
       trial.evaluate(q.points[k], v, with_gradient);
@@ -47,7 +49,7 @@ void fill_rows(const RKShapeFunctions<2>& trial, GalerkinQuadrature& q, bool wit
   for (Index k = 0; k < n; ++k) q.offsets[k + 1] += q.offsets[k];
   q.nodes.resize(q.offsets[n]);
   q.phi.resize(q.offsets[n]);
-  q.grad.assign(q.offsets[n], Vec2::Zero());
+  q.grad.assign(q.offsets[n], Point<dim>::Zero());
   parallel_blocks(static_cast<Index>(blocks.size()), 1, [&](Index b, Index) {
     const Rows& in = blocks[b];
     const Index at = q.offsets[b * block];
@@ -59,9 +61,10 @@ void fill_rows(const RKShapeFunctions<2>& trial, GalerkinQuadrature& q, bool wit
 
 }  // namespace
 
-GalerkinQuadrature sample_shape_functions(const RKShapeFunctions<2>& trial, const std::vector<Vec2>& points,
-                                          bool with_gradient) {
-  GalerkinQuadrature q;
+template <int dim>
+GalerkinQuadrature<dim> sample_shape_functions(const RKShapeFunctions<dim>& trial,
+                                               const std::vector<Point<dim>>& points, bool with_gradient) {
+  GalerkinQuadrature<dim> q;
   q.points = points;
   q.weights.assign(points.size(), 1.0);
   q.centroids = points;
@@ -69,8 +72,10 @@ GalerkinQuadrature sample_shape_functions(const RKShapeFunctions<2>& trial, cons
   return q;
 }
 
-GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const QuadratureRule& rule) {
-  GalerkinQuadrature q;
+template <int dim>
+GalerkinQuadrature<dim> direct_quadrature(const RKShapeFunctions<dim>& trial,
+                                          const QuadratureRule<dim>& rule) {
+  GalerkinQuadrature<dim> q;
   q.points = rule.points;
   q.weights = rule.weights;
   q.centroids = rule.points;
@@ -78,10 +83,11 @@ GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const Qua
   return q;
 }
 
-GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
-                                        const RKShapeFunctions<2>& quadrature_functions,
-                                        const BackgroundLattice<2>& lattice) {
-  GalerkinQuadrature q;
+template <int dim>
+GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
+                                             const RKShapeFunctions<dim>& quadrature_functions,
+                                             const BackgroundLattice<dim>& lattice) {
+  GalerkinQuadrature<dim> q;
   q.points = quadrature_functions.nodes();
   const Index nq = q.size();
 
@@ -94,14 +100,14 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
   // interface or a crack is not in the row, so the symmetric correction's projector
   // (consistency.hpp) takes the linear fields of the nodes K sees, and a piecewise-linear field
   // stays exact.
-  GalerkinQuadrature at_points = sample_shape_functions(trial, q.points, false);
+  GalerkinQuadrature<dim> at_points = sample_shape_functions(trial, q.points, false);
   const double trial_max = trial.max_support_radius();
-  const CellList<2> node_cells(trial.nodes(), trial_max);
+  const CellList<dim> node_cells(trial.nodes(), trial_max);
   const bool circular = trial.settings().support == SupportShape::circular &&
                         quadrature_functions.settings().support == SupportShape::circular;
   const std::shared_ptr<const SupportObstacles>& obstacles = trial.settings().obstacles;
-  std::optional<SupportPaths> paths;
-  if (trial.settings().rule != SupportRule::plain && obstacles && !obstacles->empty())
+  std::optional<SupportPaths> paths;  // plane clouds only (3D supports are plain)
+  if (dim == 2 && trial.settings().rule != SupportRule::plain && obstacles && !obstacles->empty())
     paths.emplace(*obstacles, SupportRule::geodesic, trial_max + quadrature_functions.max_support_radius());
   std::vector<std::vector<Index>> row_nodes(nq);
   parallel_blocks(nq, 512, [&](Index b, Index e) {
@@ -109,12 +115,14 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
     Vec2 unused;
     for (Index k = b; k < e; ++k) {
       const double ak = quadrature_functions.support_radius(k);
-      const bool near_obstacles = paths && paths->prepare(q.points[k], scratch);
-      node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Vec2& p) {
+      bool near_obstacles = false;
+      if constexpr (dim == 2) near_obstacles = paths && paths->prepare(q.points[k], scratch);
+      node_cells.for_each_in_box(q.points[k], ak + trial_max, [&](Index i, const Point<dim>& p) {
         const double reach = ak + trial.support_radius(i);
-        const Vec2 d = p - q.points[k];
+        const Point<dim> d = p - q.points[k];
         if (circular ? d.squaredNorm() >= reach * reach : d.cwiseAbs().maxCoeff() >= reach) return;
-        if (near_obstacles && !(paths->distance(p, q.points[k], scratch, unused) < reach)) return;
+        if constexpr (dim == 2)
+          if (near_obstacles && !(paths->distance(p, q.points[k], scratch, unused) < reach)) return;
         row_nodes[k].push_back(i);
       });
       std::sort(row_nodes[k].begin(), row_nodes[k].end());
@@ -124,7 +132,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
   for (Index k = 0; k < nq; ++k) q.offsets[k + 1] = q.offsets[k] + static_cast<Index>(row_nodes[k].size());
   q.nodes.resize(q.offsets[nq]);
   q.phi.assign(q.offsets[nq], 0.0);
-  q.grad.assign(q.offsets[nq], Vec2::Zero());
+  q.grad.assign(q.offsets[nq], Point<dim>::Zero());
   for (Index k = 0; k < nq; ++k) {
     std::copy(row_nodes[k].begin(), row_nodes[k].end(), q.nodes.begin() + q.offsets[k]);
     for (Index s = at_points.offsets[k]; s < at_points.offsets[k + 1]; ++s) {
@@ -140,9 +148,9 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
   // row K = sum_v c_v phi_K(v) grad phi_I(v); grad phi_I evaluated once per lattice point.
   std::vector<double> w(nq, 0.0);
   std::vector<Index> missing(nq, 0);
-  std::vector<Vec2> moment(nq, Vec2::Zero());
+  std::vector<Point<dim>> moment(nq, Point<dim>::Zero());
   const auto& lp = lattice.points();
-  std::vector<ShapeValues<2>> phii(
+  std::vector<ShapeValues<dim>> phii(
       static_cast<std::size_t>(std::min(lattice_chunk, static_cast<Index>(lp.size()))));
   for_lattice_terms(
       quadrature_functions, lattice, [&](Index local, Index v) { trial.evaluate(lp[v], phii[local], true); },
@@ -150,7 +158,7 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
         w[k] += c;
         moment[k] += c * lp[v];
         const auto row_first = q.nodes.begin() + q.offsets[k], row_last = q.nodes.begin() + q.offsets[k + 1];
-        const ShapeValues<2>& gi = phii[local];
+        const ShapeValues<dim>& gi = phii[local];
         for (std::size_t i = 0; i < gi.size(); ++i) {
           const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
           if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below
@@ -163,16 +171,16 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
   for (Index k = 0; k < nq; ++k) {
     if (missing[k] > 0)
       throw NumericalError(fmt::format(
-          "quadrature point {} at ({:.6g}, {:.6g}): {} gradient term(s) of nodes whose supports meet its own "
+          "quadrature point {} at ({:.6g}): {} gradient term(s) of nodes whose supports meet its own "
           "though no path in the domain joins them within the two radii (the rows of the projected scheme "
           "missed them)",
-          k, q.points[k].x(), q.points[k].y(), missing[k]));
+          k, fmt::join(q.points[k].begin(), q.points[k].end(), ", "), missing[k]));
     if (!(w[k] > 0.0))
-      throw NumericalError(fmt::format(
-          "quadrature point {} at ({:.6g}, {:.6g}) has weight {:.3e} <= 0: its projected gradients "
-          "are undefined. Use a linear quadrature cloud, a more regular quadrature cloud, or a "
-          "larger quadrature support.",
-          k, q.points[k].x(), q.points[k].y(), w[k]));
+      throw NumericalError(
+          fmt::format("quadrature point {} at ({:.6g}) has weight {:.3e} <= 0: its projected gradients "
+                      "are undefined. Use a linear quadrature cloud, a more regular quadrature cloud, or a "
+                      "larger quadrature support.",
+                      k, fmt::join(q.points[k].begin(), q.points[k].end(), ", "), w[k]));
     for (Index s = q.offsets[k]; s < q.offsets[k + 1]; ++s) q.grad[s] /= w[k];
     moment[k] /= w[k];
   }
@@ -180,5 +188,16 @@ GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
   q.centroids = std::move(moment);
   return q;
 }
+
+template GalerkinQuadrature<2> sample_shape_functions(const RKShapeFunctions<2>&,
+                                                      const std::vector<Point<2>>&, bool);
+template GalerkinQuadrature<3> sample_shape_functions(const RKShapeFunctions<3>&,
+                                                      const std::vector<Point<3>>&, bool);
+template GalerkinQuadrature<2> direct_quadrature(const RKShapeFunctions<2>&, const QuadratureRule<2>&);
+template GalerkinQuadrature<3> direct_quadrature(const RKShapeFunctions<3>&, const QuadratureRule<3>&);
+template GalerkinQuadrature<2> projected_quadrature(const RKShapeFunctions<2>&, const RKShapeFunctions<2>&,
+                                                    const BackgroundLattice<2>&);
+template GalerkinQuadrature<3> projected_quadrature(const RKShapeFunctions<3>&, const RKShapeFunctions<3>&,
+                                                    const BackgroundLattice<3>&);
 
 }  // namespace mfree

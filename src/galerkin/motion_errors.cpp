@@ -9,7 +9,7 @@
 
 namespace mfree {
 
-MotionErrorSampler::MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule& rule,
+MotionErrorSampler::MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule<2>& rule,
                                        const MaterialAt& law_at)
     : at_(sample_shape_functions(trial, rule.points, true)) {
   at_.weights = rule.weights;

@@ -11,7 +11,7 @@ bool is_essential(const BoundaryCondition& c) {
 }
 
 /// sum_s phi_s d_{node s} on row k of q: u^h at point k.
-Vec2 row_value(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d) {
+Vec2 row_value(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d) {
   Vec2 u = Vec2::Zero();
   for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u += q.phi[s] * d.segment<2>(2 * q.nodes[s]);
   return u;
@@ -63,7 +63,7 @@ std::vector<std::string> essential_parts(const SolidProblem& problem) {
 Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, const LoadState& load) {
   const SolidProblem& problem = model.problem();
   const BoundaryQuadrature& bq = model.boundary();
-  const GalerkinQuadrature& at = model.at_boundary();
+  const GalerkinQuadrature<2>& at = model.at_boundary();
   Reactions r;
   r.current_arm = !is_small_strain(problem.material);
   for (const Material& m : problem.region_materials) r.current_arm = r.current_arm || !is_small_strain(m);
@@ -96,7 +96,7 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
     }
   }
   if (problem.body_force) {
-    const GalerkinQuadrature& q = model.quadrature();
+    const GalerkinQuadrature<2>& q = model.quadrature();
     for (Index k = 0; k < q.size(); ++k) {
       const Vec2 arm = r.current_arm ? Vec2(q.points[k] + row_value(q, k, d)) : q.points[k];
       const Vec2 b = load.factor * problem.body_force(q.points[k], load.time);

@@ -4,7 +4,7 @@
 
 namespace mfree {
 
-Eigen::Vector3d strain_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d) {
+Eigen::Vector3d strain_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d) {
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
     const Index i = q.nodes[s];
@@ -16,7 +16,7 @@ Eigen::Vector3d strain_at(const GalerkinQuadrature& q, Index k, const Eigen::Vec
   return e;
 }
 
-Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d) {
+Vec2 displacement_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d) {
   Vec2 u = Vec2::Zero();
   for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u += q.phi[s] * d.segment<2>(2 * q.nodes[s]);
   return u;
@@ -34,8 +34,8 @@ SolidProblem solid_problem(const ElasticityProblem& problem) {
 }
 
 ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
-                                     const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
-                                     const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary) {
+                                     const GalerkinQuadrature<2>& q, const std::vector<Vec2>* test_gradients,
+                                     const BoundaryQuadrature& bq, const GalerkinQuadrature<2>& at_boundary) {
   if (problem.region_materials.empty()) problem.material.validate();
   for (const LinearElastic& m : problem.region_materials) m.validate();
   const TotalLagrangian model(solid_problem(problem), domain, nodes, q, test_gradients, bq, at_boundary);

@@ -49,7 +49,7 @@ Mat2 rotation_minus_90() {
 /// I >= J are summed (rows are sorted: from J's own slot on) and the others copied,
 /// K_IJ = K_JI^T: half the work, and the matrix symmetric to the last bit.
 template <class Column>
-void add_column_blocks(const GalerkinQuadrature& q, const RowIncidence& rows, const NodePattern& pattern,
+void add_column_blocks(const GalerkinQuadrature<2>& q, const RowIncidence& rows, const NodePattern& pattern,
                        bool symmetric, double* values, Column&& column) {
   const Index n = pattern.size();
   parallel_ranges(n, [&](int, Index begin, Index end) {
@@ -137,8 +137,8 @@ std::vector<BoundarySelection> condition_parts(const std::vector<BoundaryConditi
 }
 
 TotalLagrangian::TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes,
-                                 const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
-                                 const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary)
+                                 const GalerkinQuadrature<2>& q, const std::vector<Vec2>* test_gradients,
+                                 const BoundaryQuadrature& bq, const GalerkinQuadrature<2>& at_boundary)
     : problem_(std::move(problem)),
       nodes_(nodes),
       q_(q),

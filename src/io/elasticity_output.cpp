@@ -17,12 +17,13 @@ std::vector<double> flatten(const std::vector<Vec2>& v) {
 /// Displacement, stress and von Mises fields at points, from u^h = sum phi_I d_I and its
 /// true gradients; exact values and errors when known. Only the fields asked for.
 std::vector<PointField> sampled_fields(const ElasticityScene& scene, const ElasticityResult& r,
-                                       const std::vector<Vec2>& points, const GalerkinQuadrature* given,
+                                       const std::vector<Vec2>& points, const GalerkinQuadrature<2>* given,
                                        const std::optional<ExactElasticity>& exact) {
   const OutputSettings& o = scene.output;
   const bool need_stress = o.wants("stress") || o.wants("von_mises");
-  const GalerkinQuadrature sampled = given ? GalerkinQuadrature{} : sample_shape_functions(*r.trial, points, need_stress);
-  const GalerkinQuadrature& at = given ? *given : sampled;
+  const GalerkinQuadrature<2> sampled =
+      given ? GalerkinQuadrature<2>{} : sample_shape_functions(*r.trial, points, need_stress);
+  const GalerkinQuadrature<2>& at = given ? *given : sampled;
   std::vector<PointField> f;
   if (o.wants("displacement") || o.wants("error")) {
     std::vector<Vec2> u(points.size());

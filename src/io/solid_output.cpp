@@ -51,7 +51,7 @@ SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& dis
 }
 
 void SolidFrames::write_points(double time, const Eigen::VectorXd& d) {
-  const GalerkinQuadrature& q = model_->quadrature();
+  const GalerkinQuadrature<2>& q = model_->quadrature();
   const bool want_response = output_.wants("stress") || output_.wants("von_mises") || output_.wants("plastic_strain");
   std::vector<double> u, sigma, vm, alpha;
   for (Index k = 0; k < q.size(); ++k) {

@@ -222,7 +222,7 @@ BackgroundLattice<2>::BackgroundLattice(const Domain& domain, double spacing, in
       if ((maybe_cut[cell] & interface) || (maybe_cut[cell] && crack_crosses(domain, Box{lo, lo + Vec2(side, side)}))) {
         // Each region's part apart, quartered where a crack crosses, by interior points
         // (gauss_cells.hpp, degree 2 order + 1): no point straddles a jump of the functions or the law.
-        QuadratureRule parts;
+        QuadratureRule<2> parts;
         add_cell_points(domain, Box{lo, lo + Vec2(side, side)}, order + 1, parts);
         cut_points[t].insert(cut_points[t].end(), parts.points.begin(), parts.points.end());
         cut_weights[t].insert(cut_weights[t].end(), parts.weights.begin(), parts.weights.end());
@@ -263,8 +263,8 @@ BackgroundLattice<2>::BackgroundLattice(const Domain& domain, double spacing, in
     points_.insert(points_.end(), cut_points[t].begin(), cut_points[t].end());
     weights_.insert(weights_.end(), cut_weights[t].begin(), cut_weights[t].end());
   }
-  QuadratureRule split =
-      split_rule_on_cracks(domain, QuadratureRule{std::move(points_), std::move(weights_)}, spacing);
+  QuadratureRule<2> split =
+      split_rule_on_cracks(domain, QuadratureRule<2>{std::move(points_), std::move(weights_)}, spacing);
   points_ = std::move(split.points);
   weights_ = std::move(split.weights);
   cells_ = ncells;

@@ -25,7 +25,7 @@ bool is_box(const std::vector<Ring>& rings, const Box& box) {
 
 }  // namespace
 
-void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRule& rule, int depth) {
+void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRule<2>& rule, int depth) {
   if (depth < crack_depth && crack_crosses(domain, cell)) {  // the functions jump across the crack
     const Vec2 mid = 0.5 * (cell.lo + cell.hi);
     for (const Box& quarter : {Box{cell.lo, mid}, Box{Vec2(mid.x(), cell.lo.y()), Vec2(cell.hi.x(), mid.y())},
@@ -52,7 +52,7 @@ void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRul
     }
 }
 
-QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
+QuadratureRule<2> gauss_cell_rule(const Domain& domain, double cell_size, int n) {
   if (!(cell_size > 0.0))
     throw InputError(fmt::format("Gauss cells: cell size must be positive, got {}", cell_size));
   const Box box = domain.bounding_box();
@@ -60,18 +60,18 @@ QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n) {
   const int ny = std::max(1, static_cast<int>(std::lround(box.size().y() / cell_size)));
   const double hx = box.size().x() / nx, hy = box.size().y() / ny;
   // Rows of cells in parallel, each into a rule of its own, joined in row order.
-  std::vector<QuadratureRule> rows(static_cast<std::size_t>(ny));
+  std::vector<QuadratureRule<2>> rows(static_cast<std::size_t>(ny));
   parallel_blocks(ny, 1, [&](Index begin, Index end) {
     for (Index cj = begin; cj < end; ++cj) {
-      QuadratureRule& row = rows[static_cast<std::size_t>(cj)];
+      QuadratureRule<2>& row = rows[static_cast<std::size_t>(cj)];
       for (int ci = 0; ci < nx; ++ci) {
         const Vec2 lo(box.lo.x() + ci * hx, box.lo.y() + static_cast<double>(cj) * hy);
         add_cell_points(domain, Box{lo, lo + Vec2(hx, hy)}, n, row);
       }
     }
   });
-  QuadratureRule rule;
-  for (const QuadratureRule& row : rows) {
+  QuadratureRule<2> rule;
+  for (const QuadratureRule<2>& row : rows) {
     rule.points.insert(rule.points.end(), row.points.begin(), row.points.end());
     rule.weights.insert(rule.weights.end(), row.weights.begin(), row.weights.end());
   }

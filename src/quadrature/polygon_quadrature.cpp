@@ -28,7 +28,7 @@ double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
 
 /// The collapsed product rule on triangle (a, b, c).
 void add_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const GaussLegendre1D& g,
-                  QuadratureRule& rule) {
+                  QuadratureRule<2>& rule) {
   const Vec2 ab = b - a, bc = c - b;
   const double det = std::abs(twice_area(a, b, c));
   if (det == 0.0) return;
@@ -65,7 +65,7 @@ void keep_corners(const std::vector<Vec2>& p, std::size_t first, std::size_t las
 
 /// The rule on one convex piece (counter-clockwise vertices).
 void add_convex_piece(const std::vector<Vec2>& p, const GaussLegendre1D& g, double tolerance,
-                      QuadratureRule& rule) {
+                      QuadratureRule<2>& rule) {
   const std::size_t n = p.size();
   // Corners: the vertex farthest from vertex 0 and vertex 0 split the ring into two chains.
   std::size_t opposite = 1;
@@ -98,7 +98,7 @@ void add_convex_piece(const std::vector<Vec2>& p, const GaussLegendre1D& g, doub
 
 }  // namespace
 
-bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule& rule) {
+bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule<2>& rule) {
   const GaussLegendre1D g = gauss_legendre(m);
   // Holes, or rings that touch themselves: Gauss rules on the triangles of the region.
   const auto on_triangles = [&] {
@@ -135,7 +135,7 @@ bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, Quadra
   return true;
 }
 
-void add_cut_cell_rule(const Domain& domain, const Box& cell, int region, int m, QuadratureRule& rule,
+void add_cut_cell_rule(const Domain& domain, const Box& cell, int region, int m, QuadratureRule<2>& rule,
                        const std::vector<Ring>* clipped, int depth) {
   const std::vector<Ring> rings = clipped ? *clipped : domain.clip(cell, region);
   if (rings.empty() || add_polygon_rule(rings, m, cell.size().maxCoeff(), rule)) return;

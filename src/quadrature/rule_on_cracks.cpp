@@ -4,7 +4,7 @@
 
 namespace mfree {
 
-QuadratureRule split_rule_on_cracks(const Domain& domain, QuadratureRule rule, double h) {
+QuadratureRule<2> split_rule_on_cracks(const Domain& domain, QuadratureRule<2> rule, double h) {
   if (domain.cracks().empty()) return rule;
   std::vector<Index> origin;
   std::vector<Vec2> points = split_on_cracks(domain, rule.points, h, &origin);
@@ -14,7 +14,7 @@ QuadratureRule split_rule_on_cracks(const Domain& domain, QuadratureRule rule, d
         (p > 0 && origin[p - 1] == origin[p]) || (p + 1 < points.size() && origin[p + 1] == origin[p]);
     weights[p] = rule.weights[origin[p]] * (split ? 0.5 : 1.0);
   }
-  return QuadratureRule{std::move(points), std::move(weights)};
+  return QuadratureRule<2>{std::move(points), std::move(weights)};
 }
 
 }  // namespace mfree

@@ -12,7 +12,7 @@ namespace {
 
 /// Strain-displacement matrix of all quadrature points: rows 3K..3K+2 hold the Voigt strain
 /// (eps_xx, eps_yy, gamma_xy) at point K, columns 2I, 2I+1 the coefficients of node I.
-SparseMatrix strain_matrix(const GalerkinQuadrature& q, const std::vector<Vec2>& grad, Index nodes) {
+SparseMatrix strain_matrix(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& grad, Index nodes) {
   std::vector<Eigen::Triplet<double>> t;
   for (Index k = 0; k < q.size(); ++k)
     for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
@@ -28,8 +28,8 @@ SparseMatrix strain_matrix(const GalerkinQuadrature& q, const std::vector<Vec2>&
 }
 
 /// The domain stiffness by global sparse products: K = B_test^T (W D) B_trial, W = diag(w_K).
-SparseMatrix reference_stiffness(const GalerkinQuadrature& q, const std::vector<Vec2>& test, const Eigen::Matrix3d& d,
-                                 Index nodes) {
+SparseMatrix reference_stiffness(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& test,
+                                 const Eigen::Matrix3d& d, Index nodes) {
   std::vector<Eigen::Triplet<double>> t;
   for (Index k = 0; k < q.size(); ++k)
     for (int r = 0; r < 3; ++r)
@@ -46,9 +46,9 @@ struct Cantilever {
   double h = 3.0;
   std::vector<Vec2> nodes;
   std::unique_ptr<RKShapeFunctions<2>> trial;
-  GalerkinQuadrature q;
+  GalerkinQuadrature<2> q;
   BoundaryQuadrature bq;
-  GalerkinQuadrature at_boundary;
+  GalerkinQuadrature<2> at_boundary;
   ElasticityProblem problem;
 
   Cantilever() {
@@ -65,7 +65,8 @@ struct Cantilever {
     problem.spacing = h;
   }
   [[nodiscard]] Index size() const { return static_cast<Index>(nodes.size()); }
-  [[nodiscard]] ElasticitySystem assemble(const GalerkinQuadrature& quadrature, const std::vector<Vec2>* test) const {
+  [[nodiscard]] ElasticitySystem assemble(const GalerkinQuadrature<2>& quadrature,
+                                          const std::vector<Vec2>* test) const {
     return assemble_elasticity(problem, domain, size(), quadrature, test, bq, at_boundary);
   }
 };
@@ -106,7 +107,7 @@ TEST_CASE("Nitsche boundary terms add to the domain stiffness", "[galerkin]") {
   c.problem.conditions = {{BoundaryCondition::Type::displacement, select_part(c.domain, "left"),
                            [ubar](const Vec2&, const Vec2&, double) { return ubar; }, "left end"}};
   // With no quadrature points the system holds the boundary terms alone.
-  GalerkinQuadrature none;
+  GalerkinQuadrature<2> none;
   none.offsets = {0};
   const ElasticitySystem boundary = c.assemble(none, nullptr);
   const ElasticitySystem sys = c.assemble(c.q, nullptr);

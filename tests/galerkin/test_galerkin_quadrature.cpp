@@ -43,7 +43,7 @@ TEST_CASE("projected quadrature: weights and centroids integrate 1 and x; quadra
   for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
     CAPTURE(to_string(kind));
     const Discretisation d = projected(domain, kind, RKOrder::quadratic);
-    const GalerkinQuadrature& q = d.quadrature;
+    const GalerkinQuadrature<2>& q = d.quadrature;
     double area = 0.0;
     Vec2 moment = Vec2::Zero();
     for (Index k = 0; k < q.size(); ++k) {
@@ -80,7 +80,7 @@ TEST_CASE("projected quadrature: the same numbers bit for bit on every run and t
   const Discretisation first = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
   const Discretisation second = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
   omp_set_num_threads(threads);
-  const auto identical = [](const GalerkinQuadrature& a, const GalerkinQuadrature& b) {
+  const auto identical = [](const GalerkinQuadrature<2>& a, const GalerkinQuadrature<2>& b) {
     if (a.size() != b.size() || a.grad.size() != b.grad.size()) return false;
     for (Index k = 0; k < a.size(); ++k)
       if (!testing::same_bits(a.weights[k], b.weights[k]) || !testing::same_bits(a.centroids[k].x(), b.centroids[k].x()) ||
@@ -119,7 +119,7 @@ TEST_CASE("projected quadrature: its weights are the integration study's rk_quad
   for (const int t : {1, std::max(2, threads)}) {
     omp_set_num_threads(t);
     const std::vector<double> study = rk_quadrature_weights(quadrature_functions, lattice);
-    const GalerkinQuadrature solver = projected_quadrature(trial, quadrature_functions, lattice);
+    const GalerkinQuadrature<2> solver = projected_quadrature(trial, quadrature_functions, lattice);
     REQUIRE(study.size() == solver.weights.size());
     std::size_t differ = 0;
     for (std::size_t k = 0; k < study.size(); ++k) differ += !testing::same_bits(study[k], solver.weights[k]);

@@ -26,11 +26,11 @@ struct Samples {
 /// Gauss rule in polar coordinates about `centre` (local frame of `tip`): radii split at
 /// `radii` (ascending), n_r points per radial piece, n_t points on each of `arcs` equal
 /// pieces of (-pi, pi). No point lies on theta = +-pi.
-QuadratureRule polar_rule(const CrackTipFrame& tip, const Vec2& centre, const std::vector<double>& radii,
-                          int n_r, int arcs, int n_t) {
+QuadratureRule<2> polar_rule(const CrackTipFrame& tip, const Vec2& centre, const std::vector<double>& radii,
+                             int n_r, int arcs, int n_t) {
   const GaussLegendre1D gr = gauss_legendre(n_r), gt = gauss_legendre(n_t);
   const Mat2 q = tip.rotation();
-  QuadratureRule rule;
+  QuadratureRule<2> rule;
   for (std::size_t p = 0; p + 1 < radii.size(); ++p)
     for (int a = 0; a < arcs; ++a)
       for (int i = 0; i < n_r; ++i)
@@ -47,11 +47,11 @@ QuadratureRule polar_rule(const CrackTipFrame& tip, const Vec2& centre, const st
 /// n x n Gauss points on square cells of side h filling [-half, half]^2 of the tip's local
 /// frame (half a multiple of h): the tip is a cell corner and the crack line a row of cell
 /// edges, so no point lies on the crack and no cell straddles it.
-QuadratureRule square_rule(const CrackTipFrame& tip, double half, double h, int n) {
+QuadratureRule<2> square_rule(const CrackTipFrame& tip, double half, double h, int n) {
   const GaussLegendre1D g = gauss_legendre(n);
   const int cells = static_cast<int>(std::lround(2 * half / h));
   const Mat2 q = tip.rotation();
-  QuadratureRule rule;
+  QuadratureRule<2> rule;
   for (int a = 0; a < cells; ++a)
     for (int b = 0; b < cells; ++b)
       for (int i = 0; i < n; ++i)
@@ -65,7 +65,7 @@ QuadratureRule square_rule(const CrackTipFrame& tip, double half, double h, int 
 
 /// The exact Williams field of (k1, k2) about `tip` sampled on `rule`.
 Samples williams_samples(const CrackTipFrame& tip, double k1, double k2, const LinearElastic& m,
-                         const QuadratureRule& rule) {
+                         const QuadratureRule<2>& rule) {
   const ExactElasticity exact = williams_near_tip_solution(tip, k1, k2, m);
   const auto gradient = williams_near_tip_gradient(tip, k1, k2, m);
   Samples s;
@@ -89,7 +89,7 @@ struct Errors {
 
 /// Relative errors of K_I, K_II (by the larger |K|) and J of the exact field on a rule.
 Errors errors_on(const CrackTipFrame& tip, const LinearElastic& m, const DomainWeight& w,
-                 const QuadratureRule& rule, double k1, double k2) {
+                 const QuadratureRule<2>& rule, double k1, double k2) {
   const StressIntensity r = integrate(tip, m, w, williams_samples(tip, k1, k2, m, rule));
   const double scale = std::max(std::abs(k1), std::abs(k2));
   const double j = (k1 * k1 + k2 * k2) / near_tip_constants(m).effective_modulus;
@@ -117,7 +117,7 @@ TEST_CASE("interaction integral: exact Williams field on a polar rule", "[intera
       for (const CrackTipFrame& tip : tips)
         for (const DomainWeight& w : radii_sets(profile)) {
           const LinearElastic m{70.0, 0.33, model};
-          const QuadratureRule rule =
+          const QuadratureRule<2> rule =
               polar_rule(tip, Vec2::Zero(), {0.5 * w.inner_radius, w.inner_radius, w.outer_radius}, 4, 4, 12);
           const Errors e = errors_on(tip, m, w, rule, 1.3, -0.4);
           INFO(to_string(model) << ", r0 = " << w.inner_radius << ", r1 = " << w.outer_radius
@@ -137,7 +137,7 @@ TEST_CASE("interaction integral: exact Williams field on square Gauss cells", "[
   for (const CrackTipFrame& tip : tips)
     for (const DomainWeight& w : radii_sets(WeightProfile::smooth)) {
       const double h = w.outer_radius / 40.0;
-      const QuadratureRule rule = square_rule(tip, 42 * h, h, 4);
+      const QuadratureRule<2> rule = square_rule(tip, 42 * h, h, 4);
       const Errors e = errors_on(tip, m, w, rule, 1.3, -0.4);
       INFO("r0 = " << w.inner_radius << ", r1 = " << w.outer_radius << ", tip direction "
                    << tip.direction.transpose());
@@ -152,7 +152,7 @@ TEST_CASE("interaction integral: pure modes do not mix", "[interaction_integral]
   const LinearElastic m{200.0, 0.25, PlaneModel::stress};
   for (const CrackTipFrame& tip : tips) {
     const DomainWeight w{0.2, 0.6, WeightProfile::smooth};
-    for (const QuadratureRule& rule :
+    for (const QuadratureRule<2>& rule :
          {polar_rule(tip, Vec2::Zero(), {0.2, 0.6}, 4, 4, 12), square_rule(tip, 0.63, 0.015, 4)}) {
       const StressIntensity one = integrate(tip, m, w, williams_samples(tip, 2.5, 0.0, m, rule));
       CHECK(one.k1 == Approx(2.5).epsilon(1e-6));
@@ -175,7 +175,7 @@ TEST_CASE("interaction integral: zero over a domain without the tip", "[interact
   const Samples s = [&] {
     Samples all;
     for (const Vec2 centre : {Vec2(1.0, 0.0), Vec2(-1.0, 0.8), Vec2(-0.6, -0.7)}) {
-      const QuadratureRule rule = polar_rule(tip, centre, {0.0, 0.1, 0.45}, 6, 4, 16);
+      const QuadratureRule<2> rule = polar_rule(tip, centre, {0.0, 0.1, 0.45}, 6, 4, 16);
       const Samples part = williams_samples(tip, 1.3, -0.4, m, rule);
       all.points.insert(all.points.end(), part.points.begin(), part.points.end());
       all.weights.insert(all.weights.end(), part.weights.begin(), part.weights.end());

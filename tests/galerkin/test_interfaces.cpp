@@ -263,7 +263,7 @@ TEST_CASE("supports end at a curved interface: no function of one layer is nonze
   for (double t = 0.005; t < 1.57; t += 0.02)
     for (double r : {1.45, 1.49, 1.4999, 1.5001, 1.51, 1.55}) {
       const Vec2 x(r * std::cos(t), r * std::sin(t));
-      const GalerkinQuadrature at = sample_shape_functions(*disc.trial, {x}, false);
+      const GalerkinQuadrature<2> at = sample_shape_functions(*disc.trial, {x}, false);
       for (Index k = at.row_begin(0); k < at.row_end(0); ++k, ++checked)
         if (at.phi[k] != 0.0 && d.region_at(disc.nodes[at.nodes[k]]) != d.region_at(x)) ++leaks;
     }

@@ -212,7 +212,7 @@ TEST_CASE(
     for (int i = 0; i < 100; ++i) (hill(0.5 * (lo + hi)) < p ? lo : hi) = 0.5 * (lo + hi);
     return 0.5 * (lo + hi);
   };
-  const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(a, 0.0)}, false);
+  const GalerkinQuadrature<2> probe = sample_shape_functions(*disc.trial, {Vec2(a, 0.0)}, false);
   std::vector<std::pair<double, double>> load_displacement;  // (p / p_L, u_r(a))
   double worst = 0.0;
   const StaticSolution sol = solve_static(model, disc.nodes, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
@@ -254,7 +254,7 @@ TEST_CASE(
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
                         disc.boundary, disc.at_boundary);
-  const GalerkinQuadrature probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);
+  const GalerkinQuadrature<2> probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);
   std::vector<std::pair<double, double>> load_settlement;
   std::vector<double> plastic;
   const StaticSolution sol = solve_static(model, disc.nodes, *scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
@@ -280,7 +280,7 @@ TEST_CASE("gravity column: sigma_yy within 2 % of rho g H of -rho g (H - y) away
   std::vector<Vec2> points;
   for (int k = 1; k <= 9; ++k)
     for (double x : {0.25, 1.0, 1.75}) points.emplace_back(x, k * 1.0);
-  const GalerkinQuadrature at = sample_shape_functions(*r.trial, points, true);
+  const GalerkinQuadrature<2> at = sample_shape_functions(*r.trial, points, true);
   const Eigen::Matrix3d d = scene.settings.problem.material.voigt_tangent();
   const double rho_g_h = 2000.0 * 10.0 * 10.0;
   double worst = 0.0;

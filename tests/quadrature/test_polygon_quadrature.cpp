@@ -15,7 +15,7 @@ TEST_CASE("polygon rule: exact for polynomials of degree 2 m - 2 on a nonconvex 
   const Ring l{{0, 0}, {2, 0}, {2, 1}, {1.2, 1}, {1.2, 0.4}, {0.7, 0.4}, {0.7, 2}, {0, 2}};
   const Domain d = Domain::from_rings({l}, {{-1, -1, -1, -1, -1, -1, -1, -1}}, {}, "L");
   for (int m : {2, 3, 4}) {
-    QuadratureRule rule;
+    QuadratureRule<2> rule;
     REQUIRE(add_polygon_rule({l}, m, 2.0, rule));
     // x^a y^b against the exact integral over the L as the sum over unit-free rectangles.
     const auto rect = [](double x0, double x1, double y0, double y1, int a, int b) {
@@ -45,7 +45,7 @@ TEST_CASE(
   const Domain d =
       Domain::from_file(mfree::testing::source_dir() + "/verification/lame/quarter_annulus_1024.geo");
   for (double h : {0.4, 0.2}) {
-    const QuadratureRule rule = gauss_cell_rule(d, h, 3);
+    const QuadratureRule<2> rule = gauss_cell_rule(d, h, 3);
     double area = 0.0;
     Vec2 moment = Vec2::Zero();
     for (std::size_t k = 0; k < rule.size(); ++k) {

@@ -8,6 +8,7 @@
 
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
 
@@ -126,5 +127,55 @@ TEST_CASE(
       const double rate = std::log(errors[1] / errors[2]) / std::log(spacings[1] / spacings[2]);
       CAPTURE(errors[0], errors[1], errors[2], rate);
       CHECK(rate >= (order == RKOrder::linear ? 1.8 : 2.8));
+    }
+}
+
+TEST_CASE(
+    "3D projected quadrature: the projected gradients reproduce the gradients of the RK order's fields at "
+    "the "
+    "centroids, and the weights sum to the volume",
+    "[quadrature][3d]") {
+  for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed})
+    for (RKOrder order : {RKOrder::linear, RKOrder::quadratic}) {
+      CAPTURE(to_string(kind), to_string(order));
+      const double h = 0.125;
+      CloudSettings cs;
+      cs.kind = kind;
+      cs.spacing = h;
+      cs.perturbation = 0.5;
+      cs.seed = 2;
+      const std::vector<P3> nodes = make_cloud(box(), cs);
+      const std::vector<P3> points = make_quadrature_cloud(box(), cs, 1.0);
+      const double factor = order == RKOrder::linear ? 2.0 : 3.0;
+      RKSettings rs;
+      rs.order = order;
+      rs.radius = factor * h;
+      RKSettings qs = rs;
+      if (kind != CloudKind::lattice) {
+        rs.node_radii = nodal_support_radii(nodes, h, factor * 1.25);
+        qs.node_radii = nodal_support_radii(points, h, factor * 1.25);
+      }
+      const RKShapeFunctions<3> trial(nodes, rs), functions(points, qs);
+      const BackgroundLattice<3> lattice(box(), h / 2, order == RKOrder::linear ? 1 : 2);
+      const GalerkinQuadrature<3> q = projected_quadrature(trial, functions, lattice);
+      double volume = 0.0, worst = 0.0;
+      const int terms = order == RKOrder::linear ? 4 : 10;
+      for (Index k = 0; k < q.size(); ++k) {
+        volume += q.weights[k];
+        // sum_I gradbar phi_I(x_K) p(x_I) = grad p(c_K) for every monomial p of the order.
+        std::array<P3, 10> sum;
+        sum.fill(P3::Zero());
+        for (Index s = q.row_begin(k); s < q.row_end(k); ++s) {
+          const auto m = monomials(nodes[q.nodes[s]]);
+          for (int t = 0; t < terms; ++t) sum[t] += m[t] * q.grad[s];
+        }
+        const P3& c = q.centroids[k];
+        const std::array<P3, 10> exact = {
+            P3::Zero(),        P3(1, 0, 0),       P3(0, 1, 0),        P3(0, 0, 1),       P3(2 * c[0], 0, 0),
+            P3(c[1], c[0], 0), P3(c[2], 0, c[0]), P3(0, 2 * c[1], 0), P3(0, c[2], c[1]), P3(0, 0, 2 * c[2])};
+        for (int t = 0; t < terms; ++t) worst = std::max(worst, (sum[t] - exact[t]).norm());
+      }
+      CHECK(volume == Approx(box().measure()).epsilon(1e-12));
+      CHECK(worst < 1e-10);
     }
 }

@@ -39,6 +39,6 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
 /// values taken to the face, phi_I + grad phi_I . (x - sample) (first order: exact for the
 /// linear fields the RK functions reproduce, so a field continuous across an interface has no
 /// jump there, and the data of a condition on a crack face meet u^h where they are given).
-GalerkinQuadrature boundary_functions(const RKShapeFunctions<2>& trial, const BoundaryQuadrature& bq);
+GalerkinQuadrature<2> boundary_functions(const RKShapeFunctions<2>& trial, const BoundaryQuadrature& bq);
 
 }  // namespace mfree

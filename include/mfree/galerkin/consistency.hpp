@@ -8,7 +8,7 @@
 //         = sum over boundary points of w_b phi_I(x_b) m(x_b) n_b                      (IC_p)
 //
 // the discrete divergence theorem for phi_I m, with m at the row centroid c_K where the
-// projected gradient of a field of degree p is exact (GalerkinQuadrature). For m = 1 it
+// projected gradient of a field of degree p is exact (GalerkinQuadrature<2>). For m = 1 it
 // reads sum_K w_K g_I(x_K) = b_I. Rows also reproduce gradients, sum_I g_I x_I^T = I and
 // sum_I g_I = 0 (R; for quadratic RK the quadratic monomials too, at c_K). Projected
 // gradients satisfy (R) exactly and (IC_p) up to the background lattice error. Two
@@ -75,8 +75,9 @@ class ConsistencyConditions {
 
   /// `at_boundary`: the trial functions sampled at bq's points. The arrays are viewed, not
   /// copied: q must outlive this object.
-  ConsistencyConditions(const GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
-                        const GalerkinQuadrature& at_boundary, const BoundaryQuadrature& bq, RKOrder order);
+  ConsistencyConditions(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
+                        const GalerkinQuadrature<2>& at_boundary, const BoundaryQuadrature& bq,
+                        RKOrder order);
 
   /// r_I = b_I - sum_K w_K g_I(x_K), the residual of (IC_1), for every node.
   [[nodiscard]] std::vector<Vec2> linear_residuals(const std::vector<Vec2>& gradients) const;
@@ -94,7 +95,7 @@ class ConsistencyConditions {
   /// The residual of (IC_p) at node i for the gradients g (rows beyond the order's monomials zero).
   [[nodiscard]] Moments residual(Index i, const std::vector<Vec2>& g) const;
 
-  const GalerkinQuadrature& q_;
+  const GalerkinQuadrature<2>& q_;
   const std::vector<Vec2>& nodes_;
   int monomials_;
   RowIncidence incidence_;
@@ -109,7 +110,7 @@ struct SymmetricCorrection {
 /// Applies the symmetric correction to q.grad in place; r: the residuals of (IC_1) of q.grad
 /// (ConsistencyConditions::linear_residuals). The node system A is solved by the solver of
 /// `solver` (linear_solver.hpp).
-SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature& q, const std::vector<Vec2>& nodes,
+SymmetricCorrection make_consistent_symmetric(GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
                                               const std::vector<Vec2>& r, const SolverSettings& solver);
 
 }  // namespace mfree

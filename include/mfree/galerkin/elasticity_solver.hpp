@@ -93,10 +93,10 @@ struct ElasticitySettings {
 struct Discretisation {
   std::vector<Vec2> nodes;
   std::unique_ptr<RKShapeFunctions<2>> trial;
-  GalerkinQuadrature quadrature;
+  GalerkinQuadrature<2> quadrature;
   std::vector<Vec2> test_gradients;     ///< VCI's test gradients; empty otherwise
   BoundaryQuadrature boundary;
-  GalerkinQuadrature at_boundary;       ///< trial functions and gradients at boundary's points
+  GalerkinQuadrature<2> at_boundary;            ///< trial functions and gradients at boundary's points
   Consistency consistency = Consistency::none;  ///< the correction applied
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
   double consistency_after = 0.0;       ///< the same for the (test) gradients used

@@ -37,6 +37,6 @@ using LawAt = std::function<const LinearElastic&(const Vec2&)>;
 /// Errors of u^h = sum phi_I d_I (strain from the true gradients of phi_I) on the rule, the
 /// energy and the stress of the error by the law at each point.
 ElasticErrors elastic_errors(const RKShapeFunctions<2>& trial, const Eigen::VectorXd& d, const LawAt& law_at,
-                             const ExactElasticity& exact, const QuadratureRule& rule);
+                             const ExactElasticity& exact, const QuadratureRule<2>& rule);
 
 }  // namespace mfree

@@ -26,31 +26,36 @@
 
 namespace mfree {
 
+template <int dim>
 struct GalerkinQuadrature {
-  std::vector<Vec2> points;
+  std::vector<Point<dim>> points;
   std::vector<double> weights;
-  std::vector<Vec2> centroids;  ///< c_K: where the row's gradients are exact (x_K for direct rules)
+  std::vector<Point<dim>> centroids;  ///< c_K: where the row's gradients are exact (x_K for direct rules)
   std::vector<Index> offsets;  ///< row K is [offsets[K], offsets[K + 1])
   std::vector<Index> nodes;
   std::vector<double> phi;
-  std::vector<Vec2> grad;
+  std::vector<Point<dim>> grad;
 
   [[nodiscard]] Index size() const { return static_cast<Index>(points.size()); }
   [[nodiscard]] Index row_begin(Index k) const { return offsets[k]; }
   [[nodiscard]] Index row_end(Index k) const { return offsets[k + 1]; }
 };
 
-/// The projected construction on a quadrature cloud with its RK functions.
-GalerkinQuadrature projected_quadrature(const RKShapeFunctions<2>& trial,
-                                        const RKShapeFunctions<2>& quadrature_functions,
-                                        const BackgroundLattice<2>& lattice);
+/// The projected construction on a quadrature cloud with its RK functions (dim = 2, 3).
+template <int dim>
+GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
+                                             const RKShapeFunctions<dim>& quadrature_functions,
+                                             const BackgroundLattice<dim>& lattice);
 
 /// The direct construction on a given rule.
-GalerkinQuadrature direct_quadrature(const RKShapeFunctions<2>& trial, const QuadratureRule& rule);
+template <int dim>
+GalerkinQuadrature<dim> direct_quadrature(const RKShapeFunctions<dim>& trial,
+                                          const QuadratureRule<dim>& rule);
 
 /// Values and gradients of the trial functions at arbitrary points (boundary points,
 /// error points, output points), row by row like a GalerkinQuadrature with unit weights.
-GalerkinQuadrature sample_shape_functions(const RKShapeFunctions<2>& trial, const std::vector<Vec2>& points,
-                                          bool with_gradient);
+template <int dim>
+GalerkinQuadrature<dim> sample_shape_functions(const RKShapeFunctions<dim>& trial,
+                                               const std::vector<Point<dim>>& points, bool with_gradient);
 
 }  // namespace mfree

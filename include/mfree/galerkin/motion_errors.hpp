@@ -27,12 +27,13 @@ struct MotionErrors {
 class MotionErrorSampler {
  public:
   /// law_at: the law at each of the rule's points (asked once per point).
-  MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule& rule, const MaterialAt& law_at);
+  MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule<2>& rule,
+                     const MaterialAt& law_at);
   [[nodiscard]] MotionErrors operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
                                         const ExactMotion& exact) const;
 
  private:
-  GalerkinQuadrature at_;
+  GalerkinQuadrature<2> at_;
   std::vector<Material> law_;  ///< per point
   double volume_ = 0.0;
 };

@@ -12,7 +12,7 @@
 // Scaled by E instead, the penalty falls below the consistency terms as nu -> 1/2 (lambda / E
 // grows without bound) and the form loses coercivity.
 //
-// Domain terms at the quadrature points with the gradients of the GalerkinQuadrature (test
+// Domain terms at the quadrature points with the gradients of the GalerkinQuadrature<2> (test
 // gradients may differ: VCI); boundary terms at the boundary Gauss points with the true
 // gradients of the trial functions. Unknowns: d = (d_0x, d_0y, d_1x, ...), coefficients of the
 // RK functions, not nodal displacements: u^h(x) = sum_I phi_I(x) d_I.
@@ -64,12 +64,12 @@ struct ElasticitySystem {
 /// Assembles the system. `test_gradients` (same layout as q.grad) replaces q.grad for the
 /// test functions when non-null (then the system is non-symmetric).
 ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
-                                     const GalerkinQuadrature& q, const std::vector<Vec2>* test_gradients,
-                                     const BoundaryQuadrature& bq, const GalerkinQuadrature& at_boundary);
+                                     const GalerkinQuadrature<2>& q, const std::vector<Vec2>* test_gradients,
+                                     const BoundaryQuadrature& bq, const GalerkinQuadrature<2>& at_boundary);
 
 /// Voigt strain at quadrature point k of q for coefficients d: (eps_xx, eps_yy, gamma_xy).
-Eigen::Vector3d strain_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d);
+Eigen::Vector3d strain_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d);
 /// u^h at point k of q.
-Vec2 displacement_at(const GalerkinQuadrature& q, Index k, const Eigen::VectorXd& d);
+Vec2 displacement_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d);
 
 }  // namespace mfree

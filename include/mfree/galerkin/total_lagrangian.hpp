@@ -5,7 +5,7 @@
 //   int P(F) : grad_X v  +  N(u; v)  =  int rho0 b . v + int_Gt tbar . v     (statics)
 //
 // on the reference configuration, with F = I + grad_X u^h. At quadrature point K of the
-// GalerkinQuadrature (projected, integration-consistent gradients g_I = gradbar phi_I(X_K)):
+// GalerkinQuadrature<2> (projected, integration-consistent gradients g_I = gradbar phi_I(X_K)):
 //
 //   F_K = I + sum_I d_I g_I^T,   f_int,I = sum_K w_K P(F_K) t_I,
 //   K_(I i)(J k) = sum_K w_K t_I,M A_iMkL(F_K) g_J,L
@@ -150,14 +150,14 @@ class TotalLagrangian {
   /// boundary point takes the first condition whose part holds it; bq cut at the conditions'
   /// parts (boundary_quadrature(..., condition_parts(conditions)), as discretise() does)
   /// integrates each condition over exactly its part.
-  TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes, const GalerkinQuadrature& q,
+  TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes, const GalerkinQuadrature<2>& q,
                   const std::vector<Vec2>* test_gradients, const BoundaryQuadrature& bq,
-                  const GalerkinQuadrature& at_boundary);
+                  const GalerkinQuadrature<2>& at_boundary);
 
   [[nodiscard]] Index nodes() const { return nodes_; }
   [[nodiscard]] Eigen::Index dofs() const { return 2 * Eigen::Index{nodes_}; }
   [[nodiscard]] const SolidProblem& problem() const { return problem_; }
-  [[nodiscard]] const GalerkinQuadrature& quadrature() const { return q_; }
+  [[nodiscard]] const GalerkinQuadrature<2>& quadrature() const { return q_; }
   /// True when the tangent is symmetric at every state (CHOLMOD applies).
   [[nodiscard]] bool symmetric() const { return symmetric_; }
   /// A 2N x 2N matrix with the tangent's sparsity, values zero: tangent(), mass() and
@@ -193,7 +193,7 @@ class TotalLagrangian {
   // The boundary terms point by point, for the reactions (galerkin/reactions.hpp): the same
   // values boundary_force() and external_force() integrate.
   [[nodiscard]] const BoundaryQuadrature& boundary() const { return bq_; }
-  [[nodiscard]] const GalerkinQuadrature& at_boundary() const { return at_boundary_; }
+  [[nodiscard]] const GalerkinQuadrature<2>& at_boundary() const { return at_boundary_; }
   /// The two parts of Nitsche's flux at one Nitsche point: traction = Pi P(F) N of the
   /// committed state [Pa], gap = Pi (u^h - factor ubar) [m].
   struct NitscheValues {
@@ -284,10 +284,10 @@ class TotalLagrangian {
   bool history_laws_ = false;
   PointHistory history_;
   Index nodes_;
-  const GalerkinQuadrature& q_;
+  const GalerkinQuadrature<2>& q_;
   const std::vector<Vec2>& test_;
   const BoundaryQuadrature& bq_;
-  const GalerkinQuadrature& at_boundary_;
+  const GalerkinQuadrature<2>& at_boundary_;
   std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
   std::vector<NitschePoint> nitsche_;
   std::vector<TiePoint> ties_;

@@ -56,7 +56,7 @@ class SolidFrames {
   std::filesystem::path folder_;
   std::vector<Vec2> points_, samples_;  ///< the plot's vertices, where their fields are sampled
   std::vector<std::array<Index, 3>> triangles_;
-  GalerkinQuadrature at_;
+  GalerkinQuadrature<2> at_;
   std::vector<std::pair<double, std::string>> steps_, point_steps_;
 
   /// The quadrature-point fields of a law with history.

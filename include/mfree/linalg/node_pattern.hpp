@@ -2,7 +2,7 @@
 // Sparsity of the matrices of node-based Galerkin methods, built once from the quadrature.
 //
 // A quadrature point couples every pair of nodes of its row (the nodes whose functions are
-// nonzero there, GalerkinQuadrature): block (I, J) of a matrix is nonzero only if some row
+// nonzero there, GalerkinQuadrature<2>): block (I, J) of a matrix is nonzero only if some row
 // holds both I and J. So
 //
 //   RowIncidence  rows of node indices (CSR, nodes sorted within a row) and their transpose:

@@ -22,11 +22,11 @@ namespace mfree {
 inline constexpr int crack_depth = 3;
 
 /// n x n Gauss points per cell (n >= 1).
-QuadratureRule gauss_cell_rule(const Domain& domain, double cell_size, int n);
+QuadratureRule<2> gauss_cell_rule(const Domain& domain, double cell_size, int n);
 
 /// Appends the points of one cell: n x n Gauss points, or a polygon rule of degree 2 n on its
 /// part in the domain (each region's part apart, polygon_quadrature.hpp); a cell a crack
 /// crosses is quartered first, to depth crack_depth. Points on a crack are not split here.
-void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRule& rule, int depth = 0);
+void add_cell_points(const Domain& domain, const Box& cell, int n, QuadratureRule<2>& rule, int depth = 0);
 
 }  // namespace mfree

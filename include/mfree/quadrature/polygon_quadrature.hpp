@@ -27,12 +27,12 @@ namespace mfree {
 /// region with a hole, or a ring that touches itself (a hole's vertex on the cell's side),
 /// takes it on the triangles of the region (triangulate_rings). Returns false, appending
 /// nothing, when rounding made edges cross: the caller cuts the cell smaller.
-bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule& rule);
+bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, QuadratureRule<2>& rule);
 
 /// Appends the points of the part of `cell` in the domain (in region `region` when >= 0:
 /// Domain::clip), m points per direction per triangle; `clipped`, when given, is that part
 /// already clipped. A part with a hole, or not simple, is cut into four first (to depth 8).
-void add_cut_cell_rule(const Domain& domain, const Box& cell, int region, int m, QuadratureRule& rule,
+void add_cut_cell_rule(const Domain& domain, const Box& cell, int region, int m, QuadratureRule<2>& rule,
                        const std::vector<Ring>* clipped = nullptr, int depth = 0);
 
 }  // namespace mfree

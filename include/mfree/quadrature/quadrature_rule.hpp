@@ -7,8 +7,10 @@
 
 namespace mfree {
 
+/// Points and weights in dim dimensions.
+template <int dim>
 struct QuadratureRule {
-  std::vector<Vec2> points;
+  std::vector<Point<dim>> points;
   std::vector<double> weights;
   [[nodiscard]] std::size_t size() const { return points.size(); }
 };

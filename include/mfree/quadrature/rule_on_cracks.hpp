@@ -11,6 +11,6 @@ namespace mfree {
 /// `rule` with each point on a crack of `domain` split into its two face copies, each with
 /// half the weight; h is the length the copies' offset is a fraction of. The rule itself when
 /// the domain has no crack.
-QuadratureRule split_rule_on_cracks(const Domain& domain, QuadratureRule rule, double h);
+QuadratureRule<2> split_rule_on_cracks(const Domain& domain, QuadratureRule<2> rule, double h);
 
 }  // namespace mfree
