@@ -5,6 +5,9 @@
 // not take the compiler's inlining budget from the plane update (in one unit the plane
 // tangent took 50 % longer).
 
+#include <algorithm>
+#include <cmath>
+
 #include "mfree/materials/drucker_prager.hpp"
 #include "plastic_update.hpp"
 

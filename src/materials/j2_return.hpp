@@ -5,6 +5,12 @@
 // not take the compiler's inlining budget from the plane update (in one unit the plane
 // tangent took 50 % longer).
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "mfree/core/error.hpp"
 #include "mfree/materials/j2_plasticity.hpp"
 #include "plastic_update.hpp"
 
