@@ -347,6 +347,26 @@ struct Result {
   S jacobian;
 };
 
+/// Steps 2-4 on an additive split of the strain (small strain, logarithmic): the trial stress
+/// of E - E_p,n, the law's return, and E_p, alpha, the plastic work and the stored energy
+/// after it. T: the plane Sym or the 3D Sym3 of the scalar S. Always inlined, as the code it
+/// replaced was written in each update: the compiler then fuses the same multiply-adds, and
+/// the plane results stay what they were bit for bit (not inlined, the logarithmic J2 update
+/// moved in its last bits).
+template <class S, int dim, class Law, class T>
+[[gnu::always_inline]] inline void additive_return(const Law& law, const Lame& lame, const T& strain,
+                                                   const MaterialState<dim>& n, Result<S, dim>& r) {
+  const T plastic_n = sym_of<S>(n);
+  const T trial = elastic_stress(lame, strain - plastic_n);
+  S dalpha(0.0);
+  r.stress = law.return_map(trial, n, dalpha);
+  const T dplastic = elastic_strain(lame, trial - r.stress);
+  r.plastic = plastic_n + dplastic;
+  r.alpha = n.alpha + dalpha;
+  r.dissipation = n.dissipation + dot(r.stress, dplastic);
+  r.energy = 0.5 * dot(r.stress, elastic_strain(lame, r.stress));
+}
+
 /// Steps 1-5 above; `law.return_map(trial, state, lame, alpha_increment)` returns T.
 template <class S, class Law>
 Result<S, 2> update(const Law& law, const Lame& lame, Kinematics kinematics, const S f[4],
@@ -400,15 +420,7 @@ Result<S, 2> update(const Law& law, const Lame& lame, Kinematics kinematics, con
   } else {
     strain = {f[0] - 1.0, f[3] - 1.0, 0.5 * (f[1] + f[2]), S(0.0)};
   }
-  const Sym<S> plastic_n = sym_of<S>(n);
-  const Sym<S> trial = elastic_stress(lame, strain - plastic_n);
-  S dalpha(0.0);
-  r.stress = law.return_map(trial, n, dalpha);
-  const Sym<S> dplastic = elastic_strain(lame, trial - r.stress);
-  r.plastic = plastic_n + dplastic;
-  r.alpha = n.alpha + dalpha;
-  r.dissipation = n.dissipation + dot(r.stress, dplastic);
-  r.energy = 0.5 * dot(r.stress, elastic_strain(lame, r.stress));
+  additive_return(law, lame, strain, n, r);
   if (log_strain) {
     S sxx, syy, sxy;
     log_strain->second_piola(r.stress, sxx, syy, sxy);
@@ -434,8 +446,8 @@ Result<S, 3> update(const Law& law, const Lame& lame, Kinematics kinematics, con
   for (int k = 0; k < 9; ++k) fm(k / 3, k % 3) = f[k];
   Result<S, 3> r;
   r.jacobian = fm.determinant();
-  const Sym3<S> plastic_n = sym_of<S>(n);
   if (kinematics == Kinematics::multiplicative) {
+    const Sym3<S> plastic_n = sym_of<S>(n);  // C_p^-1 - I
     // b_e^tr = F C_p^-1 F^T, eps_e^tr = 1/2 ln b_e^tr
     const M3 be_trial = fm * (Sym3<S>::identity() + plastic_n).matrix() * fm.transpose();
     const Sym3<S> strain = S(0.5) * log_sym3(Sym3<S>::of(be_trial));
@@ -468,15 +480,7 @@ Result<S, 3> update(const Law& law, const Lame& lame, Kinematics kinematics, con
     throw InputError(
         "the logarithmic (Lagrangian) kinematics of the plastic laws is plane only; a solid takes "
         "multiplicative (the default) or small_strain");
-  const Sym3<S> strain = Sym3<S>::of(fm) - Sym3<S>::identity();
-  const Sym3<S> trial = elastic_stress(lame, strain - plastic_n);
-  S dalpha(0.0);
-  r.stress = law.return_map(trial, n, dalpha);
-  const Sym3<S> dplastic = elastic_strain(lame, trial - r.stress);
-  r.plastic = plastic_n + dplastic;
-  r.alpha = n.alpha + dalpha;
-  r.dissipation = n.dissipation + dot(r.stress, dplastic);
-  r.energy = 0.5 * dot(r.stress, elastic_strain(lame, r.stress));
+  additive_return(law, lame, Sym3<S>(Sym3<S>::of(fm) - Sym3<S>::identity()), n, r);
   const M3 p = r.stress.matrix();
   for (int k = 0; k < 9; ++k) r.p[k] = p(k / 3, k % 3);
   return r;

@@ -277,8 +277,8 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
   const AlignedBox<3>& box = solid.bounding_box();
   const Point<3> size = box.sizes();
   // Per axis: cells of side size / cells (about order * spacing), and the composite
-  // Newton–Cotes weight of each vertex: the sum over the cells holding it of its weight,
-  // side {1/2, 1/2} (trapezoid) or side {1/6, 2/3, 1/6} (Simpson).
+  // Newton–Cotes weight of each vertex: the sum over the cells holding it of side Lambda_i(1)
+  // (above: {1/2, 1/2} trapezoid, {1/6, 2/3, 1/6} Simpson).
   std::array<std::vector<double>, 3> axis;
   std::array<double, 3> step;
   double vertices = 1.0;
@@ -290,7 +290,7 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
     for (Index cell = 0; cell < cells; ++cell)
       for (int i = 0; i <= order; ++i)
         axis[c][static_cast<std::size_t>(cell) * order + i] +=
-            side * (order == 1 ? 0.5 : (i == 1 ? 2.0 / 3.0 : 1.0 / 6.0));
+            side * horner(antiderivative[order - 1][i], 1.0);
     vertices *= static_cast<double>(axis[c].size());
     cells_ = c == 0 ? cells : cells_ * cells;
   }

@@ -1,7 +1,8 @@
 // Meshfree quadrature in three dimensions on a box solid: the background lattice's tensor
 // Newton–Cotes weights, the RK weights w_K = integral of phi_K exact for the polynomials of the
 // RK order on lattice, perturbed and random clouds (to round-off), and the error of a smooth
-// integrand falling at the 2D rates under refinement (linear RK 2, quadratic 3 or more).
+// integrand falling at the 2D rates under refinement (linear RK 2, quadratic 3 or more; a
+// study: Release only, its value is the rates).
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -70,7 +71,6 @@ TEST_CASE(
   for (int order : {1, 2}) {
     CAPTURE(order);
     const BackgroundLattice<3> lattice(box(), 0.07, order);
-    CHECK(lattice.cut_cells() == 0);
     std::array<double, 10> sum{};
     for (std::size_t v = 0; v < lattice.points().size(); ++v) {
       REQUIRE(box().contains(lattice.points()[v]));
@@ -106,7 +106,7 @@ TEST_CASE("3D RK quadrature weights integrate the polynomials of the RK order to
 
 TEST_CASE(
     "3D RK quadrature: the error of a smooth integrand falls at rate 2 (linear) and 3 or more (quadratic)",
-    "[quadrature][3d]") {
+    "[quadrature][3d][study]") {
   // f = e^x cos(2 y) e^-z over [0, 1] x [0, 0.8] x [0, 0.6].
   const auto f = [](const P3& p) { return std::exp(p[0]) * std::cos(2.0 * p[1]) * std::exp(-p[2]); };
   const double exact = (std::exp(1.0) - 1.0) * (std::sin(1.6) / 2.0) * (1.0 - std::exp(-0.6));
