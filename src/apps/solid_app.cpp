@@ -49,7 +49,7 @@ std::optional<GalerkinQuadrature<2>> probe_functions(const ElasticityScene& scen
 }
 
 /// The law at X of the model's problem (its region's).
-MaterialAt law_at(const TotalLagrangian& model, const Domain& domain) {
+MaterialAt law_at(const TotalLagrangian<2>& model, const Domain& domain) {
   return [&model, &domain](const Vec2& x) -> const Material& { return model.problem().law_at(domain, x); };
 }
 
@@ -66,8 +66,8 @@ int run_static(const ElasticityScene& scene) {
   StageTimer timer;
   timer.report_to(&std::cout);
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                        disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
+                           disc.test(), disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
   {
     // Statics must be well posed: the reference tangent may leave no rigid-body motion free.
@@ -290,8 +290,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   StageTimer& timer = run.timer;
   if (verbose) timer.report_to(&std::cout);
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                        disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
+                           disc.test(), disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
   run.nodes = disc.node_count();
   run.spacing = scene.settings.nodes.spacing;

@@ -6,21 +6,50 @@
 #include <cmath>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/convex_polygon.hpp"
 #include "mfree/geometry/crack_faces.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
+#include "mfree/quadrature/triangle_rule.hpp"
 
 namespace mfree {
 
-BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, int gauss_points,
-                                       const std::vector<BoundarySelection>& parts) {
-  if (!(max_length > 0.0)) throw InputError(fmt::format("boundary quadrature: piece length must be positive, got {}", max_length));
+namespace {
+
+void check_piece_length(double max_length) {
+  if (!(max_length > 0.0))
+    throw InputError(fmt::format("boundary quadrature: piece length must be positive, got {}", max_length));
+}
+
+}  // namespace
+
+int boundary_part(const Domain& domain, const std::vector<BoundarySelection<2>>& parts, Index segment,
+                  const Vec2& x) {
+  const BoundarySegment& seg = domain.boundary()[segment];
+  const double t = (x - seg.a).dot(seg.b - seg.a) / (seg.length * seg.length);
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    for (const BoundaryPiece<2>& piece : parts[k])
+      if (piece.segment == segment && t >= piece.t0 && t <= piece.t1) return static_cast<int>(k);
+  return -1;
+}
+
+int boundary_part(const Solid&, const std::vector<BoundarySelection<3>>& parts, Index triangle,
+                  const Point<3>& x) {
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    for (const BoundaryPiece<3>& piece : parts[k])
+      if (piece.triangle == triangle && (!piece.clip || piece.clip->contains(x))) return static_cast<int>(k);
+  return -1;
+}
+
+BoundaryQuadrature<2> boundary_quadrature(const Domain& domain, double max_length, int gauss_points,
+                                          const std::vector<BoundarySelection<2>>& parts) {
+  check_piece_length(max_length);
   const GaussLegendre1D g = gauss_legendre(gauss_points);
-  BoundaryQuadrature bq;
+  BoundaryQuadrature<2> bq;
   const auto& segments = domain.boundary();
   // Per segment, the parameters where a part begins or ends.
   std::vector<std::vector<double>> breaks(segments.size(), std::vector<double>{0.0, 1.0});
-  for (const BoundarySelection& part : parts)
-    for (const BoundaryPiece& p : part) {
+  for (const BoundarySelection<2>& part : parts)
+    for (const BoundaryPiece<2>& p : part) {
       breaks[p.segment].push_back(p.t0);
       breaks[p.segment].push_back(p.t1);
     }
@@ -75,15 +104,72 @@ BoundaryQuadrature boundary_quadrature(const Domain& domain, double max_length, 
   return bq;
 }
 
-GalerkinQuadrature<2> boundary_functions(const RKShapeFunctions<2>& trial, const BoundaryQuadrature& bq) {
-  GalerkinQuadrature<2> at = sample_shape_functions(trial, bq.samples, true);
+BoundaryQuadrature<3> boundary_quadrature(const Solid& solid, double max_length, int gauss_points,
+                                          const std::vector<BoundarySelection<3>>& parts) {
+  check_piece_length(max_length);
+  const GaussLegendre1D g = gauss_legendre(gauss_points);
+  const auto& surface = solid.surface();
+  // Per triangle, the boxes that cut it.
+  std::vector<std::vector<AlignedBox<3>>> boxes(surface.size());
+  for (const BoundarySelection<3>& part : parts)
+    for (const BoundaryPiece<3>& p : part)
+      if (p.clip) boxes[static_cast<std::size_t>(p.triangle)].push_back(*p.clip);
+  BoundaryQuadrature<3> bq;
+  QuadratureRule<3> rule;
+  for (std::size_t t = 0; t < surface.size(); ++t) {
+    const SurfaceTriangle& tri = surface[t];
+    const Point<3> normal = tri.area_normal().normalized();
+    std::vector<ConvexPolygon> polygons{ConvexPolygon(tri.vertices.begin(), tri.vertices.end())};
+    for (const AlignedBox<3>& box : boxes[t]) {
+      std::vector<ConvexPolygon> cut;
+      for (const ConvexPolygon& p : polygons)
+        for (ConvexPolygon& piece : split_by_box(p, box))
+          if (!piece.empty()) cut.push_back(std::move(piece));
+      polygons = std::move(cut);
+    }
+    for (const ConvexPolygon& p : polygons)
+      for (std::size_t k = 1; k + 1 < p.size(); ++k) {
+        // Fan triangle (p0, pk, pk+1) cut into m x m similar ones: rows i, the upright
+        // (a + i e + j f, + e, + f) and, between them, the inverted ones.
+        const Point<3>&a = p[0], e_full = p[k] - p[0], f_full = p[k + 1] - p[0];
+        const double longest = std::max({e_full.norm(), f_full.norm(), (f_full - e_full).norm()});
+        const int m = std::max(1, static_cast<int>(std::ceil(longest / max_length - 1e-9)));
+        const Point<3> e = e_full / m, f = f_full / m;
+        rule.points.clear();
+        rule.weights.clear();
+        for (int i = 0; i < m; ++i)
+          for (int j = 0; i + j < m; ++j) {
+            const Point<3> x = a + i * e + j * f;
+            add_triangle_rule<3>(x, Point<3>(x + e), Point<3>(x + f), g, rule);
+            if (i + j + 1 < m)
+              add_triangle_rule<3>(Point<3>(x + e), Point<3>(x + e + f), Point<3>(x + f), g, rule);
+          }
+        for (std::size_t q = 0; q < rule.size(); ++q) {
+          bq.points.push_back(rule.points[q]);
+          bq.samples.push_back(rule.points[q]);
+          bq.normals.push_back(normal);
+          bq.weights.push_back(rule.weights[q]);
+          bq.segment.push_back(static_cast<Index>(t));
+        }
+      }
+  }
+  return bq;
+}
+
+template <int dim>
+GalerkinQuadrature<dim> boundary_functions(const RKShapeFunctions<dim>& trial,
+                                           const BoundaryQuadrature<dim>& bq) {
+  GalerkinQuadrature<dim> at = sample_shape_functions(trial, bq.samples, true);
   for (Index p = 0; p < at.size(); ++p) {
     at.points[p] = bq.points[p];
-    const Vec2 back = bq.points[p] - bq.samples[p];
-    if (back != Vec2::Zero())
+    const Point<dim> back = bq.points[p] - bq.samples[p];
+    if (back != Point<dim>::Zero())
       for (Index s = at.row_begin(p); s < at.row_end(p); ++s) at.phi[s] += at.grad[s].dot(back);
   }
   return at;
 }
+
+template GalerkinQuadrature<2> boundary_functions(const RKShapeFunctions<2>&, const BoundaryQuadrature<2>&);
+template GalerkinQuadrature<3> boundary_functions(const RKShapeFunctions<3>&, const BoundaryQuadrature<3>&);
 
 }  // namespace mfree

@@ -1,9 +1,11 @@
 #include "mfree/galerkin/consistency.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <numeric>
-#include <fmt/format.h>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
@@ -18,12 +20,14 @@ const NameTable<Consistency>& consistency_names() {
 
 std::string_view to_string(Consistency c) { return consistency_names().name(c); }
 
-ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
-                                             const GalerkinQuadrature<2>& at_boundary,
-                                             const BoundaryQuadrature& bq, RKOrder order)
+template <int dim>
+ConsistencyConditions<dim>::ConsistencyConditions(const GalerkinQuadrature<dim>& q,
+                                                  const std::vector<Point<dim>>& nodes,
+                                                  const GalerkinQuadrature<dim>& at_boundary,
+                                                  const BoundaryQuadrature<dim>& bq, RKOrder order)
     : q_(q),
       nodes_(nodes),
-      monomials_(order == RKOrder::linear ? 1 : 6),
+      monomials_(order == RKOrder::linear ? 1 : max_monomials),
       incidence_(q.offsets, q.nodes, static_cast<Index>(nodes.size())),
       scale_(nodes.size(), 1.0),
       target_(nodes.size(), Moments::Zero()) {
@@ -47,47 +51,67 @@ ConsistencyConditions::ConsistencyConditions(const GalerkinQuadrature<2>& q, con
       if (monomials_ > 1)
         for (std::size_t a = 0; a < rows.size(); ++a)
           t -= q.weights[rows[a]] * q.phi[slots[a]] * monomial_gradient(i, q.points[rows[a]]);
-      t.bottomRows(6 - monomials_).setZero();
+      t.bottomRows(max_monomials - monomials_).setZero();
       target_[i] = t;
     }
   });
 }
 
-ConsistencyConditions::Monomials ConsistencyConditions::monomial(Index i, const Vec2& p) const {
-  const Vec2 z = (p - nodes_[i]) / scale_[i];
+template <int dim>
+typename ConsistencyConditions<dim>::Monomials ConsistencyConditions<dim>::monomial(
+    Index i, const Point<dim>& p) const {
+  const Point<dim> z = (p - nodes_[i]) / scale_[i];
   Monomials m;
-  m << 1.0, z.x(), z.y(), z.x() * z.x(), z.x() * z.y(), z.y() * z.y();
+  m[0] = 1.0;
+  int l = 1;
+  for (int a = 0; a < dim; ++a) m[l++] = z[a];
+  for (int a = 0; a < dim; ++a)
+    for (int b = a; b < dim; ++b) m[l++] = z[a] * z[b];
   return m;
 }
 
-ConsistencyConditions::Moments ConsistencyConditions::monomial_gradient(Index i, const Vec2& p) const {
-  const Vec2 z = (p - nodes_[i]) / scale_[i];
-  Moments g;
-  g << 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 2.0 * z.x(), 0.0, z.y(), z.x(), 0.0, 2.0 * z.y();
+template <int dim>
+typename ConsistencyConditions<dim>::Moments ConsistencyConditions<dim>::monomial_gradient(
+    Index i, const Point<dim>& p) const {
+  const Point<dim> z = (p - nodes_[i]) / scale_[i];
+  Moments g = Moments::Zero();
+  int l = 1;
+  for (int a = 0; a < dim; ++a) g(l++, a) = 1.0;
+  for (int a = 0; a < dim; ++a)
+    for (int b = a; b < dim; ++b, ++l) {
+      // d(z_a z_b) / dz_c: z_b for c = a, z_a for c = b (2 z_a when a = b).
+      g(l, a) += z[b];
+      g(l, b) += z[a];
+    }
   return g / scale_[i];
 }
 
-ConsistencyConditions::Moments ConsistencyConditions::residual(Index i, const std::vector<Vec2>& g) const {
+template <int dim>
+typename ConsistencyConditions<dim>::Moments ConsistencyConditions<dim>::residual(
+    Index i, const std::vector<Point<dim>>& g) const {
   Moments r = target_[i];
   const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
   for (std::size_t a = 0; a < rows.size(); ++a) {
     const Index k = rows[a];
     r -= q_.weights[k] * monomial(i, q_.centroids[k]) * g[slots[a]].transpose();
   }
-  r.bottomRows(6 - monomials_).setZero();
+  r.bottomRows(max_monomials - monomials_).setZero();
   return r;
 }
 
-std::vector<Vec2> ConsistencyConditions::linear_residuals(const std::vector<Vec2>& gradients) const {
+template <int dim>
+std::vector<Point<dim>> ConsistencyConditions<dim>::linear_residuals(
+    const std::vector<Point<dim>>& gradients) const {
   const Index n = static_cast<Index>(nodes_.size());
-  std::vector<Vec2> r(n);
+  std::vector<Point<dim>> r(n);
   parallel_blocks(n, 256, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) r[i] = residual(i, gradients).row(0).transpose();
   });
   return r;
 }
 
-double ConsistencyConditions::defect(const std::vector<Vec2>& gradients) const {
+template <int dim>
+double ConsistencyConditions<dim>::defect(const std::vector<Point<dim>>& gradients) const {
   const Index n = static_cast<Index>(nodes_.size());
   std::vector<double> worst(n, 0.0);
   parallel_blocks(n, 256, [&](Index begin, Index end) {
@@ -99,28 +123,29 @@ double ConsistencyConditions::defect(const std::vector<Vec2>& gradients) const {
   return scale > 0.0 ? w / scale : w;
 }
 
-std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
+template <int dim>
+std::vector<Point<dim>> ConsistencyConditions<dim>::vci_test_gradients() const {
   const Index n = static_cast<Index>(nodes_.size());
-  std::vector<Vec2> test = q_.grad;
+  std::vector<Point<dim>> test = q_.grad;
   parallel_blocks(n, 256, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) {
       const std::span<const Index> rows = incidence_.rows_of(i), slots = incidence_.slots_of(i);
       if (rows.empty()) continue;
       // M_I xi_I = R_I on the order's monomials; for linear RK the unused rows of M_I are
       // (sum_K w_K) I, and those of R_I zero, so that xi_I is zero there.
-      using Matrix6 = Eigen::Matrix<double, 6, 6>;
-      Matrix6 m = Matrix6::Zero();
+      using MomentMatrix = Eigen::Matrix<double, max_monomials, max_monomials>;
+      MomentMatrix m = MomentMatrix::Zero();
       for (Index k : rows) {
         const Monomials p = monomial(i, q_.centroids[k]);
         m += q_.weights[k] * p * p.transpose();
       }
-      if (monomials_ == 1) m = m(0, 0) * Matrix6::Identity();
-      const Eigen::LDLT<Matrix6> ldlt(m);
+      if (monomials_ == 1) m = m(0, 0) * MomentMatrix::Identity();
+      const Eigen::LDLT<MomentMatrix> ldlt(m);
       if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
-        throw NumericalError(fmt::format(
-            "VCI: the moment matrix of node {} at ({:.6g}, {:.6g}) is singular ({} quadrature points in "
-            "its support); use larger supports",
-            i, nodes_[i].x(), nodes_[i].y(), rows.size()));
+        throw NumericalError(
+            fmt::format("VCI: the moment matrix of node {} at ({:.6g}) is singular ({} quadrature points in "
+                        "its support); use larger supports",
+                        i, fmt::join(nodes_[i].begin(), nodes_[i].end(), ", "), rows.size()));
       const Moments xi = ldlt.solve(residual(i, q_.grad));
       for (std::size_t a = 0; a < rows.size(); ++a)
         test[slots[a]] += xi.transpose() * monomial(i, q_.centroids[rows[a]]);
@@ -128,6 +153,9 @@ std::vector<Vec2> ConsistencyConditions::vci_test_gradients() const {
   });
   return test;
 }
+
+template class ConsistencyConditions<2>;
+template class ConsistencyConditions<3>;
 
 namespace {
 

@@ -217,8 +217,8 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
     res.tips = timer.time("stress intensity", [&] {
       // A crack whose faces carry a condition (a slip face holding a symmetry line) has no K.
       std::vector<std::string> face_conditions(domain.cracks().size());
-      for (const BoundaryCondition& c : s.problem.conditions)
-        for (const BoundaryPiece& piece : c.where)
+      for (const BoundaryCondition<2>& c : s.problem.conditions)
+        for (const BoundaryPiece<2>& piece : c.where)
           if (const int crack = domain.boundary()[static_cast<std::size_t>(piece.segment)].crack;
               crack >= 0 && face_conditions[static_cast<std::size_t>(crack)].empty())
             face_conditions[static_cast<std::size_t>(crack)] = c.name;

@@ -17,7 +17,7 @@ const NameTable<TimeScheme>& time_scheme_names() {
 
 std::string_view to_string(TimeScheme s) { return time_scheme_names().name(s); }
 
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes,
+Eigen::VectorXd project_velocity(const TotalLagrangian<2>& model, std::span<const Vec2> nodes,
                                  const std::function<Vec2(const Vec2&)>& field,
                                  const SolverSettings& settings) {
   // M v = int rho0 phi v0 with M's own densities: M^-1 of the rows is the L2 projection in rho0's weight.
@@ -35,7 +35,8 @@ Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const V
   return solver->solve(rhs);
 }
 
-double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d) {
+double critical_time_step(const TotalLagrangian<2>& model, const Eigen::VectorXd& lumped,
+                          const Eigen::VectorXd& d) {
   SparseMatrix k = model.zero_matrix();
   model.tangent(d, {}, k);
   const Eigen::VectorXd scale = lumped.cwiseSqrt().cwiseInverse();
@@ -107,7 +108,7 @@ struct ResumeLimits {
 
 /// Refuses (through `refuse`) the first part of `p` that does not fit `model` and `limits`
 /// (the checks integrate_dynamics lists).
-void check_resume(const DynamicsProgress& p, const TotalLagrangian& model, const ResumeLimits& limits,
+void check_resume(const DynamicsProgress& p, const TotalLagrangian<2>& model, const ResumeLimits& limits,
                   const std::function<void(const std::string&, const std::string&)>& refuse) {
   if (p.step < 0 || p.step >= limits.steps)
     refuse("step",
@@ -127,7 +128,7 @@ void check_resume(const DynamicsProgress& p, const TotalLagrangian& model, const
     sized("tangent", p.tangent, 0, "none: central differences keep no tangent");
   else if (p.tangent.size() > 0)
     sized("tangent", p.tangent, limits.nonzeros, "the nonzeros of its tangent, or none");
-  const PointHistory& h = model.history();
+  const PointHistory<2>& h = model.history();
   if (p.history.domain.size() != h.domain.size())
     refuse("history.domain",
            fmt::format("it holds {} points, and this run has {}", p.history.domain.size(), h.domain.size()));
@@ -159,7 +160,7 @@ void check_resume(const DynamicsProgress& p, const TotalLagrangian& model, const
 
 }  // namespace
 
-DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d, Eigen::VectorXd v, const DynamicsSettings& s,
                                   StageTimer& timer, const std::function<void(const DynamicState&)>& on_step,
                                   const DynamicsCheckpoints& checkpoints) {

@@ -133,9 +133,11 @@ NewtonOutcome newton(const NonlinearSystem& system, Eigen::VectorXd& d, SparseMa
   return out;
 }
 
-StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes, const NewtonSettings& s,
-                            StageTimer& timer,
-                            const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
+template <int dim>
+StaticSolution solve_static(
+    TotalLagrangian<dim>& model, std::type_identity_t<std::span<const Point<dim>>> nodes,
+    const NewtonSettings& s, StageTimer& timer,
+    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
   std::vector<double> targets = s.load_factors;
   if (targets.empty())
     for (int i = 1; i <= s.load_steps; ++i) targets.push_back(static_cast<double>(i) / s.load_steps);
@@ -146,7 +148,7 @@ StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes,
 
   StaticSolution out;
   const std::unique_ptr<LinearSolver> solver =
-      make_linear_solver(s.solver, {"tangent stiffness", model.symmetric(), 2, nodes}, model.dofs());
+      make_linear_solver(s.solver, {"tangent stiffness", model.symmetric(), dim, nodes}, model.dofs());
   SparseMatrix k = model.zero_matrix();
 
   const Eigen::VectorXd f_unit = model.external_force({});
@@ -195,5 +197,12 @@ StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes,
   out.solver = report(*solver);
   return out;
 }
+
+template StaticSolution solve_static(
+    TotalLagrangian<2>&, std::span<const Point<2>>, const NewtonSettings&, StageTimer&,
+    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>&);
+template StaticSolution solve_static(
+    TotalLagrangian<3>&, std::span<const Point<3>>, const NewtonSettings&, StageTimer&,
+    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>&);
 
 }  // namespace mfree

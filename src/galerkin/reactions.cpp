@@ -6,8 +6,8 @@ namespace mfree {
 
 namespace {
 
-bool is_essential(const BoundaryCondition& c) {
-  return c.type == BoundaryCondition::Type::displacement || c.type == BoundaryCondition::Type::slip;
+bool is_essential(const BoundaryCondition<2>& c) {
+  return c.type == BoundaryCondition<2>::Type::displacement || c.type == BoundaryCondition<2>::Type::slip;
 }
 
 /// sum_s phi_s d_{node s} on row k of q: u^h at point k.
@@ -53,16 +53,16 @@ double Reactions::moment_imbalance() const {
   return scale > 0.0 ? std::abs(balance().moment) / scale : 0.0;
 }
 
-std::vector<std::string> essential_parts(const SolidProblem& problem) {
+std::vector<std::string> essential_parts(const SolidProblem<2>& problem) {
   std::vector<std::string> names;
-  for (const BoundaryCondition& c : problem.conditions)
+  for (const BoundaryCondition<2>& c : problem.conditions)
     if (is_essential(c)) names.push_back(c.name);
   return names;
 }
 
-Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, const LoadState& load) {
-  const SolidProblem& problem = model.problem();
-  const BoundaryQuadrature& bq = model.boundary();
+Reactions reactions(const TotalLagrangian<2>& model, const Eigen::VectorXd& d, const LoadState& load) {
+  const SolidProblem<2>& problem = model.problem();
+  const BoundaryQuadrature<2>& bq = model.boundary();
   const GalerkinQuadrature<2>& at = model.at_boundary();
   Reactions r;
   r.current_arm = !is_small_strain(problem.material);
@@ -80,7 +80,7 @@ Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, cons
       r.parts.push_back({problem.conditions[c].name, {}});
     }
   for (std::size_t b = 0; b < model.nitsche_points(); ++b) {
-    const TotalLagrangian::NitscheValues v = model.nitsche_values(b, d, load);
+    const TotalLagrangian<2>::NitscheValues v = model.nitsche_values(b, d, load);
     const std::size_t c = static_cast<std::size_t>(v.condition - problem.conditions.data());
     const Vec2 flux = nitsche_flux(v.traction, v.gap, v.penalty);
     r.parts[part_of[c]].reaction += weighted(bq.weights[v.point], flux, boundary_arm(v.point));
@@ -123,8 +123,8 @@ Reactions elastic_reactions(const Domain& domain, const ElasticitySettings& sett
                             const ElasticityResult& result) {
   ElasticityProblem problem = settings.problem;
   problem.spacing = settings.nodes.spacing;  // as solve_elasticity takes it
-  const TotalLagrangian model(solid_problem(problem), domain, result.node_count(), result.quadrature,
-                              result.test(), result.boundary, result.at_boundary);
+  const TotalLagrangian<2> model(solid_problem(problem), domain, result.node_count(), result.quadrature,
+                                 result.test(), result.boundary, result.at_boundary);
   return reactions(model, result.coefficients, {});
 }
 

@@ -22,8 +22,8 @@ Vec2 displacement_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::Vecto
   return u;
 }
 
-SolidProblem solid_problem(const ElasticityProblem& problem) {
-  SolidProblem solid;
+SolidProblem<2> solid_problem(const ElasticityProblem& problem) {
+  SolidProblem<2> solid;
   solid.material = problem.material;
   solid.region_materials.assign(problem.region_materials.begin(), problem.region_materials.end());
   if (problem.body_force) solid.body_force = [b = problem.body_force](const Vec2& x, double) { return b(x); };
@@ -35,10 +35,11 @@ SolidProblem solid_problem(const ElasticityProblem& problem) {
 
 ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
                                      const GalerkinQuadrature<2>& q, const std::vector<Vec2>* test_gradients,
-                                     const BoundaryQuadrature& bq, const GalerkinQuadrature<2>& at_boundary) {
+                                     const BoundaryQuadrature<2>& bq,
+                                     const GalerkinQuadrature<2>& at_boundary) {
   if (problem.region_materials.empty()) problem.material.validate();
   for (const LinearElastic& m : problem.region_materials) m.validate();
-  const TotalLagrangian model(solid_problem(problem), domain, nodes, q, test_gradients, bq, at_boundary);
+  const TotalLagrangian<2> model(solid_problem(problem), domain, nodes, q, test_gradients, bq, at_boundary);
   // The residual is affine in d: K = its tangent anywhere, f = -residual(0).
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
   ElasticitySystem sys;

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/convex_polygon.hpp"
 
 namespace mfree {
 
@@ -15,8 +16,8 @@ namespace {
 
 /// Whole segments s for which keep(s) holds.
 template <class Keep>
-BoundarySelection whole_segments(const Domain& domain, Keep&& keep) {
-  BoundarySelection out;
+BoundarySelection<2> whole_segments(const Domain& domain, Keep&& keep) {
+  BoundarySelection<2> out;
   const auto& segments = domain.boundary();
   for (std::size_t s = 0; s < segments.size(); ++s)
     if (keep(segments[s])) out.push_back({static_cast<Index>(s), 0.0, 1.0});
@@ -27,13 +28,13 @@ int ring_count(const Domain& domain) { return static_cast<int>(domain.rings().si
 
 }  // namespace
 
-double selection_length(const Domain& domain, const BoundarySelection& s) {
+double selection_length(const Domain& domain, const BoundarySelection<2>& s) {
   double length = 0.0;
-  for (const BoundaryPiece& p : s) length += (p.t1 - p.t0) * domain.boundary()[p.segment].length;
+  for (const BoundaryPiece<2>& p : s) length += (p.t1 - p.t0) * domain.boundary()[p.segment].length;
   return length;
 }
 
-std::vector<CornerSliver> corner_slivers(const Domain& domain, const BoundarySelection& s, double min_turn,
+std::vector<CornerSliver> corner_slivers(const Domain& domain, const BoundarySelection<2>& s, double min_turn,
                                          double fraction) {
   // The pieces' ends; ends at the same vertex meet (segments share their vertices' values).
   struct End {
@@ -79,7 +80,7 @@ std::vector<CornerSliver> corner_slivers(const Domain& domain, const BoundarySel
   return out;
 }
 
-BoundarySelection select_part(const Domain& domain, const std::string& name) {
+BoundarySelection<2> select_part(const Domain& domain, const std::string& name) {
   const auto& names = domain.part_names();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end())
@@ -98,14 +99,50 @@ BoundarySelection select_part(const Domain& domain, const std::string& name) {
   return whole_segments(domain, [&](const BoundarySegment& s) { return s.part == part; });
 }
 
-BoundarySelection select_ring(const Domain& domain, int ring) {
+BoundarySelection<3> select_part(const Solid& solid, const std::string& name) {
+  const auto& names = solid.parts();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw InputError(
+        fmt::format("the solid has no surface part '{}'; its parts are: {}", name, fmt::join(names, ", ")));
+  const int part = static_cast<int>(it - names.begin());
+  BoundarySelection<3> out;
+  const auto& surface = solid.surface();
+  for (std::size_t t = 0; t < surface.size(); ++t)
+    if (surface[t].part == part) out.push_back({static_cast<Index>(t), std::nullopt});
+  return out;
+}
+
+BoundarySelection<3> select_box(const Solid& solid, const AlignedBox<3>& box) {
+  BoundarySelection<3> out;
+  const auto& surface = solid.surface();
+  for (std::size_t t = 0; t < surface.size(); ++t) {
+    const BoundaryPiece<3> piece{static_cast<Index>(t), box};
+    if (polygon_area(piece_polygon(solid, piece)) > 0.0) out.push_back(piece);
+  }
+  return out;
+}
+
+double selection_area(const Solid& solid, const BoundarySelection<3>& s) {
+  double area = 0.0;
+  for (const BoundaryPiece<3>& p : s) area += polygon_area(piece_polygon(solid, p));
+  return area;
+}
+
+std::vector<Point<3>> piece_polygon(const Solid& solid, const BoundaryPiece<3>& piece) {
+  const auto& v = solid.surface()[static_cast<std::size_t>(piece.triangle)].vertices;
+  ConvexPolygon p(v.begin(), v.end());
+  return piece.clip ? clip_to_box(std::move(p), *piece.clip) : p;
+}
+
+BoundarySelection<2> select_ring(const Domain& domain, int ring) {
   if (ring < 0 || ring >= ring_count(domain))
     throw InputError(fmt::format("the domain has no ring {} (rings 0 to {}: 0 the outer boundary, then the holes)", ring,
                                  ring_count(domain) - 1));
   return whole_segments(domain, [&](const BoundarySegment& s) { return s.ring == ring; });
 }
 
-BoundarySelection select_edges(const Domain& domain, int ring, const std::vector<int>& edges) {
+BoundarySelection<2> select_edges(const Domain& domain, int ring, const std::vector<int>& edges) {
   (void)select_ring(domain, ring);  // checks the ring
   const int n = static_cast<int>(domain.rings()[ring].size());
   for (int e : edges)
@@ -133,8 +170,8 @@ std::optional<std::array<double, 2>> segment_in_box(const Vec2& a, const Vec2& b
   return std::array<double, 2>{t0, t1};
 }
 
-BoundarySelection select_box(const Domain& domain, const Box& box) {
-  BoundarySelection out;
+BoundarySelection<2> select_box(const Domain& domain, const Box& box) {
+  BoundarySelection<2> out;
   const auto& segments = domain.boundary();
   for (std::size_t s = 0; s < segments.size(); ++s) {
     // The faces of an interface are tied to each other, not a boundary a condition holds on.
@@ -145,10 +182,10 @@ BoundarySelection select_box(const Domain& domain, const Box& box) {
   return out;
 }
 
-double overlap_length(const Domain& domain, const BoundarySelection& a, const BoundarySelection& b) {
+double overlap_length(const Domain& domain, const BoundarySelection<2>& a, const BoundarySelection<2>& b) {
   double length = 0.0;
-  for (const BoundaryPiece& p : a)
-    for (const BoundaryPiece& q : b)
+  for (const BoundaryPiece<2>& p : a)
+    for (const BoundaryPiece<2>& q : b)
       if (p.segment == q.segment)
         length += std::max(0.0, std::min(p.t1, q.t1) - std::max(p.t0, q.t0)) * domain.boundary()[p.segment].length;
   return length;

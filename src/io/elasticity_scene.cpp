@@ -23,7 +23,7 @@ const NameTable<std::optional<SolverKind>>& solver_choices() {
   }();
   return table;
 }
-using ConditionType = BoundaryCondition::Type;
+using ConditionType = BoundaryCondition<2>::Type;
 const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
                                                  {"slip", ConditionType::slip},
                                                  {"traction", ConditionType::traction},
@@ -31,7 +31,8 @@ const NameTable<ConditionType> condition_table{{"displacement", ConditionType::d
 
 /// The selector keys of a [[boundary]] table: exactly one of part, ring (alone or with
 /// edges), edges (of the outer ring) and region.
-BoundarySelection read_selection(const SceneTable& t, const Domain& domain, std::string& key, std::string& what) {
+BoundarySelection<2> read_selection(const SceneTable& t, const Domain& domain, std::string& key,
+                                    std::string& what) {
   const int given = t.has("part") + (t.has("ring") || t.has("edges")) + t.has("region");
   if (given != 1) t.error("name", "give exactly one selector: part, ring (with or without edges), edges or region");
   try {
@@ -71,8 +72,9 @@ BoundarySelection read_selection(const SceneTable& t, const Domain& domain, std:
 /// an edge clips the edges it crosses at its corners (corner_slivers): the condition then acts
 /// there too (a slip condition meant for the bottom holds u_x on a stretch of a side), refused
 /// for every type of condition. allow_small_selection = true lifts both.
-void check_sliver(const SceneTable& t, BoundaryCondition::Type type, const std::string& what,
-                  const BoundarySelection& selected, const std::optional<Box>& region, const Domain& domain) {
+void check_sliver(const SceneTable& t, BoundaryCondition<2>::Type type, const std::string& what,
+                  const BoundarySelection<2>& selected, const std::optional<Box>& region,
+                  const Domain& domain) {
   constexpr double sliver = 0.01;
   if (!region) {
     if (t.has("allow_small_selection"))
@@ -357,7 +359,7 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
   const std::vector<SceneTable> boundaries = root.tables("boundary");
   std::vector<std::string> selector_keys;
   for (const SceneTable& t : boundaries) {
-    BoundaryCondition c;
+    BoundaryCondition<2> c;
     c.name = t.string("name");
     c.type = read_choice(t, "type", condition_table);
     std::string key, what;
@@ -564,10 +566,10 @@ std::optional<ExactMotion> ElasticityScene::motion() const {
   return exact_spec->builtin->solution().motion(exact_spec->builtin->values, solution_setting());
 }
 
-SolidProblem ElasticityScene::solid_problem() const {
+SolidProblem<2> ElasticityScene::solid_problem() const {
   ElasticityProblem linear = settings.problem;
   linear.spacing = settings.nodes.spacing;
-  SolidProblem p = mfree::solid_problem(linear);
+  SolidProblem<2> p = mfree::solid_problem(linear);
   p.material = material;
   p.region_materials = region_materials;
   p.density = density;
@@ -579,7 +581,7 @@ SolidProblem ElasticityScene::solid_problem() const {
   return p;
 }
 
-BodyForce ElasticityScene::loads_body_force() const {
+BodyForce<2> ElasticityScene::loads_body_force() const {
   // Gravity in a region of its own density: the nearest region's at X.
   std::function<double(const Vec2&)> rho = [rho = density](const Vec2&) { return rho; };
   if (gravity && !region_densities.empty())

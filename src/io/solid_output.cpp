@@ -33,7 +33,7 @@ void SolidFrames::restore(const CheckpointState& state, double time, std::size_t
 }
 
 SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
-                         const TotalLagrangian* model)
+                         const TotalLagrangian<2>* model)
     : output_(scene.output),
       exact_(exact),
       model_(scene.law_with(has_history) ? model : nullptr),
@@ -60,7 +60,7 @@ void SolidFrames::write_points(double time, const Eigen::VectorXd& d) {
       u.insert(u.end(), {uk.x(), uk.y()});
     }
     if (!want_response) continue;
-    const TotalLagrangian::PointResponse r = model_->response(k, d);
+    const TotalLagrangian<2>::PointResponse r = model_->response(k, d);
     if (output_.wants("stress")) sigma.insert(sigma.end(), {r.cauchy(0, 0), r.cauchy(1, 1), r.cauchy(0, 1)});
     if (output_.wants("von_mises")) vm.push_back(von_mises(r.cauchy, r.cauchy_zz));
     if (output_.wants("plastic_strain")) alpha.push_back(r.state.alpha);

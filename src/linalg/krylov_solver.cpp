@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "mfree/core/error.hpp"
@@ -153,11 +154,17 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
   }
 
   // The near-null space of AMG: the rigid-body modes of the nodes.
-  if (!system_.nodes.empty() && (bs == 1 || bs == 2)) {
-    const auto nodes = static_cast<Index>(system_.nodes.size());
-    if (nodes * bs != n)
-      throw std::logic_error(fmt::format("KrylovSolver: {} nodes for {} unknowns of block size {}", nodes, n, bs));
-    const Eigen::MatrixXd r = rigid_body_modes<2>(system_.nodes, bs, Vec2::Zero());
+  const Eigen::MatrixXd r = std::visit(
+      [&](auto nodes) -> Eigen::MatrixXd {
+        constexpr int dim = decltype(nodes)::value_type::RowsAtCompileTime;
+        if (nodes.empty() || (bs != 1 && bs != dim)) return {};
+        if (static_cast<Index>(nodes.size()) * bs != n)
+          throw std::logic_error(
+              fmt::format("KrylovSolver: {} nodes for {} unknowns of block size {}", nodes.size(), n, bs));
+        return rigid_body_modes<dim>(nodes, bs, Point<dim>::Zero());
+      },
+      system_.nodes);
+  if (r.cols() > 0) {
     std::vector<Eigen::VectorXd> modes;
     for (Eigen::Index j = 0; j < r.cols(); ++j) modes.emplace_back(r.col(j));
     orthonormalise(modes);

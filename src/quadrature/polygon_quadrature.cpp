@@ -12,6 +12,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/domain_triangulation.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
+#include "mfree/quadrature/triangle_rule.hpp"
 
 namespace mfree {
 
@@ -24,20 +25,6 @@ using Piece = Traits::Polygon_2;
 double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   const Vec2 ab = b - a, ac = c - a;
   return ab.x() * ac.y() - ab.y() * ac.x();
-}
-
-/// The collapsed product rule on triangle (a, b, c).
-void add_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const GaussLegendre1D& g,
-                  QuadratureRule<2>& rule) {
-  const Vec2 ab = b - a, bc = c - b;
-  const double det = std::abs(twice_area(a, b, c));
-  if (det == 0.0) return;
-  for (std::size_t i = 0; i < g.points.size(); ++i)
-    for (std::size_t j = 0; j < g.points.size(); ++j) {
-      const double u = g.points[i], v = g.points[j];
-      rule.points.push_back(a + u * (ab + v * bc));
-      rule.weights.push_back(g.weights[i] * g.weights[j] * u * det);
-    }
 }
 
 /// Marks in `keep` the vertices of the chain first..last (indices into p, first < last) that
@@ -82,7 +69,7 @@ void add_convex_piece(const std::vector<Vec2>& p, const GaussLegendre1D& g, doub
     if (keep[k]) corners.push_back(k);
   // The corners' polygon, fanned.
   for (std::size_t k = 1; k + 1 < corners.size(); ++k)
-    add_triangle(p[corners[0]], p[corners[k]], p[corners[k + 1]], g, rule);
+    add_triangle_rule<2>(p[corners[0]], p[corners[k]], p[corners[k + 1]], g, rule);
   // The caps between consecutive corners a, b and the edges from a to b: a centroid per fan
   // triangle (a, k, k + 1).
   for (std::size_t c = 0; c < corners.size(); ++c) {
@@ -104,7 +91,7 @@ bool add_polygon_rule(const std::vector<Ring>& rings, int m, double size, Quadra
   const auto on_triangles = [&] {
     const auto triangles = triangulate_rings(rings);
     if (!triangles) return false;  // rounding made edges cross: the caller cuts the cell smaller
-    for (const std::array<Vec2, 3>& t : *triangles) add_triangle(t[0], t[1], t[2], g, rule);
+    for (const std::array<Vec2, 3>& t : *triangles) add_triangle_rule<2>(t[0], t[1], t[2], g, rule);
     return true;
   };
   for (const Ring& ring : rings)

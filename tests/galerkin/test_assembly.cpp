@@ -47,7 +47,7 @@ struct Cantilever {
   std::vector<Vec2> nodes;
   std::unique_ptr<RKShapeFunctions<2>> trial;
   GalerkinQuadrature<2> q;
-  BoundaryQuadrature bq;
+  BoundaryQuadrature<2> bq;
   GalerkinQuadrature<2> at_boundary;
   ElasticityProblem problem;
 
@@ -104,7 +104,7 @@ TEST_CASE("domain stiffness equals B_test^T W D B_trial, VCI test gradients", "[
 TEST_CASE("Nitsche boundary terms add to the domain stiffness", "[galerkin]") {
   Cantilever c;
   const Vec2 ubar(1e-3, -2e-3);
-  c.problem.conditions = {{BoundaryCondition::Type::displacement, select_part(c.domain, "left"),
+  c.problem.conditions = {{BoundaryCondition<2>::Type::displacement, select_part(c.domain, "left"),
                            [ubar](const Vec2&, const Vec2&, double) { return ubar; }, "left end"}};
   // With no quadrature points the system holds the boundary terms alone.
   GalerkinQuadrature<2> none;

@@ -19,7 +19,7 @@ struct VibrationCase {
   AxisAlignedVibration exact;
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(1.0, 1.0));
   Discretisation disc;
-  std::unique_ptr<TotalLagrangian> model;
+  std::unique_ptr<TotalLagrangian<2>> model;
 
   VibrationCase(double amplitude, double h, bool walls, bool body_force) : exact{amplitude} {
     ElasticitySettings s;
@@ -27,21 +27,21 @@ struct VibrationCase {
     s.nodes.spacing = h;
     StageTimer timer;
     disc = discretise(domain, s, timer);
-    SolidProblem p;
+    SolidProblem<2> p;
     p.material = exact.material();
     p.density = exact.density;
     p.spacing = h;
     if (walls) {
       const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
-      p.conditions = {{BoundaryCondition::Type::slip, select_part(domain, "bottom"), zero, "bottom"},
-                      {BoundaryCondition::Type::slip, select_part(domain, "top"), zero, "top"},
-                      {BoundaryCondition::Type::slip, select_part(domain, "left"), zero, "left"},
-                      {BoundaryCondition::Type::slip, select_part(domain, "right"), zero, "right"}};
+      p.conditions = {{BoundaryCondition<2>::Type::slip, select_part(domain, "bottom"), zero, "bottom"},
+                      {BoundaryCondition<2>::Type::slip, select_part(domain, "top"), zero, "top"},
+                      {BoundaryCondition<2>::Type::slip, select_part(domain, "left"), zero, "left"},
+                      {BoundaryCondition<2>::Type::slip, select_part(domain, "right"), zero, "right"}};
     }
     if (body_force)
       p.body_force = [e = exact](const Vec2& x, double t) { return e.density * e.body_force(x, t); };
-    model = std::make_unique<TotalLagrangian>(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
-                                              disc.at_boundary);
+    model = std::make_unique<TotalLagrangian<2>>(p, domain, disc.node_count(), disc.quadrature, nullptr,
+                                                 disc.boundary, disc.at_boundary);
   }
 
   [[nodiscard]] Eigen::VectorXd initial_velocity() const {
@@ -198,11 +198,12 @@ TEST_CASE("J2 body in free motion: kinetic + stored + dissipated energy stays co
   law.lame = lame_constants(1000.0, 0.3);
   law.yield_stress = 10.0;
   law.isotropic_modulus = 50.0;
-  SolidProblem p;
+  SolidProblem<2> p;
   p.material = law;
   p.density = 1.0;
   p.spacing = es.nodes.spacing;
-  TotalLagrangian model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                           disc.at_boundary);
   const Eigen::VectorXd v0 = project_velocity(
       model, disc.nodes, [](const Vec2& x) { return Vec2(0.0, 2.0 * std::cos(2.0 * M_PI * x.x())); }, {});
   for (TimeScheme scheme : {TimeScheme::central_difference, TimeScheme::newmark}) {

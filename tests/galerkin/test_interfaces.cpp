@@ -1,4 +1,4 @@
-// Regions tied along interfaces (Domain::from_regions, TotalLagrangian's ties): patch tests
+// Regions tied along interfaces (Domain::from_regions, TotalLagrangian<2>'s ties): patch tests
 // across the tie for one material (two parts of an assembly) and for two (a bimaterial with a
 // piecewise-linear exact field, which the tie reproduces and a smooth approximation does not).
 
@@ -81,9 +81,9 @@ double tied_patch_error(const Domain& domain, const Laws& laws, const ExactElast
   const Box left{box.lo - Vec2(1, 1), Vec2(0.3, box.hi.y() + 1)};
   const Box right{Vec2(0.3, box.lo.y() - 1), box.hi + Vec2(1, 1)};
   s.problem.conditions = {
-      {BoundaryCondition::Type::displacement, select_box(domain, left),
+      {BoundaryCondition<2>::Type::displacement, select_box(domain, left),
        [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "left"},
-      {BoundaryCondition::Type::traction, select_box(domain, right),
+      {BoundaryCondition<2>::Type::traction, select_box(domain, right),
        [&](const Vec2& x, const Vec2& n, double) { return exact.traction(x, n); }, "right"}};
   const ElasticityResult r = solve_elasticity(domain, s, nullptr);
   const std::vector<Vec2> uh = r.displacement(r.nodes);
@@ -127,9 +127,9 @@ Discretisation discretised(const Domain& domain, double h) {
 }
 
 /// The model of p on it, with the discretisation's test gradients (VCI with Gauss cells).
-TotalLagrangian model_on(const SolidProblem& p, const Domain& domain, const Discretisation& disc) {
-  return TotalLagrangian(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
-                         disc.at_boundary);
+TotalLagrangian<2> model_on(const SolidProblem<2>& p, const Domain& domain, const Discretisation& disc) {
+  return TotalLagrangian<2>(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                            disc.at_boundary);
 }
 
 }  // namespace
@@ -293,18 +293,18 @@ TEST_CASE(
   j2.isotropic_modulus = 100.0;
   const LinearElastic stiff{4000.0, 0.25, PlaneModel::strain};
   const double delta = 0.04;  // the J2 layer strains about 14 times its yield strain
-  SolidProblem p;
+  SolidProblem<2> p;
   p.region_materials = {j2, stiff};
   p.spacing = 0.125;
   const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
   const auto edge = [&](Vec2 lo, Vec2 hi) { return select_box(domain, Box{lo, hi}); };
-  p.conditions = {{BoundaryCondition::Type::displacement, edge(Vec2(-0.1, 0.99), Vec2(1.1, 1.1)),
+  p.conditions = {{BoundaryCondition<2>::Type::displacement, edge(Vec2(-0.1, 0.99), Vec2(1.1, 1.1)),
                    [delta](const Vec2&, const Vec2&, double) { return Vec2(0.0, -delta); }, "top"},
-                  {BoundaryCondition::Type::slip, edge(Vec2(-0.1, -0.1), Vec2(1.1, 0.01)), zero, "bottom"},
-                  {BoundaryCondition::Type::slip, edge(Vec2(-0.1, 0.01), Vec2(0.01, 0.99)), zero, "left"},
-                  {BoundaryCondition::Type::slip, edge(Vec2(0.99, 0.01), Vec2(1.1, 0.99)), zero, "right"}};
-  TotalLagrangian model(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
-                        disc.at_boundary);
+                  {BoundaryCondition<2>::Type::slip, edge(Vec2(-0.1, -0.1), Vec2(1.1, 0.01)), zero, "bottom"},
+                  {BoundaryCondition<2>::Type::slip, edge(Vec2(-0.1, 0.01), Vec2(0.01, 0.99)), zero, "left"},
+                  {BoundaryCondition<2>::Type::slip, edge(Vec2(0.99, 0.01), Vec2(1.1, 0.99)), zero, "right"}};
+  TotalLagrangian<2> model(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                           disc.at_boundary);
   REQUIRE(model.has_history());
   NewtonSettings s;
   s.load_factors = {0.1, 0.25, 0.5, 0.75, 1.0};
@@ -372,21 +372,21 @@ TEST_CASE("Nitsche's penalty is beta M / h with M the P-wave modulus of the law 
   const LinearElastic sheet{2e5, 0.3, PlaneModel::stress};
   const Domain domain = bimaterial(true);
   const Discretisation disc = discretised(domain, 0.25);
-  SolidProblem p;
+  SolidProblem<2> p;
   p.region_materials = {rubber, sheet};
   p.spacing = 0.25;
   p.nitsche_beta = 50.0;
   const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
   p.conditions = {
-      {BoundaryCondition::Type::displacement, select_box(domain, Box{Vec2(-1, -1), Vec2(0.01, 2)}), zero,
+      {BoundaryCondition<2>::Type::displacement, select_box(domain, Box{Vec2(-1, -1), Vec2(0.01, 2)}), zero,
        "left"},
-      {BoundaryCondition::Type::slip, select_box(domain, Box{Vec2(1.99, -1), Vec2(3, 2)}), zero, "right"}};
-  const TotalLagrangian model = model_on(p, domain, disc);
+      {BoundaryCondition<2>::Type::slip, select_box(domain, Box{Vec2(1.99, -1), Vec2(3, 2)}), zero, "right"}};
+  const TotalLagrangian<2> model = model_on(p, domain, disc);
   const double lambda = e * nu / ((1 + nu) * (1 - nu * 2)), mu = e / (2 * (1 + nu));
   const Eigen::VectorXd d = Eigen::VectorXd::Zero(model.dofs());
   REQUIRE(model.nitsche_points() > 4);
   for (std::size_t b = 0; b < model.nitsche_points(); ++b) {
-    const TotalLagrangian::NitscheValues v = model.nitsche_values(b, d, {});
+    const TotalLagrangian<2>::NitscheValues v = model.nitsche_values(b, d, {});
     const bool left = v.condition->name == "left";
     const double m = left ? lambda + 2 * mu : 2e5 / (1 - 0.3 * 0.3);
     CHECK(v.penalty == Approx(50.0 * m / 0.25).epsilon(1e-12));
@@ -397,18 +397,18 @@ TEST_CASE("the mass of two regions: rho0 of each region, summed over the nodes t
           "[galerkin][regions][dynamics]") {
   const Domain domain = bimaterial(true);  // two unit squares
   const Discretisation disc = discretised(domain, 0.125);
-  SolidProblem p;
+  SolidProblem<2> p;
   p.region_materials = {steel, resin};
   p.region_densities = {7800.0, 1200.0};
   p.spacing = 0.125;
-  const TotalLagrangian model = model_on(p, domain, disc);
+  const TotalLagrangian<2> model = model_on(p, domain, disc);
   const Eigen::VectorXd lumped = model.lumped_mass(disc.nodes);
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(model.dofs());
   // Per direction: sum_I m_I = sum_K w_K rho0_K (the functions sum to one).
   CHECK(lumped.sum() == Approx(2.0 * (7800.0 + 1200.0)).epsilon(1e-12));
   CHECK(ones.dot(model.mass_matrix() * ones) == Approx(2.0 * (7800.0 + 1200.0)).epsilon(1e-12));
   p.region_densities = {7800.0, 0.0};
-  const TotalLagrangian without = model_on(p, domain, disc);
+  const TotalLagrangian<2> without = model_on(p, domain, disc);
   CHECK_THAT(mfree::testing::message_of<InputError>([&] { (void)without.mass_matrix(); }),
              Catch::Contains("region 1 has 0"));
 }

@@ -50,9 +50,9 @@ double patch_error(const Domain& domain, CloudKind kind, QuadratureScheme scheme
   const Box left{box.lo - Vec2(1, 1), Vec2(cut, box.hi.y() + 1)};
   const Box right{Vec2(cut, box.lo.y() - 1), box.hi + Vec2(1, 1)};
   s.problem.conditions = {
-      {BoundaryCondition::Type::displacement, select_box(domain, left),
+      {BoundaryCondition<2>::Type::displacement, select_box(domain, left),
        [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "left"},
-      {BoundaryCondition::Type::traction, select_box(domain, right),
+      {BoundaryCondition<2>::Type::traction, select_box(domain, right),
        [&](const Vec2& x, const Vec2& n, double) { return exact.traction(x, n); }, "right"}};
   const ElasticityResult r = solve_elasticity(domain, s, nullptr);
   const std::vector<Vec2> uh = r.displacement(r.nodes);

@@ -34,9 +34,9 @@ struct UniformPlate {
     s.problem.material = material;
     const auto& e = exact;
     s.problem.conditions = {
-        {BoundaryCondition::Type::displacement, select_part(domain, "left"),
+        {BoundaryCondition<2>::Type::displacement, select_part(domain, "left"),
          [e](const Vec2& x, const Vec2&, double) { return e.displacement(x); }, "left"},
-        {BoundaryCondition::Type::traction, select_box(domain, Box{Vec2(-1.0, -1.0), Vec2(3.0, 2.0)}),
+        {BoundaryCondition<2>::Type::traction, select_box(domain, Box{Vec2(-1.0, -1.0), Vec2(3.0, 2.0)}),
          [e](const Vec2& x, const Vec2& n, double) { return e.traction(x, n); }, "rest"}};
   }
 };
@@ -90,8 +90,8 @@ TEST_CASE("reactions: with VCI the imbalance is the sum of the internal forces, 
   const Reactions re = elastic_reactions(plate.domain, plate.s, r);
   ElasticityProblem p = plate.s.problem;
   p.spacing = plate.s.nodes.spacing;
-  const TotalLagrangian model(solid_problem(p), plate.domain, r.node_count(), r.quadrature, r.test(),
-                              r.boundary, r.at_boundary);
+  const TotalLagrangian<2> model(solid_problem(p), plate.domain, r.node_count(), r.quadrature, r.test(),
+                                 r.boundary, r.at_boundary);
   const Resultant internal =
       nodal_resultant(model.internal_force(r.coefficients), r.nodes, r.coefficients, false);
   const Resultant b = re.balance();
@@ -149,7 +149,7 @@ namespace {
 struct LoadedBlock {
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(4.0, 1.0));
   Discretisation disc;
-  SolidProblem problem;
+  SolidProblem<2> problem;
 
   LoadedBlock() {
     const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
@@ -160,22 +160,24 @@ struct LoadedBlock {
     problem.density = 1.0;
     problem.spacing = s.nodes.spacing;
     problem.conditions = {
-        {BoundaryCondition::Type::displacement, select_part(domain, "left"), zero, "clamp"},
-        {BoundaryCondition::Type::slip, select_box(domain, Box{Vec2(1.0, -0.1), Vec2(3.0, 0.1)}), zero,
+        {BoundaryCondition<2>::Type::displacement, select_part(domain, "left"), zero, "clamp"},
+        {BoundaryCondition<2>::Type::slip, select_box(domain, Box{Vec2(1.0, -0.1), Vec2(3.0, 0.1)}), zero,
          "wall"},
-        {BoundaryCondition::Type::traction, select_part(domain, "right"),
+        {BoundaryCondition<2>::Type::traction, select_part(domain, "right"),
          [](const Vec2&, const Vec2&, double) { return Vec2(-20.0, -40.0); }, "end"},
-        {BoundaryCondition::Type::pressure, select_part(domain, "top"), {}, "top", [](const Vec2& x, double) {
-           return 10.0 * (1.0 + x.x() / 4.0);
-         }}};
+        {BoundaryCondition<2>::Type::pressure,
+         select_part(domain, "top"),
+         {},
+         "top",
+         [](const Vec2& x, double) { return 10.0 * (1.0 + x.x() / 4.0); }}};
     problem.body_force = [](const Vec2&, double) { return Vec2(0.0, -5.0); };
     s.problem.conditions = problem.conditions;  // the boundary quadrature cut at the parts' ends
     StageTimer timer;
     disc = discretise(domain, s, timer);
   }
-  [[nodiscard]] TotalLagrangian model() const {
-    return TotalLagrangian(problem, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
-                           disc.at_boundary);
+  [[nodiscard]] TotalLagrangian<2> model() const {
+    return TotalLagrangian<2>(problem, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                              disc.at_boundary);
   }
 };
 
@@ -188,7 +190,7 @@ namespace {
 std::pair<std::vector<Reactions>, std::vector<Vec2>> load_steps(double beta) {
   LoadedBlock block;
   block.problem.nitsche_beta = beta;
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   NewtonSettings ns;
   ns.load_steps = 4;
   StageTimer timer;
@@ -242,7 +244,7 @@ TEST_CASE("reactions, dynamics: finite at every step, and sum R + F equals the r
   const LoadedBlock block;
   for (TimeScheme scheme : {TimeScheme::central_difference, TimeScheme::newmark}) {
     CAPTURE(to_string(scheme));
-    TotalLagrangian model = block.model();
+    TotalLagrangian<2> model = block.model();
     DynamicsSettings ds;
     ds.scheme = scheme;
     ds.end_time = 0.05;

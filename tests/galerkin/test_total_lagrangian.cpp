@@ -18,7 +18,7 @@ namespace {
 struct Block {
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(4.0, 1.0));
   Discretisation disc;
-  SolidProblem problem;
+  SolidProblem<2> problem;
 
   explicit Block(double load, Material material = NeoHookean{lame_constants(1000.0, 0.3)}) {
     ElasticitySettings s;
@@ -29,15 +29,16 @@ struct Block {
     problem.material = material;
     problem.spacing = s.nodes.spacing;
     problem.conditions = {
-        {BoundaryCondition::Type::displacement, select_part(domain, "left"),
+        {BoundaryCondition<2>::Type::displacement, select_part(domain, "left"),
          [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); }, "clamp"},
-        {BoundaryCondition::Type::slip, select_box(domain, Box{Vec2(0.0, -0.1), Vec2(1.0, 0.1)}),
+        {BoundaryCondition<2>::Type::slip, select_box(domain, Box{Vec2(0.0, -0.1), Vec2(1.0, 0.1)}),
          [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); }, "wall"},
-        {BoundaryCondition::Type::traction, select_part(domain, "right"),
+        {BoundaryCondition<2>::Type::traction, select_part(domain, "right"),
          [load](const Vec2&, const Vec2&, double) { return Vec2(-0.3 * load, -load); }, "load"}};
   }
-  [[nodiscard]] TotalLagrangian model() const {
-    return TotalLagrangian(problem, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary, disc.at_boundary);
+  [[nodiscard]] TotalLagrangian<2> model() const {
+    return TotalLagrangian<2>(problem, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                              disc.at_boundary);
   }
 };
 
@@ -53,7 +54,7 @@ Eigen::VectorXd smooth_field(const std::vector<Vec2>& nodes, double amplitude) {
 }
 
 /// solve_static keeping the iteration log in `log` (shown by INFO when a check fails).
-StaticSolution solve_logged(TotalLagrangian& model, NewtonSettings s, std::ostringstream& log) {
+StaticSolution solve_logged(TotalLagrangian<2>& model, NewtonSettings s, std::ostringstream& log) {
   s.log = &log;
   StageTimer timer;
   return solve_static(model, {}, s, timer);
@@ -74,7 +75,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> directional_derivatives(const Residu
 
 TEST_CASE("TL tangent equals finite differences of the residual (Neo-Hookean, Nitsche, slip)", "[galerkin][tl]") {
   const Block block(0.0);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   REQUIRE_FALSE(model.symmetric());
   const Eigen::VectorXd d = smooth_field(block.disc.nodes, 0.05);
   const LoadState load{0.7, 0.0};
@@ -94,7 +95,7 @@ TEST_CASE("TL tangent equals finite differences of the residual (Neo-Hookean, Ni
 
 TEST_CASE("small-strain law: one Newton step solves the linear problem; the system is symmetric", "[galerkin][tl]") {
   const Block block(1.0, LinearElastic{1000.0, 0.3, PlaneModel::strain});
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   REQUIRE(model.symmetric());
   NewtonSettings s;
   s.load_steps = 1;
@@ -112,7 +113,7 @@ TEST_CASE("Newton converges quadratically on a Neo-Hookean bending case", "[gale
   // Without the slip wall: with it the iterates reach round-off before the ratio estimate of
   // the order settles (4e-5 -> 1.9e-8 -> 3.9e-13: quadratic with constant 12, "order" 0.9).
   block.problem.conditions.erase(block.problem.conditions.begin() + 1);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   NewtonSettings s;
   s.load_steps = 2;
   s.tolerance = 1e-12;
@@ -138,10 +139,11 @@ TEST_CASE("an inverting load gives up with a clear message naming J <= 0 and the
   Block block(0.0);
   // Push the free end 12 units left (3 lengths): the block must turn inside out. Without a
   // line search Newton steps straight into the inverted state.
-  block.problem.conditions.push_back({BoundaryCondition::Type::displacement, select_part(block.domain, "right"),
-                                      [](const Vec2&, const Vec2&, double) { return Vec2(-12.0, 0.0); }, "push"});
+  block.problem.conditions.push_back(
+      {BoundaryCondition<2>::Type::displacement, select_part(block.domain, "right"),
+       [](const Vec2&, const Vec2&, double) { return Vec2(-12.0, 0.0); }, "push"});
   block.problem.conditions.erase(block.problem.conditions.begin() + 1, block.problem.conditions.begin() + 3);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   NewtonSettings s;
   s.load_steps = 1;
   s.max_cutbacks = 1;
@@ -160,15 +162,19 @@ namespace {
 Block pressed_block(double p0, Material material = NeoHookean{lame_constants(1000.0, 0.3)}) {
   Block block(0.0, material);
   block.problem.conditions.pop_back();
-  block.problem.conditions.push_back({BoundaryCondition::Type::pressure, select_part(block.domain, "top"), {}, "top",
-                                      [p0](const Vec2& x, double t) { return p0 * (1.0 + x.x() / 4.0) * (1.0 + t); }});
+  block.problem.conditions.push_back(
+      {BoundaryCondition<2>::Type::pressure,
+       select_part(block.domain, "top"),
+       {},
+       "top",
+       [p0](const Vec2& x, double t) { return p0 * (1.0 + x.x() / 4.0) * (1.0 + t); }});
   return block;
 }
 }  // namespace
 
 TEST_CASE("follower pressure: the load stiffness equals finite differences of the pressure force", "[galerkin][tl]") {
   const Block block = pressed_block(20.0);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   REQUIRE_FALSE(model.symmetric());
   const Eigen::VectorXd d = smooth_field(block.disc.nodes, 0.05);
   const LoadState load{0.7, 0.3};
@@ -179,10 +185,10 @@ TEST_CASE("follower pressure: the load stiffness equals finite differences of th
   model.tangent(d, load, k);
   const Eigen::MatrixXd dense(k);
   // The pressure part alone: the same model without the pressure condition.
-  SolidProblem bare = block.problem;
+  SolidProblem<2> bare = block.problem;
   bare.conditions.pop_back();
-  const TotalLagrangian without(bare, block.domain, block.disc.node_count(), block.disc.quadrature, nullptr,
-                                block.disc.boundary, block.disc.at_boundary);
+  const TotalLagrangian<2> without(bare, block.domain, block.disc.node_count(), block.disc.quadrature,
+                                   nullptr, block.disc.boundary, block.disc.at_boundary);
   SparseMatrix k0 = without.zero_matrix();
   without.tangent(d, load, k0);
   // The pressure part: the tangent with the pressure less the one without, along the same
@@ -211,13 +217,14 @@ TEST_CASE("follower pressure: the load stiffness equals finite differences of th
 TEST_CASE("pressure with the small-strain law is the dead traction -p N", "[galerkin][tl]") {
   const Block pressed = pressed_block(20.0, LinearElastic{1000.0, 0.3, PlaneModel::strain});
   Block traction = pressed_block(20.0, LinearElastic{1000.0, 0.3, PlaneModel::strain});
-  traction.problem.conditions.back() = {BoundaryCondition::Type::traction, select_part(traction.domain, "top"),
+  traction.problem.conditions.back() = {BoundaryCondition<2>::Type::traction,
+                                        select_part(traction.domain, "top"),
                                         [](const Vec2& x, const Vec2& n, double t) {
                                           return Vec2(-20.0 * (1.0 + x.x() / 4.0) * (1.0 + t) * n);
                                         },
                                         "top"};
   const LoadState load{0.7, 0.3};
-  const TotalLagrangian a = pressed.model(), b = traction.model();
+  const TotalLagrangian<2> a = pressed.model(), b = traction.model();
   REQUIRE(a.symmetric());
   const Eigen::VectorXd fa = a.external_force(load), fb = b.external_force(load);
   CHECK((fa - fb).norm() <= 1e-14 * fb.norm());
@@ -227,15 +234,15 @@ TEST_CASE("Nitsche slip and clamp terms: their tangent equals finite differences
   const Block block(0.0);
   const Eigen::VectorXd d = smooth_field(block.disc.nodes, 0.05);
   const LoadState load{0.7, 0.0};
-  const auto model_of = [&](std::vector<BoundaryCondition> conditions) {
-    SolidProblem p = block.problem;
+  const auto model_of = [&](std::vector<BoundaryCondition<2>> conditions) {
+    SolidProblem<2> p = block.problem;
     p.conditions = std::move(conditions);
-    return TotalLagrangian(p, block.domain, block.disc.node_count(), block.disc.quadrature, nullptr, block.disc.boundary,
-                           block.disc.at_boundary);
+    return TotalLagrangian<2>(p, block.domain, block.disc.node_count(), block.disc.quadrature, nullptr,
+                              block.disc.boundary, block.disc.at_boundary);
   };
-  const TotalLagrangian none = model_of({});
+  const TotalLagrangian<2> none = model_of({});
   for (std::size_t c = 0; c < 2; ++c) {  // the clamp, then the slip wall
-    const TotalLagrangian with = model_of({block.problem.conditions[c]});
+    const TotalLagrangian<2> with = model_of({block.problem.conditions[c]});
     SparseMatrix k = with.zero_matrix(), k0 = none.zero_matrix();
     with.tangent(d, load, k);
     none.tangent(d, load, k0);
@@ -273,7 +280,7 @@ TEST_CASE("TL with J2 and Drucker–Prager: the tangent at a plastic state with 
   for (const Material& law : {Material(j2_law(8.0)), Material(soil)}) {
   CAPTURE(name(law));
   const Block block(0.0, law);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   REQUIRE(model.has_history());
   REQUIRE_FALSE(model.symmetric());
   // A history first (committed at d1), then the tangent at d2 beyond it: both plastic.
@@ -318,16 +325,17 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
   const Discretisation disc = discretise(domain, es, timer);
   const J2Plasticity law = j2_law(5.0);
   const double delta = 0.05;  // eight times the yield strain sigma_y / (2 mu)
-  SolidProblem p;
+  SolidProblem<2> p;
   p.material = law;
   p.spacing = es.nodes.spacing;
   const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
-  p.conditions = {{BoundaryCondition::Type::displacement, select_part(domain, "top"),
+  p.conditions = {{BoundaryCondition<2>::Type::displacement, select_part(domain, "top"),
                    [delta](const Vec2&, const Vec2&, double) { return Vec2(0.0, -delta); }, "top"},
-                  {BoundaryCondition::Type::slip, select_part(domain, "bottom"), zero, "bottom"},
-                  {BoundaryCondition::Type::slip, select_part(domain, "left"), zero, "left"},
-                  {BoundaryCondition::Type::slip, select_part(domain, "right"), zero, "right"}};
-  TotalLagrangian model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary, disc.at_boundary);
+                  {BoundaryCondition<2>::Type::slip, select_part(domain, "bottom"), zero, "bottom"},
+                  {BoundaryCondition<2>::Type::slip, select_part(domain, "left"), zero, "left"},
+                  {BoundaryCondition<2>::Type::slip, select_part(domain, "right"), zero, "right"}};
+  TotalLagrangian<2> model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                           disc.at_boundary);
   NewtonSettings s;
   s.load_factors = {0.1, 0.25, 0.5, 0.75, 1.0};
   s.tolerance = 1e-12;
@@ -345,7 +353,7 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
   const double scale = std::abs(last.stress(1, 1));
   double worst_stress = 0.0, worst_alpha = 0.0;
   for (Index k = 0; k < disc.quadrature.size(); ++k) {
-    const TotalLagrangian::PointResponse r = model.response(k, sol.coefficients);
+    const TotalLagrangian<2>::PointResponse r = model.response(k, sol.coefficients);
     const Mat2 f = model.deformation_gradient(k, sol.coefficients);
     worst_stress = std::max(worst_stress, (cauchy_stress(law, last.stress, f) - r.cauchy).norm() / scale);
     worst_alpha = std::max(worst_alpha, std::abs(r.state.alpha - point.alpha) / point.alpha);
@@ -363,7 +371,7 @@ TEST_CASE("TL with J2: Newton keeps quadratic convergence through yield, and his
           "[galerkin][tl][plasticity]") {
   Block block(2.0, j2_law(20.0));  // yields at the clamp from a load factor of about 0.4
   block.problem.conditions.erase(block.problem.conditions.begin() + 1);
-  TotalLagrangian model = block.model();
+  TotalLagrangian<2> model = block.model();
   NewtonSettings s;
   s.load_steps = 3;
   s.tolerance = 1e-12;
@@ -401,7 +409,7 @@ TEST_CASE("TL with J2: a cut-back leaves the history of the last converged step"
   // make A's plastic state differ from B's.
   Block block(1.8, j2_law(20.0));
   block.problem.conditions.erase(block.problem.conditions.begin() + 1);
-  TotalLagrangian a = block.model(), b = block.model();
+  TotalLagrangian<2> a = block.model(), b = block.model();
   NewtonSettings s;
   s.load_steps = 1;
   s.max_iterations = 4;

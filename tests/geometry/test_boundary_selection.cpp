@@ -16,7 +16,7 @@ TEST_CASE("boundary selection: parts, rings, edges and clipping boxes select the
   CHECK(selection_length(r, select_ring(r, 0)) == 6.0);
   CHECK(selection_length(r, select_edges(r, 0, {0, 2})) == 4.0);
   // A box over half of the bottom edge selects half of it: the segment is clipped.
-  const BoundarySelection half = select_box(r, Box{Vec2(-1.0, -1.0), Vec2(1.0, 0.5)});
+  const BoundarySelection<2> half = select_box(r, Box{Vec2(-1.0, -1.0), Vec2(1.0, 0.5)});
   CHECK(selection_length(r, half) == Approx(1.5).epsilon(1e-15));  // bottom x in [0, 1] and left y in [0, 0.5]
   CHECK(selection_length(r, select_box(r, Box{Vec2(0.5, -0.1), Vec2(1.25, 0.1)})) == Approx(0.75).epsilon(1e-15));
   // A box that misses the boundary by 1e-3 selects nothing (scenes refuse that).
@@ -40,7 +40,7 @@ TEST_CASE("boundary selection: edges are numbered as written, whatever the ring'
   CHECK(selection_length(d, select_edges(d, 0, {1})) == 3.0);   // (0 1) -> (3 1)
   CHECK(selection_length(d, select_edges(d, 1, {1})) == 0.5);   // (2 0.25) -> (2 0.75)
   CHECK(selection_length(d, select_ring(d, 1)) == 3.0);
-  const BoundarySelection e0 = select_edges(d, 0, {0});
+  const BoundarySelection<2> e0 = select_edges(d, 0, {0});
   REQUIRE(e0.size() == 1);
   const BoundarySegment& s = d.boundary()[e0[0].segment];
   CHECK(((s.a - Vec2(0, 0)).norm() + (s.b - Vec2(0, 1)).norm() == 0.0 ||
@@ -52,7 +52,7 @@ TEST_CASE("domains from rings carry their named parts through reorientation", "[
   // Clockwise square: edge 0 (0 0)-(0 1) is "wall", edge 2 (1 1)-(1 0) is "load".
   const Domain d = Domain::from_rings({{Vec2(0, 0), Vec2(0, 1), Vec2(1, 1), Vec2(1, 0)}}, {{0, -1, 1, -1}},
                                       {"wall", "load"}, "test");
-  const BoundarySelection wall = select_part(d, "wall"), load = select_part(d, "load");
+  const BoundarySelection<2> wall = select_part(d, "wall"), load = select_part(d, "load");
   REQUIRE(wall.size() == 1);
   REQUIRE(load.size() == 1);
   CHECK(d.boundary()[wall[0].segment].normal.x() == -1.0);

@@ -466,7 +466,7 @@ std::vector<mfree::TipIntensity> pulled_plate_tips(const Domain& d) {
   s.problem.spacing = 0.1;
   const auto zero = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 0.0); };
   const auto pull = [](const Vec2&, const Vec2&, double) { return Vec2(0.0, 1.0); };
-  using Type = mfree::BoundaryCondition::Type;
+  using Type = mfree::BoundaryCondition<2>::Type;
   s.problem.conditions = {
       {Type::displacement, mfree::select_box(d, mfree::Box{Vec2(-2, -1.01), Vec2(2, -0.99)}), zero, "clamp"},
       {Type::traction, mfree::select_box(d, mfree::Box{Vec2(-2, 0.99), Vec2(2, 1.01)}), pull, "pull"}};

@@ -203,8 +203,8 @@ TEST_CASE(
   const ElasticityScene scene = verification_scene("plastic-cylinder/cylinder.toml", {"nodes.spacing=0.1"});
   StageTimer timer;
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                        disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
+                           disc.test(), disc.boundary, disc.at_boundary);
   const double sy = 1.0, a = 1.0, b = 2.0, p_limit = 2 * sy / std::sqrt(3.0) * std::log(b / a);
   const auto hill = [&](double c) { return sy / std::sqrt(3.0) * (2 * std::log(c / a) + 1 - c * c / (b * b)); };
   const auto radius = [&](double p) {  // c(p) by bisection
@@ -252,8 +252,8 @@ TEST_CASE(
   const ElasticityScene scene = verification_scene("plastic-footing/footing.toml", sets);
   StageTimer timer;
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                        disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
+                           disc.test(), disc.boundary, disc.at_boundary);
   const GalerkinQuadrature<2> probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);
   std::vector<std::pair<double, double>> load_settlement;
   std::vector<double> plastic;

@@ -97,8 +97,8 @@ TEST_CASE("VTK frames of a law with history: stress and plastic strain at the qu
        "output.fields=[\"displacement\", \"stress\", \"plastic_strain\"]"});
   StageTimer timer;
   const Discretisation disc = discretise(scene.domain, scene.settings, timer);
-  TotalLagrangian model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature, disc.test(),
-                        disc.boundary, disc.at_boundary);
+  TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
+                           disc.test(), disc.boundary, disc.at_boundary);
   // A radial expansion u = 0.004 X, yielding near the inner radius, committed.
   Eigen::VectorXd d(model.dofs());
   for (Index i = 0; i < disc.node_count(); ++i) d.segment<2>(2 * i) = 0.004 * disc.nodes[i] / disc.nodes[i].squaredNorm();

@@ -44,9 +44,9 @@ void BM_cantilever_stages(benchmark::State& state) {
   s.problem.material = LinearElastic{3.0e7, 0.3, PlaneModel::stress};
   const ExactElasticity exact = timoshenko_beam(length, depth, load, s.problem.material);
   s.problem.conditions = {
-      {BoundaryCondition::Type::displacement, select_part(domain, "left"),
+      {BoundaryCondition<2>::Type::displacement, select_part(domain, "left"),
        [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "x = 0"},
-      {BoundaryCondition::Type::traction, select_part(domain, "right"),
+      {BoundaryCondition<2>::Type::traction, select_part(domain, "right"),
        [&](const Vec2& x, const Vec2& normal, double) { return exact.traction(x, normal); }, "x = L"}};
   if (gauss) {
     s.solver.kind = krylov ? SolverKind::gmres : SolverKind::umfpack;

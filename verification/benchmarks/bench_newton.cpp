@@ -43,14 +43,16 @@ void BM_newton_iteration(benchmark::State& state) {
   const Discretisation disc = discretise(domain, s, timer);
   const LinearElastic linear{3.0e7, 0.3, PlaneModel::strain};
   const ExactElasticity exact = timoshenko_beam(length, depth, load, linear);
-  SolidProblem p;
+  SolidProblem<2> p;
   p.material = make_material("neo_hookean", 3.0e7, 0.3);
   p.spacing = s.nodes.spacing;
-  p.conditions = {{BoundaryCondition::Type::displacement, select_part(domain, "left"),
-                   [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "x = 0"},
-                  {BoundaryCondition::Type::traction, select_part(domain, "right"),
-                   [&](const Vec2& x, const Vec2& normal, double) { return exact.traction(x, normal); }, "x = L"}};
-  const TotalLagrangian model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary, disc.at_boundary);
+  p.conditions = {
+      {BoundaryCondition<2>::Type::displacement, select_part(domain, "left"),
+       [&](const Vec2& x, const Vec2&, double) { return exact.displacement(x); }, "x = 0"},
+      {BoundaryCondition<2>::Type::traction, select_part(domain, "right"),
+       [&](const Vec2& x, const Vec2& normal, double) { return exact.traction(x, normal); }, "x = L"}};
+  const TotalLagrangian<2> model(p, domain, disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                                 disc.at_boundary);
   // A deformed state: the small-strain solution at load factor 0.5 (rotations of ~0.2 rad).
   const LoadState at{0.5, 0.0};
   Eigen::VectorXd d(model.dofs());

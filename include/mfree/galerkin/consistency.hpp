@@ -49,6 +49,9 @@
 // Monomials are taken in node-local scaled coordinates, m = [1, (x - x_I) / s_I,
 // (y - y_I) / s_I] with s_I the largest |c_K - x_I| over the node's rows: (IC_p) for these is
 // an invertible combination of (IC_p) for {1, x, y}, and M_I stays well conditioned.
+//
+// In space the conditions and VCI are the same with the monomials of x, y, z (1, 4 or 10 of
+// them); the symmetric correction is plane only.
 
 #include <string_view>
 #include <vector>
@@ -66,37 +69,41 @@ enum class Consistency { none, vci, symmetric };
 const NameTable<Consistency>& consistency_names();
 std::string_view to_string(Consistency c);
 
-/// The conditions (IC_p) of one domain quadrature, boundary quadrature and RK order.
+/// The conditions (IC_p) of one domain quadrature, boundary quadrature and RK order, in
+/// dim = 2 or 3 (instantiated in the .cpp).
+template <int dim>
 class ConsistencyConditions {
  public:
-  /// Row l of a node's matrix is the condition of monomial m_l (x and y components).
-  using Moments = Eigen::Matrix<double, 6, 2>;
-  using Monomials = Eigen::Matrix<double, 6, 1>;
+  /// The monomials of degree <= 2: 1, then z_a, then z_a z_b (a <= b): 6 in the plane, 10 in space.
+  static constexpr int max_monomials = (dim + 1) * (dim + 2) / 2;
+  /// Row l of a node's matrix is the condition of monomial m_l (its dim components).
+  using Moments = Eigen::Matrix<double, max_monomials, dim>;
+  using Monomials = Eigen::Matrix<double, max_monomials, 1>;
 
   /// `at_boundary`: the trial functions sampled at bq's points. The arrays are viewed, not
   /// copied: q must outlive this object.
-  ConsistencyConditions(const GalerkinQuadrature<2>& q, const std::vector<Vec2>& nodes,
-                        const GalerkinQuadrature<2>& at_boundary, const BoundaryQuadrature& bq,
+  ConsistencyConditions(const GalerkinQuadrature<dim>& q, const std::vector<Point<dim>>& nodes,
+                        const GalerkinQuadrature<dim>& at_boundary, const BoundaryQuadrature<dim>& bq,
                         RKOrder order);
 
   /// r_I = b_I - sum_K w_K g_I(x_K), the residual of (IC_1), for every node.
-  [[nodiscard]] std::vector<Vec2> linear_residuals(const std::vector<Vec2>& gradients) const;
+  [[nodiscard]] std::vector<Point<dim>> linear_residuals(const std::vector<Point<dim>>& gradients) const;
   /// max over nodes and monomials of the residual of (IC_p) for the given gradients (same
   /// layout as q.grad), relative to max_I |b_I|: 0 for a consistent rule.
-  [[nodiscard]] double defect(const std::vector<Vec2>& gradients) const;
+  [[nodiscard]] double defect(const std::vector<Point<dim>>& gradients) const;
   /// VCI test gradients (same layout as q.grad).
-  [[nodiscard]] std::vector<Vec2> vci_test_gradients() const;
+  [[nodiscard]] std::vector<Point<dim>> vci_test_gradients() const;
 
  private:
   /// m(c_K) of node i in its scaled coordinates.
-  [[nodiscard]] Monomials monomial(Index i, const Vec2& x) const;
+  [[nodiscard]] Monomials monomial(Index i, const Point<dim>& x) const;
   /// grad m at x, row l for monomial m_l (1 / s_I times the gradient in scaled coordinates).
-  [[nodiscard]] Moments monomial_gradient(Index i, const Vec2& x) const;
+  [[nodiscard]] Moments monomial_gradient(Index i, const Point<dim>& x) const;
   /// The residual of (IC_p) at node i for the gradients g (rows beyond the order's monomials zero).
-  [[nodiscard]] Moments residual(Index i, const std::vector<Vec2>& g) const;
+  [[nodiscard]] Moments residual(Index i, const std::vector<Point<dim>>& g) const;
 
-  const GalerkinQuadrature<2>& q_;
-  const std::vector<Vec2>& nodes_;
+  const GalerkinQuadrature<dim>& q_;
+  const std::vector<Point<dim>>& nodes_;
   int monomials_;
   RowIncidence incidence_;
   std::vector<double> scale_;     ///< s_I

@@ -95,7 +95,7 @@ struct Discretisation {
   std::unique_ptr<RKShapeFunctions<2>> trial;
   GalerkinQuadrature<2> quadrature;
   std::vector<Vec2> test_gradients;     ///< VCI's test gradients; empty otherwise
-  BoundaryQuadrature boundary;
+  BoundaryQuadrature<2> boundary;
   GalerkinQuadrature<2> at_boundary;            ///< trial functions and gradients at boundary's points
   Consistency consistency = Consistency::none;  ///< the correction applied
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)

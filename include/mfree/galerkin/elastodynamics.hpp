@@ -100,9 +100,9 @@ struct DynamicsProgress {
   long newton_iterations = 0;
   long factorisations = 0;
   /// Newmark: the values of the effective tangent factorised last (modified Newton keeps it
-  /// across steps), on the pattern of TotalLagrangian::zero_matrix().
+  /// across steps), on the pattern of TotalLagrangian<2>::zero_matrix().
   Eigen::VectorXd tangent;
-  PointHistory history;         ///< the model's committed material states (laws with history)
+  PointHistory<2> history;  ///< the model's committed material states (laws with history)
 };
 
 /// Saving and resuming a run (a checkpoint's part that the integrator owns).
@@ -121,11 +121,12 @@ struct DynamicsCheckpoints {
 
 /// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0
 /// (the model's densities), M solved by the solver of `solver` (on `nodes`).
-Eigen::VectorXd project_velocity(const TotalLagrangian& model, std::span<const Vec2> nodes,
+Eigen::VectorXd project_velocity(const TotalLagrangian<2>& model, std::span<const Vec2> nodes,
                                  const std::function<Vec2(const Vec2&)>& field, const SolverSettings& solver);
 
 /// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).
-double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& lumped, const Eigen::VectorXd& d);
+double critical_time_step(const TotalLagrangian<2>& model, const Eigen::VectorXd& lumped,
+                          const Eigen::VectorXd& d);
 
 /// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0),
 /// the steps a resumed run takes only. Stages "residual", "assembly", "factorisation",
@@ -138,9 +139,10 @@ double critical_time_step(const TotalLagrangian& model, const Eigen::VectorXd& l
 /// run wrote by the step, at times of the run so far with kinetic energies of 0 or more, and
 /// det F > 0 at every quadrature point of d. The model's history (laws with history) is
 /// committed at d0 and after every step.
-DynamicsResult integrate_dynamics(TotalLagrangian& model, const std::vector<Vec2>& node_positions,
+DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<Vec2>& node_positions,
                                   Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
-                                  StageTimer& timer, const std::function<void(const DynamicState&)>& on_step = {},
+                                  StageTimer& timer,
+                                  const std::function<void(const DynamicState&)>& on_step = {},
                                   const DynamicsCheckpoints& checkpoints = {});
 
 }  // namespace mfree

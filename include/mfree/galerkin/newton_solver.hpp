@@ -26,6 +26,8 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <span>
+#include <type_traits>
 #include <vector>
 
 #include "mfree/core/stage_timer.hpp"
@@ -93,8 +95,11 @@ struct StaticSolution {
 /// Solves the static problem of `model` (on `nodes`, whose rigid-body modes an AMG
 /// preconditioner takes) by load stepping; on_step(record, d) after every converged load
 /// step, once the model's history is committed there.
-StaticSolution solve_static(TotalLagrangian& model, std::span<const Vec2> nodes, const NewtonSettings& settings,
-                            StageTimer& timer,
-                            const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step = {});
+/// Instantiated for dim = 2, 3 (dim from the model).
+template <int dim>
+StaticSolution solve_static(
+    TotalLagrangian<dim>& model, std::type_identity_t<std::span<const Point<dim>>> nodes,
+    const NewtonSettings& settings, StageTimer& timer,
+    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step = {});
 
 }  // namespace mfree

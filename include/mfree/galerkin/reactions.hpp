@@ -83,7 +83,7 @@ struct Resultant {
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Nitsche's flux at one point: lambda = Pi P N - (beta M / h) Pi (u - ubar), from the two
-/// parts the model gives (TotalLagrangian::NitscheValues) and the penalty beta M / h.
+/// parts the model gives (TotalLagrangian<2>::NitscheValues) and the penalty beta M / h.
 inline Vec2 nitsche_flux(const Vec2& traction, const Vec2& gap, double penalty) {
   return traction - penalty * gap;
 }
@@ -114,10 +114,10 @@ struct Reactions {
 };
 
 /// The names of the essential conditions of `problem`, in order: the parts of reactions().
-std::vector<std::string> essential_parts(const SolidProblem& problem);
+std::vector<std::string> essential_parts(const SolidProblem<2>& problem);
 
 /// The reactions and applied loads of `model` at coefficients d and load `load`.
-Reactions reactions(const TotalLagrangian& model, const Eigen::VectorXd& d, const LoadState& load);
+Reactions reactions(const TotalLagrangian<2>& model, const Eigen::VectorXd& d, const LoadState& load);
 
 /// sum_I f_I and sum_I x_I × f_I of nodal forces f (2N), x_I = X_I (+ d_I when current_arm):
 /// the resultant of the forces the coefficients' equations hold, e.g. the inertia M a.

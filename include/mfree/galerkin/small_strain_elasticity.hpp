@@ -38,7 +38,7 @@ struct ElasticityProblem {
   /// empty: `material` in every region.
   std::vector<LinearElastic> region_materials;
   VectorField body_force;  ///< b(x), force per volume; empty: none
-  std::vector<BoundaryCondition> conditions;
+  std::vector<BoundaryCondition<2>> conditions;
   double nitsche_beta = 100.0;  ///< penalty beta M / h (dimensionless beta)
   double spacing = 1.0;         ///< h in the penalty: nodal spacing
 
@@ -53,7 +53,7 @@ struct ElasticityProblem {
 };
 /// The same problem as the total-Lagrangian solver takes it, with the small-strain laws (a
 /// caller may swap in other Materials) and the penalty modulus M, the largest of the laws'.
-SolidProblem solid_problem(const ElasticityProblem& problem);
+SolidProblem<2> solid_problem(const ElasticityProblem& problem);
 
 struct ElasticitySystem {
   SparseMatrix stiffness;  ///< 2N x 2N
@@ -65,7 +65,8 @@ struct ElasticitySystem {
 /// test functions when non-null (then the system is non-symmetric).
 ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Domain& domain, Index nodes,
                                      const GalerkinQuadrature<2>& q, const std::vector<Vec2>* test_gradients,
-                                     const BoundaryQuadrature& bq, const GalerkinQuadrature<2>& at_boundary);
+                                     const BoundaryQuadrature<2>& bq,
+                                     const GalerkinQuadrature<2>& at_boundary);
 
 /// Voigt strain at quadrature point k of q for coefficients d: (eps_xx, eps_yy, gamma_xy).
 Eigen::Vector3d strain_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d);

@@ -5,7 +5,7 @@
 //   int P(F) : grad_X v  +  N(u; v)  =  int rho0 b . v + int_Gt tbar . v     (statics)
 //
 // on the reference configuration, with F = I + grad_X u^h. At quadrature point K of the
-// GalerkinQuadrature<2> (projected, integration-consistent gradients g_I = gradbar phi_I(X_K)):
+// GalerkinQuadrature<dim> (projected, integration-consistent gradients g_I = gradbar phi_I(X_K)):
 //
 //   F_K = I + sum_I d_I g_I^T,   f_int,I = sum_K w_K P(F_K) t_I,
 //   K_(I i)(J k) = sum_K w_K t_I,M A_iMkL(F_K) g_J,L
@@ -48,34 +48,45 @@
 //
 // Pressure p (positive into the body, SPEC section 9): with a small-strain law the dead
 // traction -p N on the reference boundary; with a finite-strain law a follower load on the
-// current boundary, f_I = -p int phi_I R x,S dS (x = X + u^h, S the reference arc length,
-// R (a, b) = (b, -a) the rotation by -90 degrees), linear in the coefficients, with the load
-// stiffness dF_I / dd_J = -p int phi_I (grad phi_J . T) R dS in the tangent (not symmetric).
+// current boundary, f_I = -p int phi_I n da = -p int phi_I cof(F) N dA (Nanson's formula,
+// cof F = J F^-T). In the plane cof(F) N = R F T = R x,S (x = X + u^h, S the reference arc
+// length, T the tangent, R (a, b) = (b, -a) the rotation by -90 degrees), linear in the
+// coefficients, with the load stiffness dF_I / dd_J = -p int phi_I (grad phi_J . T) R dS. In
+// space d(cof(F) N) / dd_J = [F (grad phi_J x N)]_x (the cross-product matrix: from
+// cof(F)_iM = 1/2 e_ijk e_MNL F_jN F_kL). The load stiffness makes the tangent non-symmetric.
 //
 // Loads: `LoadState` scales body force, tractions, pressures and prescribed displacements by
 // `factor` (the load factor of a static solve) and evaluates them at `time` (dynamics).
-// Units: as the material's E; forces per unit thickness.
+// Units: as the material's E; in the plane forces per unit thickness.
+//
+// Dimension: one code for dim = 2 (a plane Domain) and dim = 3 (a Solid), instantiated in
+// the .cpp. The interfaces between regions are plane only (a solid is one region).
 
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "mfree/galerkin/boundary_quadrature.hpp"
-#include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
-#include "mfree/linalg/node_pattern.hpp"
+#include "mfree/geometry/boundary_selection.hpp"
+#include "mfree/geometry/domain_of.hpp"
 #include "mfree/linalg/linear_solver.hpp"
+#include "mfree/linalg/node_pattern.hpp"
 #include "mfree/materials/material.hpp"
 
 namespace mfree {
 
-/// A boundary value at a point X of a segment with outward unit normal N, at time t.
-using BoundaryValue = std::function<Vec2(const Vec2& x, const Vec2& n, double t)>;
+/// A boundary value at a point X of the boundary with outward unit normal N, at time t.
+template <int dim>
+using BoundaryValue = std::function<Point<dim>(const Point<dim>& x, const Point<dim>& n, double t)>;
 /// A scalar field at reference position X and time t.
-using ScalarField = std::function<double(const Vec2& x, double t)>;
+template <int dim>
+using ScalarField = std::function<double(const Point<dim>& x, double t)>;
 /// Body force per reference volume (rho0 b) at reference position X and time t.
-using BodyForce = std::function<Vec2(const Vec2& x, double t)>;
+template <int dim>
+using BodyForce = std::function<Point<dim>(const Point<dim>& x, double t)>;
 
+template <int dim>
 struct BoundaryCondition {
   enum class Type {
     displacement,  ///< u = ubar
@@ -84,13 +95,18 @@ struct BoundaryCondition {
     pressure,      ///< P N = -p n (dead at small strain, follower at finite strain)
   };
   Type type = Type::traction;
-  BoundarySelection where;  ///< the part of the boundary it holds on
-  BoundaryValue value;      ///< ubar(X, N, t) or tbar(X, N, t); empty for pressure
-  std::string name;         ///< for messages
-  ScalarField pressure;     ///< p(X, t), positive into the body; only for pressure
+  BoundarySelection<dim> where;  ///< the part of the boundary it holds on
+  BoundaryValue<dim> value;      ///< ubar(X, N, t) or tbar(X, N, t); empty for pressure
+  std::string name;              ///< for messages
+  ScalarField<dim> pressure;     ///< p(X, t), positive into the body; only for pressure
 };
 /// The parts of the conditions, in order (the boundary quadrature is cut at their ends).
-std::vector<BoundarySelection> condition_parts(const std::vector<BoundaryCondition>& conditions);
+template <int dim>
+std::vector<BoundarySelection<dim>> condition_parts(const std::vector<BoundaryCondition<dim>>& conditions) {
+  std::vector<BoundarySelection<dim>> parts;
+  for (const BoundaryCondition<dim>& c : conditions) parts.push_back(c.where);
+  return parts;
+}
 
 struct LoadState {
   double factor = 1.0;  ///< multiplies every load and prescribed displacement
@@ -108,13 +124,15 @@ struct LoadState {
 inline constexpr double max_poisson_ratio = 0.49;
 
 /// The committed material states of a model's points (laws with history; empty otherwise).
+template <int dim>
 struct PointHistory {
-  std::vector<MaterialState<2>> domain;  ///< per quadrature point
+  std::vector<MaterialState<dim>> domain;  ///< per quadrature point
   /// Per Nitsche point (boundary quadrature points of essential conditions), then per tie
   /// point of an interface its two faces (+, -).
-  std::vector<MaterialState<2>> boundary;
+  std::vector<MaterialState<dim>> boundary;
 };
 
+template <int dim>
 struct SolidProblem {
   Material material = LinearElastic{};  ///< the law everywhere, unless region_materials are given
   /// For a domain of several regions (Domain::regions()), the law of each, in their order;
@@ -122,8 +140,9 @@ struct SolidProblem {
   std::vector<Material> region_materials;
   double density = 0.0;  ///< rho0 [kg/m^3] everywhere, unless region_densities are given (0: not given)
   std::vector<double> region_densities;       ///< per region, as region_materials (dynamics)
-  BodyForce body_force;                       ///< empty: none
-  std::vector<BoundaryCondition> conditions;  ///< on disjoint parts of the boundary; the rest is traction free
+  BodyForce<dim> body_force;                  ///< empty: none
+  std::vector<BoundaryCondition<dim>>
+      conditions;  ///< on disjoint parts of the boundary; the rest is traction free
   /// Dimensionless beta of the penalty beta M / h, M the P-wave modulus of the law at the
   /// point (at an interface the larger of its faces' laws).
   double nitsche_beta = 100.0;
@@ -138,11 +157,12 @@ struct SolidProblem {
     return region_densities.empty() ? density : region_densities[static_cast<std::size_t>(region)];
   }
   /// The law at X of the domain (its region's; on the boundary, the nearest region's).
-  [[nodiscard]] const Material& law_at(const Domain& domain, const Vec2& x) const {
+  [[nodiscard]] const Material& law_at(const Domain& domain, const Vec2& x) const requires(dim == 2) {
     return region_materials.empty() ? material : law(domain.nearest_region(x).first);
   }
 };
 
+template <int dim>
 class TotalLagrangian {
  public:
   /// Views q, test gradients (same layout as q.grad; null: q.grad), bq and at_boundary (the
@@ -150,22 +170,22 @@ class TotalLagrangian {
   /// boundary point takes the first condition whose part holds it; bq cut at the conditions'
   /// parts (boundary_quadrature(..., condition_parts(conditions)), as discretise() does)
   /// integrates each condition over exactly its part.
-  TotalLagrangian(SolidProblem problem, const Domain& domain, Index nodes, const GalerkinQuadrature<2>& q,
-                  const std::vector<Vec2>* test_gradients, const BoundaryQuadrature& bq,
-                  const GalerkinQuadrature<2>& at_boundary);
+  TotalLagrangian(SolidProblem<dim> problem, const DomainOf<dim>& domain, Index nodes,
+                  const GalerkinQuadrature<dim>& q, const std::vector<Point<dim>>* test_gradients,
+                  const BoundaryQuadrature<dim>& bq, const GalerkinQuadrature<dim>& at_boundary);
 
   [[nodiscard]] Index nodes() const { return nodes_; }
-  [[nodiscard]] Eigen::Index dofs() const { return 2 * Eigen::Index{nodes_}; }
-  [[nodiscard]] const SolidProblem& problem() const { return problem_; }
-  [[nodiscard]] const GalerkinQuadrature<2>& quadrature() const { return q_; }
+  [[nodiscard]] Eigen::Index dofs() const { return dim * Eigen::Index{nodes_}; }
+  [[nodiscard]] const SolidProblem<dim>& problem() const { return problem_; }
+  [[nodiscard]] const GalerkinQuadrature<dim>& quadrature() const { return q_; }
   /// True when the tangent is symmetric at every state (CHOLMOD applies).
   [[nodiscard]] bool symmetric() const { return symmetric_; }
-  /// A 2N x 2N matrix with the tangent's sparsity, values zero: tangent(), mass() and
+  /// A dim N x dim N matrix with the tangent's sparsity, values zero: tangent(), mass() and
   /// their sums share it.
-  [[nodiscard]] SparseMatrix zero_matrix() const { return block_matrix(pattern_, 2); }
+  [[nodiscard]] SparseMatrix zero_matrix() const { return block_matrix(pattern_, dim); }
 
   /// F_K = I + sum_I d_I g_I^T at quadrature point k.
-  [[nodiscard]] Mat2 deformation_gradient(Index k, const Eigen::VectorXd& d) const;
+  [[nodiscard]] Tensor2<dim> deformation_gradient(Index k, const Eigen::VectorXd& d) const;
   /// sum_K w_K P(F_K) t_I: the domain term. Throws NumericalError when J <= 0 somewhere.
   [[nodiscard]] Eigen::VectorXd internal_force(const Eigen::VectorXd& d) const;
   /// The boundary terms that depend on the state: Nitsche's terms N(u; phi_I e_i) of the
@@ -188,30 +208,30 @@ class TotalLagrangian {
   /// internal_force(d) and commit(d) in one pass over the points (one update per point, not
   /// two): for explicit steps, whose every state is accepted.
   [[nodiscard]] Eigen::VectorXd internal_force_committed(const Eigen::VectorXd& d);
-  [[nodiscard]] const PointHistory& history() const { return history_; }
+  [[nodiscard]] const PointHistory<dim>& history() const { return history_; }
 
   // The boundary terms point by point, for the reactions (galerkin/reactions.hpp): the same
   // values boundary_force() and external_force() integrate.
-  [[nodiscard]] const BoundaryQuadrature& boundary() const { return bq_; }
-  [[nodiscard]] const GalerkinQuadrature<2>& at_boundary() const { return at_boundary_; }
+  [[nodiscard]] const BoundaryQuadrature<dim>& boundary() const { return bq_; }
+  [[nodiscard]] const GalerkinQuadrature<dim>& at_boundary() const { return at_boundary_; }
   /// The two parts of Nitsche's flux at one Nitsche point: traction = Pi P(F) N of the
   /// committed state [Pa], gap = Pi (u^h - factor ubar) [m].
   struct NitscheValues {
     Index point = 0;  ///< index into boundary() / at_boundary()
-    const BoundaryCondition* condition = nullptr;
-    Vec2 traction = Vec2::Zero();
-    Vec2 gap = Vec2::Zero();
+    const BoundaryCondition<dim>* condition = nullptr;
+    Point<dim> traction = Point<dim>::Zero();
+    Point<dim> gap = Point<dim>::Zero();
     double penalty = 0.0;  ///< beta M / h of the point's law [Pa / m]
   };
   /// The Nitsche points: the boundary points of the essential conditions, in boundary order.
   [[nodiscard]] std::size_t nitsche_points() const { return nitsche_.size(); }
   [[nodiscard]] NitscheValues nitsche_values(std::size_t b, const Eigen::VectorXd& d,
                                              const LoadState& load) const;
-  /// The applied traction at boundary point p per unit reference length [Pa]: tbar or -p N
-  /// of a natural condition (dead), -p R x,S of a follower pressure; zero elsewhere.
-  [[nodiscard]] Vec2 boundary_load(Index p, const Eigen::VectorXd& d, const LoadState& load) const;
+  /// The applied traction at boundary point p per unit reference length (area) [Pa]: tbar or
+  /// -p N of a natural condition (dead), -p cof(F) N of a follower pressure; zero elsewhere.
+  [[nodiscard]] Point<dim> boundary_load(Index p, const Eigen::VectorXd& d, const LoadState& load) const;
   /// Replaces the history (a resumed run); InputError when the sizes do not fit.
-  void set_history(PointHistory history);
+  void set_history(PointHistory<dim> history);
   /// sum_K w_K D_K: the plastic work per unit thickness done so far (committed) [J/m].
   [[nodiscard]] double dissipated() const;
   /// sum_K w_K over the points that have yielded (committed alpha > 0): the area of the
@@ -220,27 +240,27 @@ class TotalLagrangian {
   /// The update at quadrature point k from its committed state: Cauchy stress, sigma_zz and
   /// the state (for output: the stress where it lives).
   struct PointResponse {
-    Mat2 cauchy = Mat2::Zero();
+    Tensor2<dim> cauchy = Tensor2<dim>::Zero();
     double cauchy_zz = 0.0;
-    MaterialState<2> state;
+    MaterialState<dim> state;
   };
   [[nodiscard]] PointResponse response(Index k, const Eigen::VectorXd& d) const;
 
   /// rho0 per quadrature point, its region's; InputError when a region has no density.
   [[nodiscard]] std::vector<double> point_densities() const;
-  /// Consistent mass sum_K w_K rho0_K phi_I phi_J (times I_2), rho0_K the density of point K's
+  /// Consistent mass sum_K w_K rho0_K phi_I phi_J (times I_dim), rho0_K the density of point K's
   /// region, on the tangent's pattern (so M and K add value by value). InputError when a
   /// region has no density.
   [[nodiscard]] SparseMatrix mass_matrix() const;
-  /// Row-sum lumped mass m_I = sum_K w_K rho0_K phi_I(X_K) (per DOF: m_I twice). Throws
+  /// Row-sum lumped mass m_I = sum_K w_K rho0_K phi_I(X_K) (per DOF: m_I dim times). Throws
   /// NumericalError naming the node when one is not positive.
-  [[nodiscard]] Eigen::VectorXd lumped_mass(const std::vector<Vec2>& node_positions) const;
+  [[nodiscard]] Eigen::VectorXd lumped_mass(const std::vector<Point<dim>>& node_positions) const;
 
  private:
   struct NitschePoint {
     Index point;            ///< index into bq / at_boundary
-    Mat2 projection;        ///< Pi
-    const BoundaryCondition* condition;
+    Tensor2<dim> projection;  ///< Pi
+    const BoundaryCondition<dim>* condition;
     double penalty;  ///< beta M / h of the point's law [Pa / m]
   };
   /// A point of an interface: the same point on its two faces.
@@ -256,23 +276,24 @@ class TotalLagrangian {
   };
 
   /// The update at quadrature point k (or Nitsche point b) from its committed state.
-  [[nodiscard]] MaterialUpdate<2> domain_update(Index k, const Mat2& f, bool with_tangent) const;
-  [[nodiscard]] MaterialUpdate<2> boundary_update(std::size_t b, const Mat2& f, bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<dim> domain_update(Index k, const Tensor2<dim>& f, bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<dim> boundary_update(std::size_t b, const Tensor2<dim>& f,
+                                                    bool with_tangent) const;
   /// sum_K w_K P(F_K) t_I from the committed states; with `commit`, each point's new state
   /// written into it after its update.
   [[nodiscard]] Eigen::VectorXd domain_force(const Eigen::VectorXd& d,
-                                             std::vector<MaterialState<2>>* commit) const;
-  /// x,S = T + sum_J d_J (grad phi_J . T) at follower point p: the current boundary's
-  /// stretch vector per reference length.
-  [[nodiscard]] Vec2 follower_stretch(Index p, const Eigen::VectorXd& d) const;
+                                             std::vector<MaterialState<dim>>* commit) const;
+  /// cof(F) N at follower point p: the current boundary's area normal n da / dA (plane:
+  /// R x,S, the current tangent per reference length turned outward).
+  [[nodiscard]] Point<dim> follower_normal(Index p, const Eigen::VectorXd& d) const;
   /// F at Nitsche point p (the trial functions of at_boundary).
-  [[nodiscard]] Mat2 boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
+  [[nodiscard]] Tensor2<dim> boundary_deformation_gradient(Index point, const Eigen::VectorXd& d) const;
   /// The tie's terms at its points: forces added to f, and with k the tangent added to k's values.
   void add_tie_force(const Eigen::VectorXd& d, Eigen::VectorXd& f) const;
   void add_tie_tangent(const Eigen::VectorXd& d, double* values) const;
   /// The update at face `face` (0: +, 1: -) of tie point `tie` with its law, from its committed state.
-  [[nodiscard]] MaterialUpdate<2> tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
-                                             bool with_tangent) const;
+  [[nodiscard]] MaterialUpdate<dim> tie_update(std::size_t tie, int face, const Eigen::VectorXd& d,
+                                               bool with_tangent) const;
   /// Where the state of a tie point's face lives in history_.boundary.
   [[nodiscard]] std::size_t tie_state(std::size_t tie, int face) const {
     return nitsche_.size() + 2 * tie + static_cast<std::size_t>(face);
@@ -280,31 +301,31 @@ class TotalLagrangian {
   /// Commits the states of the Nitsche and tie points at d.
   void commit_boundary(const Eigen::VectorXd& d);
 
-  SolidProblem problem_;
+  SolidProblem<dim> problem_;
   bool history_laws_ = false;
-  PointHistory history_;
+  PointHistory<dim> history_;
   Index nodes_;
-  const GalerkinQuadrature<2>& q_;
-  const std::vector<Vec2>& test_;
-  const BoundaryQuadrature& bq_;
-  const GalerkinQuadrature<2>& at_boundary_;
-  std::vector<const BoundaryCondition*> traction_of_point_;  ///< per boundary point; null if none
+  const GalerkinQuadrature<dim>& q_;
+  const std::vector<Point<dim>>& test_;
+  const BoundaryQuadrature<dim>& bq_;
+  const GalerkinQuadrature<dim>& at_boundary_;
+  std::vector<const BoundaryCondition<dim>*> traction_of_point_;  ///< per boundary point; null if none
   std::vector<NitschePoint> nitsche_;
   std::vector<TiePoint> ties_;
   std::vector<int> law_of_point_;            ///< per quadrature point, its region's law
   std::vector<int> law_of_boundary_;         ///< per boundary point
-  std::vector<Tangent<2>> reference_tangents_;  ///< per law, C = A(I)
+  std::vector<Tangent<dim>> reference_tangents_;  ///< per law, C = A(I)
   std::vector<double> penalty_of_law_;       ///< per law, beta M / h
   bool linear_ = true;                       ///< every law linear
-  std::vector<std::pair<Index, const BoundaryCondition*>> follower_;  ///< points of follower pressures
-  std::vector<const BoundaryCondition*> follower_of_point_;           ///< per boundary point; null if none
+  std::vector<std::pair<Index, const BoundaryCondition<dim>*>> follower_;  ///< points of follower pressures
+  std::vector<const BoundaryCondition<dim>*> follower_of_point_;  ///< per boundary point; null if none
   std::vector<Index> boundary_offsets_{0}, boundary_nodes_;
   RowIncidence domain_rows_;
   RowIncidence boundary_rows_;
   NodePattern pattern_;
   /// Per slot of a Nitsche point's row in at_boundary: (C : grad(phi_I e_i)) N as the columns
-  /// i of a 2 x 2 matrix, the traction of a test function in the symmetrising term.
-  std::vector<Mat2> reference_traction_;
+  /// i of a dim x dim matrix, the traction of a test function in the symmetrising term.
+  std::vector<Tensor2<dim>> reference_traction_;
   bool domain_symmetric_ = true;  ///< test = trial gradients and a tangent with major symmetry
   bool symmetric_ = true;
 };

@@ -163,9 +163,9 @@ struct ElasticityScene {
   [[nodiscard]] SolutionSetting solution_setting() const;
   /// The finite-strain (or small-strain) problem of the scene; loads are those of statics
   /// with the exact body force, or the body force rho0 b(X, t) of an exact motion.
-  [[nodiscard]] SolidProblem solid_problem() const;
+  [[nodiscard]] SolidProblem<2> solid_problem() const;
   /// rho0 b(X, t) of [loads]: body_force plus density times gravity.
-  [[nodiscard]] BodyForce loads_body_force() const;
+  [[nodiscard]] BodyForce<2> loads_body_force() const;
   /// The body force of statics: [loads], or the one a built-in exact solution needs.
   [[nodiscard]] VectorField static_body_force() const;
   /// A line per [[boundary]]: name, type, what it selects and the length selected.

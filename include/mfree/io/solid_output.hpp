@@ -35,7 +35,7 @@ class SolidFrames {
   /// quadrature points hold the history (needed for a law with history, else unused); it
   /// must outlive the frames.
   SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
-              const TotalLagrangian* model = nullptr);
+              const TotalLagrangian<2>* model = nullptr);
   /// Writes frame number frames() at `time`; v may be null (statics).
   void write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v);
   [[nodiscard]] int frames() const { return static_cast<int>(steps_.size()); }
@@ -52,7 +52,7 @@ class SolidFrames {
   const OutputSettings& output_;
   std::vector<Material> law_;  ///< per sample
   const ExactMotion* exact_;
-  const TotalLagrangian* model_;  ///< set for a law with history
+  const TotalLagrangian<2>* model_;  ///< set for a law with history
   std::filesystem::path folder_;
   std::vector<Vec2> points_, samples_;  ///< the plot's vertices, where their fields are sampled
   std::vector<std::array<Index, 3>> triangles_;

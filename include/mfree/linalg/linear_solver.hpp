@@ -38,6 +38,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "mfree/core/name_table.hpp"
 #include "mfree/core/types.hpp"
@@ -70,11 +71,12 @@ struct SolverSettings {
 struct SystemDescription {
   std::string name;                       ///< "stiffness", "mass", ...: for messages and summaries
   bool symmetric = true;                  ///< symmetric positive definite
-  /// Unknowns per node (2: displacements, unknown 2 I + c), and the node coordinates whose
-  /// rigid-body modes (two translations, one rotation for 2 unknowns per node; 1, x, y for
-  /// one) AMG takes as its near-null space. Empty: constants only.
+  /// Unknowns per node (dim: displacements, unknown dim I + c; 1: a scalar field), and the
+  /// node coordinates, plane or space, whose rigid-body modes (rigid_body_modes.hpp: dim
+  /// translations and 1 or 3 rotations; 1, x, y (, z) for a scalar) AMG takes as its
+  /// near-null space. Empty: constants only.
   int block_size = 1;
-  std::span<const Vec2> nodes;
+  std::variant<std::span<const Point<2>>, std::span<const Point<3>>> nodes;
   /// A non-symmetric matrix that is a small skew correction of a symmetric positive definite
   /// one (the stiffness with linear-order VCI test gradients): GAMG is its default.
   bool nearly_symmetric = false;

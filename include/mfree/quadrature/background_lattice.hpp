@@ -28,8 +28,7 @@
 #include <vector>
 
 #include "mfree/core/types.hpp"
-#include "mfree/geometry/domain.hpp"
-#include "mfree/geometry/solid.hpp"
+#include "mfree/geometry/domain_of.hpp"
 
 namespace mfree {
 
@@ -41,7 +40,7 @@ namespace mfree {
 template <int dim>
 class BackgroundLattice {
  public:
-  using DomainType = std::conditional_t<dim == 2, Domain, Solid>;
+  using DomainType = DomainOf<dim>;
 
   /// Lattice of vertex spacing `spacing` > 0 and Newton–Cotes order 1 or 2 over the domain.
   BackgroundLattice(const DomainType& domain, double spacing, int order);

@@ -1,0 +1,272 @@
+// The total-Lagrangian solver in three dimensions on a box solid: the surface quadrature
+// (divergence theorem to round-off, parts cut by clipping boxes), the linear and quadratic
+// patch tests with Nitsche conditions (displacement and slip) and tractions on lattice and
+// perturbed clouds, and the tangent against central differences of the forces for
+// Neo-Hookean and J2 with Nitsche conditions and a follower pressure.
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "mfree/clouds/point_cloud.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/core/stage_timer.hpp"
+#include "mfree/galerkin/boundary_quadrature.hpp"
+#include "mfree/galerkin/consistency.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
+#include "mfree/materials/j2_plasticity.hpp"
+#include "mfree/materials/neo_hookean.hpp"
+
+using namespace mfree;
+
+namespace {
+
+using P3 = Point<3>;
+using M3 = Tensor2<3>;
+
+const Solid& box() {
+  static const Solid solid = Solid::box(P3(0.0, 0.0, 0.0), P3(1.0, 0.8, 0.6));
+  return solid;
+}
+
+/// Nodes, RK functions, the projected quadrature with VCI test gradients, and the surface
+/// points of a box solid, as the solver takes them.
+struct Discretisation3 {
+  std::vector<P3> nodes;
+  std::unique_ptr<RKShapeFunctions<3>> trial;
+  GalerkinQuadrature<3> q;
+  std::vector<P3> test;
+  BoundaryQuadrature<3> bq;
+  GalerkinQuadrature<3> at_boundary;
+  double defect_before = 0.0, defect_after = 0.0;
+
+  Discretisation3(CloudKind kind, double h, RKOrder order, const std::vector<BoundarySelection<3>>& parts) {
+    CloudSettings cs;
+    cs.kind = kind;
+    cs.spacing = h;
+    cs.perturbation = 0.3;
+    cs.seed = 5;
+    nodes = make_cloud(box(), cs);
+    const double factor = order == RKOrder::linear ? 2.0 : 3.0;
+    RKSettings rs;
+    rs.order = order;
+    rs.radius = factor * h;
+    if (kind != CloudKind::lattice) rs.node_radii = nodal_support_radii(nodes, h, factor * 1.25);
+    trial = std::make_unique<RKShapeFunctions<3>>(nodes, rs);
+    // The solver's plane defaults: a lattice quadrature cloud of 8 points per node, linear RK
+    // of support 2 spacings, a background lattice of half its spacing.
+    CloudSettings qc = cs;
+    qc.kind = CloudKind::lattice;
+    const std::vector<P3> xq = make_quadrature_cloud(box(), qc, 8.0);
+    const double hq = h / 2;
+    RKSettings qs;
+    qs.radius = 2.0 * hq;
+    const RKShapeFunctions<3> functions(xq, qs);
+    q = projected_quadrature(*trial, functions, BackgroundLattice<3>(box(), hq / 2, 1));
+    bq = boundary_quadrature(box(), h, order == RKOrder::linear ? 2 : 3, parts);
+    at_boundary = boundary_functions(*trial, bq);
+    const ConsistencyConditions<3> conditions(q, nodes, at_boundary, bq, order);
+    defect_before = conditions.defect(q.grad);
+    test = conditions.vci_test_gradients();
+    defect_after = conditions.defect(test);
+  }
+  [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
+  /// u^h at the quadrature points.
+  [[nodiscard]] std::vector<P3> displacement(const Eigen::VectorXd& d) const {
+    std::vector<P3> u(q.points.size(), P3::Zero());
+    for (Index k = 0; k < q.size(); ++k)
+      for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u[k] += q.phi[s] * d.segment<3>(3 * q.nodes[s]);
+    return u;
+  }
+};
+
+LinearElastic steel_like() { return LinearElastic{1.0, 0.3, PlaneModel::strain}; }
+
+/// sigma of the 3D linear law for a displacement gradient g.
+M3 linear_stress(const LinearElastic& m, const M3& g) {
+  const Lame l = lame_constants(m.youngs_modulus, m.poisson_ratio);
+  const M3 eps = 0.5 * (g + g.transpose());
+  return l.lambda * eps.trace() * M3::Identity() + 2.0 * l.mu * eps;
+}
+
+}  // namespace
+
+TEST_CASE("3D surface quadrature: the divergence theorem to round-off, parts cut by boxes",
+          "[galerkin][3d]") {
+  // Parts: the face x = 0, and the strip 0.3 <= x <= 0.7 of the face y = 0 (a box that also
+  // crosses the faces z = 0 and z = 0.6 edge-on: no area there).
+  const AlignedBox<3> strip(P3(0.3, -0.1, -0.1), P3(0.7, 0.0, 0.7));
+  const std::vector<BoundarySelection<3>> parts = {select_part(box(), "x_min"), select_box(box(), strip)};
+  CHECK(selection_area(box(), parts[0]) == Approx(0.48).epsilon(1e-14));
+  CHECK(selection_area(box(), parts[1]) == Approx(0.24).epsilon(1e-14));
+  CHECK(parts[1].size() == 2);  // the two triangles of y_min
+  for (const double length : {1.0, 0.13}) {
+    CAPTURE(length);
+    const BoundaryQuadrature<3> bq = boundary_quadrature(box(), length, 2, parts);
+    double area = 0.0;
+    P3 flux = P3::Zero();
+    M3 moment = M3::Zero();
+    std::array<double, 2> part_area = {0.0, 0.0};
+    for (Index p = 0; p < bq.size(); ++p) {
+      area += bq.weights[p];
+      flux += bq.weights[p] * bq.normals[p];
+      // sum w x n^T = integral of grad x = |Omega| I; x y n: the integral of grad (x y).
+      moment += bq.weights[p] * bq.points[p] * bq.normals[p].transpose();
+      const int part = boundary_part(box(), parts, bq.segment[p], bq.points[p]);
+      if (part >= 0) part_area[static_cast<std::size_t>(part)] += bq.weights[p];
+      if (part == 1) CHECK(strip.contains(bq.points[p]));
+    }
+    CHECK(area == Approx(2 * (0.8 + 0.48 + 0.6)).epsilon(1e-13));  // a sum of some 2000 weights
+    CHECK(flux.norm() < 1e-14);
+    CHECK((moment - 0.48 * M3::Identity()).norm() < 1e-14);
+    CHECK(part_area[0] == Approx(0.48).epsilon(1e-14));
+    CHECK(part_area[1] == Approx(0.24).epsilon(1e-14));
+  }
+  CHECK_THROWS_WITH(select_part(box(), "top"),
+                    Catch::Contains("no surface part 'top'") && Catch::Contains("z_max"));
+  CHECK(select_box(box(), AlignedBox<3>(P3(0.2, 0.2, 0.2), P3(0.4, 0.4, 0.4)))
+            .empty());  // inside, off the surface
+}
+
+TEST_CASE("3D patch tests: linear and quadratic fields reproduced with Nitsche conditions to round-off",
+          "[galerkin][3d]") {
+  // u = linear (quadratic) field; displacement on x = 0, slip on y = 0 (the field has no shear
+  // traction there), the exact tractions on the other faces, the body force -div sigma
+  // (constant for the quadratic field).
+  const LinearElastic law = steel_like();
+  const Lame lame = lame_constants(law.youngs_modulus, law.poisson_ratio);
+  for (const RKOrder order : {RKOrder::linear, RKOrder::quadratic})
+    for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
+      CAPTURE(to_string(order), to_string(kind));
+      const bool quadratic = order == RKOrder::quadratic;
+      // a_xy = -a_yx and a_zy = -a_yz: no shear traction on y = 0, where the roller holds.
+      const M3 a = (M3() << 0.010, 0.004, -0.002, -0.004, -0.006, 0.005, 0.001, -0.005, 0.008).finished();
+      const double c = quadratic ? 0.01 : 0.0;
+      // u = a x + c (x^2, y z, x z): grad u = a + c G(x), with G = [[2x, 0, 0], [0, z, y], [z, 0, x]].
+      const auto exact = [&](const P3& x) -> P3 {
+        return P3(0.1, -0.2, 0.05) + a * x + c * P3(x[0] * x[0], x[1] * x[2], x[0] * x[2]);
+      };
+      const auto gradient = [&](const P3& x) -> M3 {
+        return a + c * (M3() << 2 * x[0], 0, 0, 0, x[2], x[1], x[2], 0, x[0]).finished();
+      };
+      // div sigma = lambda grad(div u) + mu (laplacian u + grad(div u)); div u = tr a + c (2x + z + x).
+      const P3 grad_div = c * P3(3.0, 0.0, 1.0);
+      const P3 laplacian = c * P3(2.0, 0.0, 0.0);
+      const P3 body = -((lame.lambda + lame.mu) * grad_div + lame.mu * laplacian);
+
+      SolidProblem<3> p;
+      p.material = law;
+      p.spacing = 0.2;
+      p.body_force = [&](const P3&, double) { return body; };
+      const auto value = [&](const P3& x, const P3&, double) { return exact(x); };
+      const auto traction = [&](const P3& x, const P3& n, double) -> P3 {
+        return linear_stress(law, gradient(x)) * n;
+      };
+      p.conditions = {{BoundaryCondition<3>::Type::displacement, select_part(box(), "x_min"), value, "clamp"},
+                      {BoundaryCondition<3>::Type::slip, select_part(box(), "y_min"), value, "roller"}};
+      for (const char* face : {"x_max", "y_max", "z_min", "z_max"})
+        p.conditions.push_back(
+            {BoundaryCondition<3>::Type::traction, select_part(box(), face), traction, face});
+      const Discretisation3 disc(kind, 0.2, order, condition_parts(p.conditions));
+      INFO(fmt::format("(IC) defect {:.3e} projected, {:.3e} with VCI", disc.defect_before,
+                       disc.defect_after));
+      CHECK(disc.defect_after < 1e-11);
+      TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, &disc.test, disc.bq, disc.at_boundary);
+      CHECK_FALSE(model.symmetric());  // VCI test gradients
+      NewtonSettings ns;
+      ns.load_steps = 1;
+      StageTimer timer;
+      const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
+      const std::vector<P3> u = disc.displacement(sol.coefficients);
+      double error = 0.0, scale = 0.0;
+      for (Index k = 0; k < disc.q.size(); ++k) {
+        error = std::max(error, (u[k] - exact(disc.q.points[k])).norm());
+        scale = std::max(scale, exact(disc.q.points[k]).norm());
+      }
+      INFO(fmt::format("max |u^h - u| / max |u| = {:.3e}", error / scale));
+      CHECK(error / scale < 1e-10);
+      CHECK(sol.steps.front().history.size() <= 3);  // one linear solve, then at round-off
+    }
+}
+
+TEST_CASE("3D total-Lagrangian tangent against central differences of the forces", "[galerkin][3d]") {
+  // Neo-Hookean and J2 (through yield) with a clamp, a slip wall and a follower pressure.
+  const Lame lame = lame_constants(1.0, 0.3);
+  J2Plasticity j2;
+  j2.lame = lame;
+  j2.yield_stress = 0.004;
+  j2.isotropic_modulus = 0.1;
+  for (const Material& law : {Material{NeoHookean{lame}}, Material{j2}}) {
+    CAPTURE(std::string(name(law)));
+    SolidProblem<3> p;
+    p.material = law;
+    p.spacing = 0.25;
+    const auto zero = [](const P3&, const P3&, double) { return P3::Zero(); };
+    p.conditions = {{BoundaryCondition<3>::Type::displacement, select_part(box(), "x_min"), zero, "clamp"},
+                    {BoundaryCondition<3>::Type::slip, select_part(box(), "y_min"), zero, "roller"},
+                    {BoundaryCondition<3>::Type::pressure,
+                     select_box(box(), AlignedBox<3>(P3(0.4, -1, 0.59), P3(2, 2, 1))),
+                     {},
+                     "press",
+                     [](const P3& x, double) { return 0.02 * (1.0 + x[0]); }}};
+    const Discretisation3 disc(CloudKind::perturbed, 0.25, RKOrder::linear, condition_parts(p.conditions));
+    const TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, nullptr, disc.bq, disc.at_boundary);
+    CHECK_FALSE(model.symmetric());  // the follower load
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    Eigen::VectorXd d(model.dofs());
+    for (Eigen::Index i = 0; i < d.size(); ++i) d[i] = 0.01 * unit(rng);
+    const LoadState load{1.0, 0.0};
+    const auto force = [&](const Eigen::VectorXd& x) {
+      return Eigen::VectorXd(model.internal_force(x) + model.boundary_force(x, load));
+    };
+    SparseMatrix k = model.zero_matrix();
+    model.tangent(d, load, k);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(k);
+    const double eps = 1e-7;
+    double worst = 0.0;
+    for (Eigen::Index j = 0; j < d.size(); j += 7) {
+      Eigen::VectorXd plus = d, minus = d;
+      plus[j] += eps;
+      minus[j] -= eps;
+      const Eigen::VectorXd fd = (force(plus) - force(minus)) / (2 * eps);
+      worst = std::max(worst, (fd - dense.col(j)).norm() / dense.col(j).norm());
+    }
+    INFO(fmt::format("worst column: {:.3e}", worst));
+    CHECK(worst < 1e-6);
+  }
+}
+
+TEST_CASE("3D stiffness: CG with GAMG and the six rigid-body modes gives the direct solution",
+          "[galerkin][3d]") {
+  // A box clamped at x = 0 under a shear traction at x = 1, the symmetric form (projected
+  // gradients, no VCI): CHOLMOD, then CG preconditioned by GAMG with block size 3.
+  SolidProblem<3> p;
+  p.material = steel_like();
+  p.spacing = 0.2;
+  const auto zero = [](const P3&, const P3&, double) { return P3::Zero(); };
+  const auto shear = [](const P3&, const P3&, double) { return P3(0.0, 0.01, 0.005); };
+  p.conditions = {{BoundaryCondition<3>::Type::displacement, select_part(box(), "x_min"), zero, "clamp"},
+                  {BoundaryCondition<3>::Type::traction, select_part(box(), "x_max"), shear, "load"}};
+  const Discretisation3 disc(CloudKind::perturbed, 0.2, RKOrder::linear, condition_parts(p.conditions));
+  TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, nullptr, disc.bq, disc.at_boundary);
+  REQUIRE(model.symmetric());
+  NewtonSettings ns;
+  ns.load_steps = 1;
+  StageTimer timer;
+  ns.solver.kind = SolverKind::cholmod;
+  const StaticSolution direct = solve_static(model, disc.nodes, ns, timer);
+  ns.solver.kind = SolverKind::cg;
+  ns.solver.preconditioner = Preconditioner::gamg;
+  ns.solver.tolerance = 1e-12;
+  const StaticSolution krylov = solve_static(model, disc.nodes, ns, timer);
+  const double difference = (krylov.coefficients - direct.coefficients).norm() / direct.coefficients.norm();
+  INFO(fmt::format("{} DOFs: relative difference {:.3e}, {} CG iterations in the worst solve", model.dofs(),
+                   difference, krylov.solver.statistics.most_iterations));
+  CHECK(difference < 1e-9);
+  // The coarse level holds 6 unknowns per aggregate: the six modes reached GAMG.
+  CHECK(krylov.solver.method.find("gamg") != std::string::npos);
+}
