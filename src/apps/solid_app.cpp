@@ -43,7 +43,7 @@ std::optional<ExactMotion> scaled_static(const ElasticityScene& scene) {
 
 /// The trial functions at the scene's probe, sampled once for the whole run.
 std::optional<GalerkinQuadrature<2>> probe_functions(const ElasticityScene& scene,
-                                                     const Discretisation& disc) {
+                                                     const Discretisation<2>& disc) {
   if (!scene.output.probe) return std::nullopt;
   return sample_shape_functions(*disc.trial, {*scene.output.probe}, false);
 }
@@ -65,7 +65,7 @@ int run_static(const ElasticityScene& scene) {
   std::cout << scene.describe_conditions();
   StageTimer timer;
   timer.report_to(&std::cout);
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const Discretisation<2> disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
                            disc.test(), disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
@@ -160,7 +160,7 @@ namespace {
 
 constexpr double unbounded = std::numeric_limits<double>::infinity();
 
-// Checkpoints of a dynamic run: the integrator's state (DynamicsProgress) and the run's
+// Checkpoints of a dynamic run: the integrator's state (DynamicsProgress<2>) and the run's
 // records so far (errors, probe history, frames, the next error and frame times).
 
 void put_vector(CheckpointState& s, const std::string& name, const Eigen::VectorXd& v) {
@@ -201,7 +201,7 @@ std::vector<MaterialState<2>> get_history(const CheckpointState& s, const std::s
   return states;
 }
 
-void save_progress(CheckpointState& s, const DynamicsProgress& p) {
+void save_progress(CheckpointState& s, const DynamicsProgress<2>& p) {
   s.put("step", p.step);
   put_vector(s, "d", p.d);
   put_vector(s, "v", p.v);
@@ -222,14 +222,14 @@ void save_progress(CheckpointState& s, const DynamicsProgress& p) {
 
 /// The integrator's state of checkpoint `s` of step `step`, as save_progress() wrote it: its
 /// "step" that of the checkpoint, whole energy records, counts of 0 or more. The rest is
-/// checked against the run by integrate_dynamics (DynamicsCheckpoints::refuse).
-DynamicsProgress restore_progress(const CheckpointState& s, long long step) {
+/// checked against the run by integrate_dynamics (DynamicsCheckpoints<2>::refuse).
+DynamicsProgress<2> restore_progress(const CheckpointState& s, long long step) {
   if (step > static_cast<long long>(max_time_steps))
     throw InputError(
         fmt::format("checkpoint {}: step {} is past the most steps a run may take ({:g}): the checkpoint "
                     "is damaged; restart from an earlier checkpoint or without --restart",
                     s.source.string(), step, max_time_steps));
-  DynamicsProgress p;
+  DynamicsProgress<2> p;
   p.step =
       static_cast<int>(s.integers("step", step, step, fmt::format("the checkpoint's step {}", step), 1)[0]);
   p.d = get_vector(s, "d");
@@ -289,7 +289,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   DynamicRun run;
   StageTimer& timer = run.timer;
   if (verbose) timer.report_to(&std::cout);
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const Discretisation<2> disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
                            disc.test(), disc.boundary, disc.at_boundary);
   timer.report_to(nullptr);
@@ -353,8 +353,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   };
   DynamicsSettings ds = settings;
   if (verbose) ds.progress = &std::cout;
-  DynamicsCheckpoints dc;
-  std::optional<DynamicsProgress> resume;
+  DynamicsCheckpoints<2> dc;
+  std::optional<DynamicsProgress<2>> resume;
   if (checkpoints && checkpoints->resume()) {
     const CheckpointState& s = *checkpoints->resume();
     const long long step = checkpoints->resume_step();
@@ -373,11 +373,12 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   }
   if (checkpoints && checkpoints->every() > 0) {
     dc.every = checkpoints->every();
-    dc.save = [&](const DynamicsProgress& p) {
+    dc.save = [&](const DynamicsProgress<2>& p) {
       CheckpointState s;
       save_progress(s, p);
       std::vector<double> errors, probe;
-      for (const MotionErrors& e : run.errors) errors.insert(errors.end(), {e.time, e.displacement, e.velocity, e.stress});
+      for (const MotionErrors& e : run.errors)
+        errors.insert(errors.end(), {e.time, e.displacement, e.velocity, e.stress});
       for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
       s.put("errors", std::move(errors));
       s.put("probe", std::move(probe));

@@ -38,27 +38,38 @@ Consistency default_consistency(QuadratureScheme s) {
   throw Error("unknown quadrature scheme");
 }
 
-std::vector<Vec2> Discretisation::displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const {
-  const GalerkinQuadrature<2> at = sample_shape_functions(*trial, points, false);
-  std::vector<Vec2> u(points.size());
+template <int dim>
+std::vector<Point<dim>> Discretisation<dim>::displacement(const std::vector<Point<dim>>& points,
+                                                          const Eigen::VectorXd& d) const {
+  const GalerkinQuadrature<dim> at = sample_shape_functions(*trial, points, false);
+  std::vector<Point<dim>> u(points.size());
   for (Index k = 0; k < at.size(); ++k) u[k] = displacement_at(at, k, d);
   return u;
 }
 
+template struct Discretisation<2>;
+template struct Discretisation<3>;
+
 namespace {
 
 /// RK settings for a cloud of nominal spacing h: uniform radius on lattices, node radii
-/// reaching across gaps on irregular clouds.
-RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, CloudKind kind, double h,
-                       RKOrder order, const ElasticitySettings& s, double factor) {
+/// reaching across gaps on irregular clouds; on a plane domain, the supports respect its
+/// cracks, slots and corners (obstacles for the largest of these radii).
+template <int dim>
+RKSettings rk_settings(const std::vector<Point<dim>>& points, CloudKind kind, double h, RKOrder order,
+                       const ElasticitySettings& s, double factor) {
   RKSettings r;
   r.order = order;
   r.window = s.window;
   r.support = s.support;
   r.radius = factor * h;
   if (kind != CloudKind::lattice) r.node_radii = nodal_support_radii(points, h, factor * s.irregular_factor_scale);
+  return r;
+}
+RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, CloudKind kind, double h,
+                       RKOrder order, const ElasticitySettings& s, double factor) {
+  RKSettings r = rk_settings<2>(points, kind, h, order, s, factor);
   r.rule = s.support_rule;
-  // What the supports must respect, found for the largest of these radii.
   const double reach =
       r.node_radii.empty() ? r.radius : *std::max_element(r.node_radii.begin(), r.node_radii.end());
   r.obstacles = std::make_shared<const SupportObstacles>(support_obstacles(domain, reach));
@@ -105,10 +116,44 @@ void refuse_bridges(const std::vector<Vec2>& nodes, const std::vector<Vec2>& poi
                                   : std::string("more than two radii")));
 }
 
+/// The boundary Gauss points (traction and Nitsche terms, and the consistency target b_I),
+/// the trial functions there, and the consistency correction of the settings (or the
+/// scheme's default).
+template <int dim>
+void add_boundary_and_consistency(const DomainOf<dim>& domain, const ElasticitySettings& s,
+                                  const std::vector<BoundarySelection<dim>>& parts, Discretisation<dim>& res,
+                                  StageTimer& timer) {
+  const double h = s.nodes.spacing;
+  res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, parts);
+  res.at_boundary =
+      timer.time("boundary functions", [&] { return boundary_functions(*res.trial, res.boundary); });
+  const ConsistencyConditions<dim> conditions(res.quadrature, res.nodes, res.at_boundary, res.boundary,
+                                              s.order);
+  res.consistency_before = conditions.defect(res.quadrature.grad);
+
+  res.consistency = s.consistency.value_or(default_consistency(s.scheme));
+  timer.time("consistency", [&] {
+    if (res.consistency == Consistency::symmetric) {
+      if constexpr (dim == 2) {
+        const SymmetricCorrection c = make_consistent_symmetric(
+            res.quadrature, res.nodes, conditions.linear_residuals(res.quadrature.grad), s.solver);
+        res.correction_residual = c.residual;
+        res.correction_solver = c.solver;
+        res.consistency_after = conditions.defect(res.quadrature.grad);
+      }
+    } else if (res.consistency == Consistency::vci) {
+      res.test_gradients = conditions.vci_test_gradients();
+      res.consistency_after = conditions.defect(res.test_gradients);
+    } else {
+      res.consistency_after = res.consistency_before;
+    }
+  });
+}
+
 }  // namespace
 
-Discretisation discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer) {
-  Discretisation res;
+Discretisation<2> discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer) {
+  Discretisation<2> res;
   const double h = s.nodes.spacing;
 
   check_memory(memory_lower_bound(domain, s), fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
@@ -160,28 +205,40 @@ Discretisation discretise(const Domain& domain, const ElasticitySettings& s, Sta
     refuse_bridges(res.nodes, res.quadrature.points, *res.trial->settings().obstacles,
                    res.trial->max_support_radius());
 
-  // Boundary Gauss points: traction and Nitsche terms, and the consistency target b_I.
-  res.boundary = boundary_quadrature(domain, h, s.order == RKOrder::linear ? 2 : 3, condition_parts(s.problem.conditions));
-  res.at_boundary =
-      timer.time("boundary functions", [&] { return boundary_functions(*res.trial, res.boundary); });
-  const ConsistencyConditions conditions(res.quadrature, res.nodes, res.at_boundary, res.boundary, s.order);
-  res.consistency_before = conditions.defect(res.quadrature.grad);
+  add_boundary_and_consistency(domain, s, condition_parts(s.problem.conditions), res, timer);
+  return res;
+}
 
-  res.consistency = s.consistency.value_or(default_consistency(s.scheme));
-  timer.time("consistency", [&] {
-    if (res.consistency == Consistency::symmetric) {
-      const SymmetricCorrection c = make_consistent_symmetric(
-          res.quadrature, res.nodes, conditions.linear_residuals(res.quadrature.grad), s.solver);
-      res.correction_residual = c.residual;
-      res.correction_solver = c.solver;
-      res.consistency_after = conditions.defect(res.quadrature.grad);
-    } else if (res.consistency == Consistency::vci) {
-      res.test_gradients = conditions.vci_test_gradients();
-      res.consistency_after = conditions.defect(res.test_gradients);
-    } else {
-      res.consistency_after = res.consistency_before;
-    }
+Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
+                             const std::vector<BoundarySelection<3>>& parts, StageTimer& timer) {
+  if (s.scheme != QuadratureScheme::projected)
+    throw InputError(fmt::format("the {} scheme is plane only so far: use scheme = \"projected\" in 3D",
+                                 to_string(s.scheme)));
+  if (s.consistency == Consistency::symmetric)
+    throw InputError(
+        "the symmetric consistency correction is plane only so far: use consistency = \"vci\" in 3D");
+  const double h = s.nodes.spacing;
+  Discretisation<3> res;
+  res.nodes = timer.time("clouds", [&] { return make_cloud(solid, s.nodes); });
+  res.trial = timer.time("shape functions", [&] {
+    return std::make_unique<RKShapeFunctions<3>>(
+        res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
+  res.quadrature = timer.time("weights and projection", [&] {
+    CloudSettings qc = s.nodes;
+    if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
+    const double hq = h / std::cbrt(s.quadrature_ratio);
+    const std::vector<Point<3>> xq = make_quadrature_cloud(solid, qc, s.quadrature_ratio);
+    const RKShapeFunctions<3> quad(
+        xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s,
+                        s.quadrature_factor.value_or(s.quadrature_order == RKOrder::linear ? 2.0 : 3.0)));
+    const BackgroundLattice<3> lattice(solid, hq / s.lattice_refinement,
+                                       s.quadrature_order == RKOrder::linear ? 1 : 2);
+    return projected_quadrature(*res.trial, quad, lattice);
+  });
+  ElasticitySettings vci = s;
+  vci.consistency = s.consistency.value_or(Consistency::vci);
+  add_boundary_and_consistency(solid, vci, parts, res, timer);
   return res;
 }
 
@@ -190,7 +247,7 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   ElasticityResult res;
   StageTimer& timer = res.timer;
   timer.report_to(s.progress);
-  static_cast<Discretisation&>(res) = discretise(domain, s, timer);
+  static_cast<Discretisation<2>&>(res) = discretise(domain, s, timer);
 
   ElasticityProblem problem = s.problem;
   problem.spacing = s.nodes.spacing;

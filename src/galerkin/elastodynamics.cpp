@@ -1,7 +1,9 @@
 #include "mfree/galerkin/elastodynamics.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
 #include <ostream>
 #include <random>
 
@@ -17,25 +19,29 @@ const NameTable<TimeScheme>& time_scheme_names() {
 
 std::string_view to_string(TimeScheme s) { return time_scheme_names().name(s); }
 
-Eigen::VectorXd project_velocity(const TotalLagrangian<2>& model, std::span<const Vec2> nodes,
-                                 const std::function<Vec2(const Vec2&)>& field,
-                                 const SolverSettings& settings) {
+template <int dim>
+Eigen::VectorXd project_velocity(
+    const TotalLagrangian<dim>& model, std::type_identity_t<std::span<const Point<dim>>> nodes,
+    const std::type_identity_t<std::function<Point<dim>(const Point<dim>&)>>& field,
+    const SolverSettings& settings) {
   // M v = int rho0 phi v0 with M's own densities: M^-1 of the rows is the L2 projection in rho0's weight.
-  const GalerkinQuadrature<2>& q = model.quadrature();
+  const GalerkinQuadrature<dim>& q = model.quadrature();
   const SparseMatrix m = model.mass_matrix();
   const std::vector<double> rho = model.point_densities();
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(model.dofs());
   for (Index k = 0; k < q.size(); ++k) {
-    const Vec2 f = rho[static_cast<std::size_t>(k)] * q.weights[k] * field(q.points[k]);
-    for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<2>(2 * q.nodes[s]) += q.phi[s] * f;
+    const Point<dim> f = rho[static_cast<std::size_t>(k)] * q.weights[k] * field(q.points[k]);
+    for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<dim>(dim * q.nodes[s]) += q.phi[s] * f;
   }
-  const std::unique_ptr<LinearSolver> solver = make_linear_solver(settings, {"mass", true, 2, nodes}, model.dofs());
+  const std::unique_ptr<LinearSolver> solver =
+      make_linear_solver(settings, {"mass", true, dim, nodes}, model.dofs());
   solver->analyze(m);
   solver->factorize(m);
   return solver->solve(rhs);
 }
 
-double critical_time_step(const TotalLagrangian<2>& model, const Eigen::VectorXd& lumped,
+template <int dim>
+double critical_time_step(const TotalLagrangian<dim>& model, const Eigen::VectorXd& lumped,
                           const Eigen::VectorXd& d) {
   SparseMatrix k = model.zero_matrix();
   model.tangent(d, {}, k);
@@ -66,16 +72,17 @@ namespace {
 
 /// NumericalError when a nodal displacement or velocity is not finite: the first such value,
 /// its node (index and position), the step and the time.
-void require_finite(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const std::vector<Vec2>& nodes,
+template <int dim>
+void require_finite(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const std::vector<Point<dim>>& nodes,
                     int step, double t) {
   for (const auto& [name, x] : {std::pair{"displacement", &d}, std::pair{"velocity", &v}}) {
     for (Eigen::Index k = 0; k < x->size(); ++k) {
       if (std::isfinite((*x)[k])) continue;
-      const Vec2& at = nodes[static_cast<std::size_t>(k / 2)];
-      throw NumericalError(
-          fmt::format("dynamics: the {} coefficient {} of node {} at ({:.6g}, {:.6g}) is {} at step {} "
-                      "(t = {:.4e} s): the run diverged",
-                      name, k % 2 == 0 ? "x" : "y", k / 2, at.x(), at.y(), (*x)[k], step, t));
+      const Point<dim>& at = nodes[static_cast<std::size_t>(k / dim)];
+      throw NumericalError(fmt::format(
+          "dynamics: the {} coefficient {} of node {} at ({:.6g}) is {} at step {} "
+          "(t = {:.4e} s): the run diverged",
+          name, "xyz"[k % dim], k / dim, fmt::join(at.begin(), at.end(), ", "), (*x)[k], step, t));
     }
   }
 }
@@ -108,7 +115,9 @@ struct ResumeLimits {
 
 /// Refuses (through `refuse`) the first part of `p` that does not fit `model` and `limits`
 /// (the checks integrate_dynamics lists).
-void check_resume(const DynamicsProgress& p, const TotalLagrangian<2>& model, const ResumeLimits& limits,
+template <int dim>
+void check_resume(const DynamicsProgress<dim>& p, const TotalLagrangian<dim>& model,
+                  const ResumeLimits& limits,
                   const std::function<void(const std::string&, const std::string&)>& refuse) {
   if (p.step < 0 || p.step >= limits.steps)
     refuse("step",
@@ -128,7 +137,7 @@ void check_resume(const DynamicsProgress& p, const TotalLagrangian<2>& model, co
     sized("tangent", p.tangent, 0, "none: central differences keep no tangent");
   else if (p.tangent.size() > 0)
     sized("tangent", p.tangent, limits.nonzeros, "the nonzeros of its tangent, or none");
-  const PointHistory<2>& h = model.history();
+  const PointHistory<dim>& h = model.history();
   if (p.history.domain.size() != h.domain.size())
     refuse("history.domain",
            fmt::format("it holds {} points, and this run has {}", p.history.domain.size(), h.domain.size()));
@@ -154,16 +163,18 @@ void check_resume(const DynamicsProgress& p, const TotalLagrangian<2>& model, co
     refuse("newton_iterations", "the counts of Newton iterations and factorisations must be 0 or more");
   for (Index k = 0; k < model.quadrature().size(); ++k)
     if (const double J = model.deformation_gradient(k, p.d).determinant(); !(J > 0.0))
-      refuse("d", fmt::format("det F = {} at quadrature point {} ({:.6g}, {:.6g}), not positive", J, k,
-                              model.quadrature().points[k].x(), model.quadrature().points[k].y()));
+      refuse("d", fmt::format("det F = {} at quadrature point {} ({:.6g}), not positive", J, k,
+                              fmt::join(model.quadrature().points[k].begin(),
+                                        model.quadrature().points[k].end(), ", ")));
 }
 
 }  // namespace
 
-DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<Vec2>& node_positions,
+template <int dim>
+DynamicsResult integrate_dynamics(TotalLagrangian<dim>& model, const std::vector<Point<dim>>& node_positions,
                                   Eigen::VectorXd d, Eigen::VectorXd v, const DynamicsSettings& s,
                                   StageTimer& timer, const std::function<void(const DynamicState&)>& on_step,
-                                  const DynamicsCheckpoints& checkpoints) {
+                                  const DynamicsCheckpoints<dim>& checkpoints) {
   if (!(s.end_time > 0.0)) throw InputError(fmt::format("dynamics: end_time must be positive, got {}", s.end_time));
   DynamicsResult out;
   const bool explicit_scheme = s.scheme == TimeScheme::central_difference;
@@ -200,7 +211,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<V
     a = (g - internal(d)).cwiseQuotient(lumped);
   } else {
     const std::unique_ptr<LinearSolver> mass_solver =
-        make_linear_solver(s.newton.solver, {"mass", true, 2, node_positions}, model.dofs());
+        make_linear_solver(s.newton.solver, {"mass", true, dim, node_positions}, model.dofs());
     mass_solver->analyze(mass);
     mass_solver->factorize(mass);
     a = mass_solver->solve(g - internal(d));
@@ -235,13 +246,14 @@ DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<V
   if (!explicit_scheme) {
     k = model.zero_matrix();
     timer.time("assembly", [&] { effective_tangent(d, 0.0, k); });
-    solver = make_linear_solver(s.newton.solver, {"effective tangent", model.symmetric(), 2, node_positions}, model.dofs());
+    solver = make_linear_solver(s.newton.solver,
+                                {"effective tangent", model.symmetric(), dim, node_positions}, model.dofs());
     timer.time("factorisation", [&] { solver->analyze(k); });
   }
 
   Eigen::VectorXd v_half = v + 0.5 * dt * a;
   int first = 1;
-  if (const DynamicsProgress* p = checkpoints.resume) {
+  if (const DynamicsProgress<dim>* p = checkpoints.resume) {
     const auto refuse = [&](const std::string& name, const std::string& what) {
       if (checkpoints.refuse) checkpoints.refuse(name, what);
       throw InputError(fmt::format("dynamics: the saved state to resume from: '{}': {}", name, what));
@@ -269,9 +281,20 @@ DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<V
     record(0, 0.0);
   }
   const auto save = [&](int n) {
-    DynamicsProgress p{n, d, v, a, v_half, energy ? g : Eigen::VectorXd(), work, out.energy, out.newton_iterations,
-                       out.factorisations, Eigen::VectorXd(), model.history()};
-    if (!explicit_scheme && solver->factorized()) p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
+    DynamicsProgress<dim> p{n,
+                            d,
+                            v,
+                            a,
+                            v_half,
+                            energy ? g : Eigen::VectorXd(),
+                            work,
+                            out.energy,
+                            out.newton_iterations,
+                            out.factorisations,
+                            Eigen::VectorXd(),
+                            model.history()};
+    if (!explicit_scheme && solver->factorized())
+      p.tangent = Eigen::Map<const Eigen::VectorXd>(k.valuePtr(), k.nonZeros());
     checkpoints.save(p);
   };
 
@@ -335,5 +358,22 @@ DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<V
   out.v = std::move(v);
   return out;
 }
+
+template Eigen::VectorXd project_velocity(const TotalLagrangian<2>&, std::span<const Point<2>>,
+                                          const std::function<Point<2>(const Point<2>&)>&,
+                                          const SolverSettings&);
+template Eigen::VectorXd project_velocity(const TotalLagrangian<3>&, std::span<const Point<3>>,
+                                          const std::function<Point<3>(const Point<3>&)>&,
+                                          const SolverSettings&);
+template double critical_time_step(const TotalLagrangian<2>&, const Eigen::VectorXd&, const Eigen::VectorXd&);
+template double critical_time_step(const TotalLagrangian<3>&, const Eigen::VectorXd&, const Eigen::VectorXd&);
+template DynamicsResult integrate_dynamics(TotalLagrangian<2>&, const std::vector<Point<2>>&, Eigen::VectorXd,
+                                           Eigen::VectorXd, const DynamicsSettings&, StageTimer&,
+                                           const std::function<void(const DynamicState&)>&,
+                                           const DynamicsCheckpoints<2>&);
+template DynamicsResult integrate_dynamics(TotalLagrangian<3>&, const std::vector<Point<3>>&, Eigen::VectorXd,
+                                           Eigen::VectorXd, const DynamicsSettings&, StageTimer&,
+                                           const std::function<void(const DynamicState&)>&,
+                                           const DynamicsCheckpoints<3>&);
 
 }  // namespace mfree

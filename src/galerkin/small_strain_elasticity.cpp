@@ -16,11 +16,14 @@ Eigen::Vector3d strain_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::
   return e;
 }
 
-Vec2 displacement_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d) {
-  Vec2 u = Vec2::Zero();
-  for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u += q.phi[s] * d.segment<2>(2 * q.nodes[s]);
+template <int dim>
+Point<dim> displacement_at(const GalerkinQuadrature<dim>& q, Index k, const Eigen::VectorXd& d) {
+  Point<dim> u = Point<dim>::Zero();
+  for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u += q.phi[s] * d.segment<dim>(dim * q.nodes[s]);
   return u;
 }
+template Point<2> displacement_at(const GalerkinQuadrature<2>&, Index, const Eigen::VectorXd&);
+template Point<3> displacement_at(const GalerkinQuadrature<3>&, Index, const Eigen::VectorXd&);
 
 SolidProblem<2> solid_problem(const ElasticityProblem& problem) {
   SolidProblem<2> solid;

@@ -8,7 +8,7 @@
 namespace mfree {
 
 StiffnessSpectrum stiffness_spectrum(const ElasticityProblem& problem, const Domain& domain,
-                                     const Discretisation& disc, int count, double zero_tolerance) {
+                                     const Discretisation<2>& disc, int count, double zero_tolerance) {
   const Index dofs = 2 * disc.node_count();
   if (dofs > spectrum_max_dofs)
     throw InputError(fmt::format("stiffness eigenvalues: {} DOFs, the dense eigenvalue solve takes at most {}; "

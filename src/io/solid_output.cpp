@@ -32,8 +32,8 @@ void SolidFrames::restore(const CheckpointState& state, double time, std::size_t
   }
 }
 
-SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation& disc, const ExactMotion* exact,
-                         const TotalLagrangian<2>* model)
+SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation<2>& disc,
+                         const ExactMotion* exact, const TotalLagrangian<2>* model)
     : output_(scene.output),
       exact_(exact),
       model_(scene.law_with(has_history) ? model : nullptr),

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "mfree/core/error.hpp"
@@ -77,6 +78,33 @@ QuadratureRule<2> gauss_cell_rule(const Domain& domain, double cell_size, int n)
   }
   // A point on a crack integrates both faces.
   return split_rule_on_cracks(domain, std::move(rule), std::min(hx, hy));
+}
+
+QuadratureRule<3> gauss_cell_rule(const Solid& solid, double cell_size, int n) {
+  if (!(cell_size > 0.0))
+    throw InputError(fmt::format("Gauss cells: cell size must be positive, got {}", cell_size));
+  const AlignedBox<3>& box = solid.bounding_box();
+  const GaussLegendre1D g = gauss_legendre(n);
+  std::array<int, 3> cells;
+  Point<3> size;
+  for (int a = 0; a < 3; ++a) {
+    cells[a] = std::max(1, static_cast<int>(std::lround(box.sizes()[a] / cell_size)));
+    size[a] = box.sizes()[a] / cells[a];
+  }
+  const double weight = size.prod();
+  QuadratureRule<3> rule;
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i) {
+        const Point<3> lo = box.min() + size.cwiseProduct(Point<3>(i, j, k));
+        for (std::size_t c = 0; c < g.points.size(); ++c)
+          for (std::size_t b = 0; b < g.points.size(); ++b)
+            for (std::size_t a = 0; a < g.points.size(); ++a) {
+              rule.points.push_back(lo + size.cwiseProduct(Point<3>(g.points[a], g.points[b], g.points[c])));
+              rule.weights.push_back(weight * g.weights[a] * g.weights[b] * g.weights[c]);
+            }
+      }
+  return rule;
 }
 
 }  // namespace mfree

@@ -100,7 +100,7 @@ TEST_CASE("dynamics restarts: a negative plastic strain and an inverted displace
                              "value 19 is -1, not an equivalent plastic strain (0 or more)"));
   // d_I = (-2 X_I, 0): the linear RK functions reproduce u = (-2 x, 0), F = diag(-1, 1).
   StageTimer timer;
-  const Discretisation disc = discretise(r.scene.domain, r.scene.settings, timer);
+  const Discretisation<2> disc = discretise(r.scene.domain, r.scene.settings, timer);
   std::vector<double> d(2 * disc.nodes.size(), 0.0);
   for (std::size_t n = 0; n < disc.nodes.size(); ++n) d[2 * n] = -2.0 * disc.nodes[n].x();
   CHECK_THAT(r.restore("d", d), Catch::Contains(refused("d") + "det F = -1") &&

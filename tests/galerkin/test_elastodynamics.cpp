@@ -18,7 +18,7 @@ namespace {
 struct VibrationCase {
   AxisAlignedVibration exact;
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(1.0, 1.0));
-  Discretisation disc;
+  Discretisation<2> disc;
   std::unique_ptr<TotalLagrangian<2>> model;
 
   VibrationCase(double amplitude, double h, bool walls, bool body_force) : exact{amplitude} {
@@ -193,7 +193,7 @@ TEST_CASE("J2 body in free motion: kinetic + stored + dissipated energy stays co
   es.scheme = QuadratureScheme::projected;
   es.nodes.spacing = 1.0 / 8;
   StageTimer timer;
-  const Discretisation disc = discretise(domain, es, timer);
+  const Discretisation<2> disc = discretise(domain, es, timer);
   J2Plasticity law;
   law.lame = lame_constants(1000.0, 0.3);
   law.yield_stress = 10.0;

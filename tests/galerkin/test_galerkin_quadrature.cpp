@@ -17,7 +17,7 @@ namespace {
 
 /// The projected quadrature (no consistency correction) of the domain, `levels` node spacings
 /// across its smaller side.
-Discretisation projected(const Domain& domain, CloudKind kind, RKOrder order, double levels = 8.0) {
+Discretisation<2> projected(const Domain& domain, CloudKind kind, RKOrder order, double levels = 8.0) {
   ElasticitySettings s;
   s.scheme = QuadratureScheme::projected;
   s.nodes.kind = kind;
@@ -42,7 +42,7 @@ TEST_CASE("projected quadrature: weights and centroids integrate 1 and x; quadra
   const Domain domain = l_shape();
   for (CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
     CAPTURE(to_string(kind));
-    const Discretisation d = projected(domain, kind, RKOrder::quadratic);
+    const Discretisation<2> d = projected(domain, kind, RKOrder::quadratic);
     const GalerkinQuadrature<2>& q = d.quadrature;
     double area = 0.0;
     Vec2 moment = Vec2::Zero();
@@ -75,10 +75,10 @@ TEST_CASE("projected quadrature: the same numbers bit for bit on every run and t
   // About 10^4 lattice points: many blocks of work for the threads to share.
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  const Discretisation one = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
+  const Discretisation<2> one = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
   omp_set_num_threads(std::max(2, threads));
-  const Discretisation first = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
-  const Discretisation second = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
+  const Discretisation<2> first = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
+  const Discretisation<2> second = projected(domain, CloudKind::perturbed, RKOrder::linear, 32.0);
   omp_set_num_threads(threads);
   const auto identical = [](const GalerkinQuadrature<2>& a, const GalerkinQuadrature<2>& b) {
     if (a.size() != b.size() || a.grad.size() != b.grad.size()) return false;

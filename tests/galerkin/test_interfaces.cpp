@@ -119,7 +119,7 @@ void check_one_part_fields(const Domain& tied, std::initializer_list<CloudKind> 
 }
 
 /// The default discretisation of a domain at spacing h.
-Discretisation discretised(const Domain& domain, double h) {
+Discretisation<2> discretised(const Domain& domain, double h) {
   ElasticitySettings es;
   es.nodes.spacing = h;
   StageTimer timer;
@@ -127,7 +127,7 @@ Discretisation discretised(const Domain& domain, double h) {
 }
 
 /// The model of p on it, with the discretisation's test gradients (VCI with Gauss cells).
-TotalLagrangian<2> model_on(const SolidProblem<2>& p, const Domain& domain, const Discretisation& disc) {
+TotalLagrangian<2> model_on(const SolidProblem<2>& p, const Domain& domain, const Discretisation<2>& disc) {
   return TotalLagrangian<2>(p, domain, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
                             disc.at_boundary);
 }
@@ -258,7 +258,7 @@ TEST_CASE("supports end at a curved interface: no function of one layer is nonze
   s.nodes.spacing = 0.05;
   s.support_factor = 2.5;
   StageTimer timer;
-  const Discretisation disc = discretise(d, s, timer);
+  const Discretisation<2> disc = discretise(d, s, timer);
   int leaks = 0, checked = 0;
   for (double t = 0.005; t < 1.57; t += 0.02)
     for (double r : {1.45, 1.49, 1.4999, 1.5001, 1.51, 1.55}) {
@@ -286,7 +286,7 @@ TEST_CASE(
   const std::vector<std::vector<Ring>> parts{{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 0.5), Vec2(0, 0.5)}},
                                              {{Vec2(0, 0.5), Vec2(1, 0.5), Vec2(1, 1), Vec2(0, 1)}}};
   const Domain domain = Domain::from_regions(parts, {{"soft", "stiff"}, true}, "layers");
-  const Discretisation disc = discretised(domain, 0.125);
+  const Discretisation<2> disc = discretised(domain, 0.125);
   J2Plasticity j2;
   j2.lame = lame_constants(1000.0, 0.3);
   j2.yield_stress = 5.0;
@@ -371,7 +371,7 @@ TEST_CASE("Nitsche's penalty is beta M / h with M the P-wave modulus of the law 
   const LinearElastic rubber{e, nu, PlaneModel::strain};
   const LinearElastic sheet{2e5, 0.3, PlaneModel::stress};
   const Domain domain = bimaterial(true);
-  const Discretisation disc = discretised(domain, 0.25);
+  const Discretisation<2> disc = discretised(domain, 0.25);
   SolidProblem<2> p;
   p.region_materials = {rubber, sheet};
   p.spacing = 0.25;
@@ -396,7 +396,7 @@ TEST_CASE("Nitsche's penalty is beta M / h with M the P-wave modulus of the law 
 TEST_CASE("the mass of two regions: rho0 of each region, summed over the nodes to rho1 A1 + rho2 A2",
           "[galerkin][regions][dynamics]") {
   const Domain domain = bimaterial(true);  // two unit squares
-  const Discretisation disc = discretised(domain, 0.125);
+  const Discretisation<2> disc = discretised(domain, 0.125);
   SolidProblem<2> p;
   p.region_materials = {steel, resin};
   p.region_densities = {7800.0, 1200.0};

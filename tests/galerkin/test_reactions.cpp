@@ -148,7 +148,7 @@ namespace {
 /// end traction, a follower pressure on its top and its weight.
 struct LoadedBlock {
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(4.0, 1.0));
-  Discretisation disc;
+  Discretisation<2> disc;
   SolidProblem<2> problem;
 
   LoadedBlock() {

@@ -17,7 +17,7 @@ StiffnessSpectrum spectrum(QuadratureScheme scheme, double ratio) {
   s.problem.material = LinearElastic{1.0e3, 0.3, PlaneModel::stress};
   const Domain domain = Domain::rectangle(Vec2(0, 0), Vec2(12, 4));
   StageTimer timer;
-  const Discretisation disc = discretise(domain, s, timer);
+  const Discretisation<2> disc = discretise(domain, s, timer);
   return stiffness_spectrum(s.problem, domain, disc, 6);
 }
 
@@ -47,7 +47,7 @@ TEST_CASE("free stiffness: too many DOFs for the dense eigenvalue solve is an in
   ElasticitySettings s;
   s.nodes.spacing = 0.01;
   const Domain domain = Domain::rectangle(Vec2(0, 0), Vec2(1, 1));
-  Discretisation disc;
+  Discretisation<2> disc;
   disc.nodes.resize(spectrum_max_dofs);  // 2 DOFs per node: twice the limit
   CHECK_THROWS_AS(stiffness_spectrum(s.problem, domain, disc, 4), InputError);
 }

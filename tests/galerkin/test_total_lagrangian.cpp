@@ -17,7 +17,7 @@ namespace {
 /// traction on x = 4.
 struct Block {
   Domain domain = Domain::rectangle(Vec2(0.0, 0.0), Vec2(4.0, 1.0));
-  Discretisation disc;
+  Discretisation<2> disc;
   SolidProblem<2> problem;
 
   explicit Block(double load, Material material = NeoHookean{lame_constants(1000.0, 0.3)}) {
@@ -322,7 +322,7 @@ TEST_CASE("TL with J2: a uniaxial-strain block reproduces the material point's p
   es.scheme = QuadratureScheme::projected;
   es.nodes.spacing = 0.25;
   StageTimer timer;
-  const Discretisation disc = discretise(domain, es, timer);
+  const Discretisation<2> disc = discretise(domain, es, timer);
   const J2Plasticity law = j2_law(5.0);
   const double delta = 0.05;  // eight times the yield strain sigma_y / (2 mu)
   SolidProblem<2> p;

@@ -13,8 +13,7 @@
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/stage_timer.hpp"
-#include "mfree/galerkin/boundary_quadrature.hpp"
-#include "mfree/galerkin/consistency.hpp"
+#include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/materials/j2_plasticity.hpp"
@@ -32,56 +31,29 @@ const Solid& box() {
   return solid;
 }
 
-/// Nodes, RK functions, the projected quadrature with VCI test gradients, and the surface
-/// points of a box solid, as the solver takes them.
-struct Discretisation3 {
-  std::vector<P3> nodes;
-  std::unique_ptr<RKShapeFunctions<3>> trial;
-  GalerkinQuadrature<3> q;
-  std::vector<P3> test;
-  BoundaryQuadrature<3> bq;
-  GalerkinQuadrature<3> at_boundary;
-  double defect_before = 0.0, defect_after = 0.0;
+/// The discretisation of the box as a solve takes it: a cloud of spacing h (perturbed by 0.3
+/// h), RK of support 2 h (linear) or 3 h (quadratic), 8 quadrature points per node, VCI.
+Discretisation<3> discretisation(CloudKind kind, double h, RKOrder order,
+                                 const std::vector<BoundarySelection<3>>& parts) {
+  ElasticitySettings s;
+  s.nodes.kind = kind;
+  s.nodes.spacing = h;
+  s.nodes.perturbation = 0.3;
+  s.nodes.seed = 5;
+  s.order = order;
+  s.support_factor = order == RKOrder::linear ? 2.0 : 3.0;
+  s.scheme = QuadratureScheme::projected;
+  s.quadrature_ratio = 8.0;
+  StageTimer timer;
+  return discretise(box(), s, parts, timer);
+}
 
-  Discretisation3(CloudKind kind, double h, RKOrder order, const std::vector<BoundarySelection<3>>& parts) {
-    CloudSettings cs;
-    cs.kind = kind;
-    cs.spacing = h;
-    cs.perturbation = 0.3;
-    cs.seed = 5;
-    nodes = make_cloud(box(), cs);
-    const double factor = order == RKOrder::linear ? 2.0 : 3.0;
-    RKSettings rs;
-    rs.order = order;
-    rs.radius = factor * h;
-    if (kind != CloudKind::lattice) rs.node_radii = nodal_support_radii(nodes, h, factor * 1.25);
-    trial = std::make_unique<RKShapeFunctions<3>>(nodes, rs);
-    // The solver's plane defaults: a lattice quadrature cloud of 8 points per node, linear RK
-    // of support 2 spacings, a background lattice of half its spacing.
-    CloudSettings qc = cs;
-    qc.kind = CloudKind::lattice;
-    const std::vector<P3> xq = make_quadrature_cloud(box(), qc, 8.0);
-    const double hq = h / 2;
-    RKSettings qs;
-    qs.radius = 2.0 * hq;
-    const RKShapeFunctions<3> functions(xq, qs);
-    q = projected_quadrature(*trial, functions, BackgroundLattice<3>(box(), hq / 2, 1));
-    bq = boundary_quadrature(box(), h, order == RKOrder::linear ? 2 : 3, parts);
-    at_boundary = boundary_functions(*trial, bq);
-    const ConsistencyConditions<3> conditions(q, nodes, at_boundary, bq, order);
-    defect_before = conditions.defect(q.grad);
-    test = conditions.vci_test_gradients();
-    defect_after = conditions.defect(test);
-  }
-  [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
-  /// u^h at the quadrature points.
-  [[nodiscard]] std::vector<P3> displacement(const Eigen::VectorXd& d) const {
-    std::vector<P3> u(q.points.size(), P3::Zero());
-    for (Index k = 0; k < q.size(); ++k)
-      for (Index s = q.row_begin(k); s < q.row_end(k); ++s) u[k] += q.phi[s] * d.segment<3>(3 * q.nodes[s]);
-    return u;
-  }
-};
+/// u^h at the quadrature points.
+std::vector<P3> displacement(const Discretisation<3>& disc, const Eigen::VectorXd& d) {
+  std::vector<P3> u(disc.quadrature.points.size());
+  for (Index k = 0; k < disc.quadrature.size(); ++k) u[k] = displacement_at(disc.quadrature, k, d);
+  return u;
+}
 
 LinearElastic steel_like() { return LinearElastic{1.0, 0.3, PlaneModel::strain}; }
 
@@ -170,21 +142,23 @@ TEST_CASE("3D patch tests: linear and quadratic fields reproduced with Nitsche c
       for (const char* face : {"x_max", "y_max", "z_min", "z_max"})
         p.conditions.push_back(
             {BoundaryCondition<3>::Type::traction, select_part(box(), face), traction, face});
-      const Discretisation3 disc(kind, 0.2, order, condition_parts(p.conditions));
-      INFO(fmt::format("(IC) defect {:.3e} projected, {:.3e} with VCI", disc.defect_before,
-                       disc.defect_after));
-      CHECK(disc.defect_after < 1e-11);
-      TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, &disc.test, disc.bq, disc.at_boundary);
+      const Discretisation<3> disc = discretisation(kind, 0.2, order, condition_parts(p.conditions));
+      INFO(fmt::format("(IC) defect {:.3e} projected, {:.3e} with VCI", disc.consistency_before,
+                       disc.consistency_after));
+      CHECK(disc.consistency == Consistency::vci);
+      CHECK(disc.consistency_after < 1e-11);
+      TotalLagrangian<3> model(p, box(), disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                               disc.at_boundary);
       CHECK_FALSE(model.symmetric());  // VCI test gradients
       NewtonSettings ns;
       ns.load_steps = 1;
       StageTimer timer;
       const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
-      const std::vector<P3> u = disc.displacement(sol.coefficients);
+      const std::vector<P3> u = displacement(disc, sol.coefficients);
       double error = 0.0, scale = 0.0;
-      for (Index k = 0; k < disc.q.size(); ++k) {
-        error = std::max(error, (u[k] - exact(disc.q.points[k])).norm());
-        scale = std::max(scale, exact(disc.q.points[k]).norm());
+      for (Index k = 0; k < disc.quadrature.size(); ++k) {
+        error = std::max(error, (u[k] - exact(disc.quadrature.points[k])).norm());
+        scale = std::max(scale, exact(disc.quadrature.points[k]).norm());
       }
       INFO(fmt::format("max |u^h - u| / max |u| = {:.3e}", error / scale));
       CHECK(error / scale < 1e-10);
@@ -212,8 +186,10 @@ TEST_CASE("3D total-Lagrangian tangent against central differences of the forces
                      {},
                      "press",
                      [](const P3& x, double) { return 0.02 * (1.0 + x[0]); }}};
-    const Discretisation3 disc(CloudKind::perturbed, 0.25, RKOrder::linear, condition_parts(p.conditions));
-    const TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, nullptr, disc.bq, disc.at_boundary);
+    const Discretisation<3> disc =
+        discretisation(CloudKind::perturbed, 0.25, RKOrder::linear, condition_parts(p.conditions));
+    const TotalLagrangian<3> model(p, box(), disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                                   disc.at_boundary);
     CHECK_FALSE(model.symmetric());  // the follower load
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -240,6 +216,22 @@ TEST_CASE("3D total-Lagrangian tangent against central differences of the forces
   }
 }
 
+TEST_CASE("3D discretisation refuses the schemes and the correction that are plane only", "[galerkin][3d]") {
+  ElasticitySettings s;
+  s.nodes.spacing = 0.25;
+  StageTimer timer;
+  s.scheme = QuadratureScheme::gauss_cells;
+  CHECK_THROWS_WITH(discretise(box(), s, {}, timer), Catch::Contains("gauss_cells scheme is plane only"));
+  s.scheme = QuadratureScheme::projected;
+  s.consistency = Consistency::symmetric;
+  CHECK_THROWS_WITH(discretise(box(), s, {}, timer),
+                    Catch::Contains("symmetric consistency correction is plane only"));
+  s.consistency = Consistency::none;
+  const Discretisation<3> none = discretise(box(), s, {}, timer);
+  CHECK(none.test() == nullptr);
+  CHECK(none.consistency_after == none.consistency_before);
+}
+
 TEST_CASE("3D stiffness: CG with GAMG and the six rigid-body modes gives the direct solution",
           "[galerkin][3d]") {
   // A box clamped at x = 0 under a shear traction at x = 1, the symmetric form (projected
@@ -251,8 +243,10 @@ TEST_CASE("3D stiffness: CG with GAMG and the six rigid-body modes gives the dir
   const auto shear = [](const P3&, const P3&, double) { return P3(0.0, 0.01, 0.005); };
   p.conditions = {{BoundaryCondition<3>::Type::displacement, select_part(box(), "x_min"), zero, "clamp"},
                   {BoundaryCondition<3>::Type::traction, select_part(box(), "x_max"), shear, "load"}};
-  const Discretisation3 disc(CloudKind::perturbed, 0.2, RKOrder::linear, condition_parts(p.conditions));
-  TotalLagrangian<3> model(p, box(), disc.node_count(), disc.q, nullptr, disc.bq, disc.at_boundary);
+  const Discretisation<3> disc =
+      discretisation(CloudKind::perturbed, 0.2, RKOrder::linear, condition_parts(p.conditions));
+  TotalLagrangian<3> model(p, box(), disc.node_count(), disc.quadrature, nullptr, disc.boundary,
+                           disc.at_boundary);
   REQUIRE(model.symmetric());
   NewtonSettings ns;
   ns.load_steps = 1;

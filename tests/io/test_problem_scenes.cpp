@@ -202,7 +202,7 @@ TEST_CASE(
   // [2 ln(c / a) + 1 - c^2 / b^2], p_L = (2 sigma_y / sqrt 3) ln 2.
   const ElasticityScene scene = verification_scene("plastic-cylinder/cylinder.toml", {"nodes.spacing=0.1"});
   StageTimer timer;
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const Discretisation<2> disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
                            disc.test(), disc.boundary, disc.at_boundary);
   const double sy = 1.0, a = 1.0, b = 2.0, p_limit = 2 * sy / std::sqrt(3.0) * std::log(b / a);
@@ -251,7 +251,7 @@ TEST_CASE(
   CAPTURE(sets.back());
   const ElasticityScene scene = verification_scene("plastic-footing/footing.toml", sets);
   StageTimer timer;
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const Discretisation<2> disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
                            disc.test(), disc.boundary, disc.at_boundary);
   const GalerkinQuadrature<2> probe = sample_shape_functions(*disc.trial, {Vec2(0.0, 3.0)}, false);

@@ -31,7 +31,7 @@ struct FramesCase {
   testing::ScratchFolder folder;
   ElasticityScene scene;
   std::filesystem::path dir;
-  Discretisation disc;
+  Discretisation<2> disc;
   FramesCase(const std::string& name, const std::string& fields)
       : folder(name), scene(vibration_scene(folder.path, fields)), dir(scene.output.folder) {
     StageTimer timer;
@@ -96,7 +96,7 @@ TEST_CASE("VTK frames of a law with history: stress and plastic strain at the qu
       {"nodes.spacing=0.2", "output.folder=\"" + (folder.path / "out").string() + "\"",
        "output.fields=[\"displacement\", \"stress\", \"plastic_strain\"]"});
   StageTimer timer;
-  const Discretisation disc = discretise(scene.domain, scene.settings, timer);
+  const Discretisation<2> disc = discretise(scene.domain, scene.settings, timer);
   TotalLagrangian<2> model(scene.solid_problem(), scene.domain, disc.node_count(), disc.quadrature,
                            disc.test(), disc.boundary, disc.at_boundary);
   // A radial expansion u = 0.004 X, yielding near the inner radius, committed.

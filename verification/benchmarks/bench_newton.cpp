@@ -40,7 +40,7 @@ void BM_newton_iteration(benchmark::State& state) {
   s.scheme = QuadratureScheme::projected;
   s.nodes.spacing = depth / n;
   StageTimer timer;
-  const Discretisation disc = discretise(domain, s, timer);
+  const Discretisation<2> disc = discretise(domain, s, timer);
   const LinearElastic linear{3.0e7, 0.3, PlaneModel::strain};
   const ExactElasticity exact = timoshenko_beam(length, depth, load, linear);
   SolidProblem<2> p;

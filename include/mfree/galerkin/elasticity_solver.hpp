@@ -89,30 +89,39 @@ struct ElasticitySettings {
 };
 
 /// What every solve on the clouds shares: nodes and their RK functions, the domain
-/// quadrature with its (corrected) gradients, the boundary Gauss points.
+/// quadrature with its (corrected) gradients, the boundary Gauss points (dim = 2, 3).
+template <int dim>
 struct Discretisation {
-  std::vector<Vec2> nodes;
-  std::unique_ptr<RKShapeFunctions<2>> trial;
-  GalerkinQuadrature<2> quadrature;
-  std::vector<Vec2> test_gradients;     ///< VCI's test gradients; empty otherwise
-  BoundaryQuadrature<2> boundary;
-  GalerkinQuadrature<2> at_boundary;            ///< trial functions and gradients at boundary's points
+  std::vector<Point<dim>> nodes;
+  std::unique_ptr<RKShapeFunctions<dim>> trial;
+  GalerkinQuadrature<dim> quadrature;
+  std::vector<Point<dim>> test_gradients;  ///< VCI's test gradients; empty otherwise
+  BoundaryQuadrature<dim> boundary;
+  GalerkinQuadrature<dim> at_boundary;          ///< trial functions and gradients at boundary's points
   Consistency consistency = Consistency::none;  ///< the correction applied
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
   double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|
   std::optional<SolverReport> correction_solver;  ///< symmetric correction: the node system's solver
 
-  [[nodiscard]] const std::vector<Vec2>* test() const { return test_gradients.empty() ? nullptr : &test_gradients; }
+  [[nodiscard]] const std::vector<Point<dim>>* test() const {
+    return test_gradients.empty() ? nullptr : &test_gradients;
+  }
   [[nodiscard]] Index node_count() const { return static_cast<Index>(nodes.size()); }
   /// u^h = sum phi_I d_I at arbitrary points.
-  [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points, const Eigen::VectorXd& d) const;
+  [[nodiscard]] std::vector<Point<dim>> displacement(const std::vector<Point<dim>>& points,
+                                                     const Eigen::VectorXd& d) const;
 };
 
 /// The stages clouds, shape functions, weights and projection, consistency, timed on timer.
-Discretisation discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer);
+Discretisation<2> discretise(const Domain& domain, const ElasticitySettings& s, StageTimer& timer);
+/// The same on a solid, the boundary points cut at `parts` (the conditions' selections). The
+/// projected scheme with VCI or no correction (the symmetric correction and the other
+/// schemes are plane only: InputError); with consistency unset, VCI.
+Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
+                             const std::vector<BoundarySelection<3>>& parts, StageTimer& timer);
 
-struct ElasticityResult : Discretisation {
+struct ElasticityResult : Discretisation<2> {
   Eigen::VectorXd coefficients;         ///< d: u^h = sum phi_I d_I
   StageTimer timer;
   SolverReport solver;                  ///< the stiffness's solver and what it did
@@ -122,7 +131,7 @@ struct ElasticityResult : Discretisation {
 
   /// u^h at arbitrary points.
   [[nodiscard]] std::vector<Vec2> displacement(const std::vector<Vec2>& points) const {
-    return Discretisation::displacement(points, coefficients);
+    return Discretisation<2>::displacement(points, coefficients);
   }
 };
 

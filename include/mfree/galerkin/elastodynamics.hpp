@@ -27,8 +27,10 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "mfree/core/name_table.hpp"
@@ -90,6 +92,7 @@ struct DynamicsResult {
 
 /// The integrator's state after a step: all that the next step starts from, so that a run
 /// saved here and resumed gives the steps an uninterrupted run gives, bit for bit.
+template <int dim>
 struct DynamicsProgress {
   int step = 0;
   Eigen::VectorXd d, v, a;      ///< coefficients of displacement, velocity, acceleration
@@ -100,16 +103,17 @@ struct DynamicsProgress {
   long newton_iterations = 0;
   long factorisations = 0;
   /// Newmark: the values of the effective tangent factorised last (modified Newton keeps it
-  /// across steps), on the pattern of TotalLagrangian<2>::zero_matrix().
+  /// across steps), on the pattern of TotalLagrangian<dim>::zero_matrix().
   Eigen::VectorXd tangent;
-  PointHistory<2> history;  ///< the model's committed material states (laws with history)
+  PointHistory<dim> history;  ///< the model's committed material states (laws with history)
 };
 
 /// Saving and resuming a run (a checkpoint's part that the integrator owns).
+template <int dim>
 struct DynamicsCheckpoints {
   int every = 0;                                          ///< steps between saves (0: none)
-  std::function<void(const DynamicsProgress&)> save;      ///< after every `every`-th step but the last
-  const DynamicsProgress* resume = nullptr;               ///< continue from this state
+  std::function<void(const DynamicsProgress<dim>&)> save;  ///< after every `every`-th step but the last
+  const DynamicsProgress<dim>* resume = nullptr;           ///< continue from this state
   /// Refuses a part of `resume` that does not fit the run, naming it as DynamicsProgress
   /// does ("v_half", "energy", ...) and saying what is wrong; must throw (an InputError naming
   /// where the state came from: CheckpointState::refuse). Empty: an InputError of its own.
@@ -121,11 +125,15 @@ struct DynamicsCheckpoints {
 
 /// Coefficients v with u^h = sum phi_I v_I the L2 projection of a field: M v = int rho0 phi v0
 /// (the model's densities), M solved by the solver of `solver` (on `nodes`).
-Eigen::VectorXd project_velocity(const TotalLagrangian<2>& model, std::span<const Vec2> nodes,
-                                 const std::function<Vec2(const Vec2&)>& field, const SolverSettings& solver);
+template <int dim>
+Eigen::VectorXd project_velocity(
+    const TotalLagrangian<dim>& model, std::type_identity_t<std::span<const Point<dim>>> nodes,
+    const std::type_identity_t<std::function<Point<dim>(const Point<dim>&)>>& field,
+    const SolverSettings& solver);
 
 /// 2 / omega_max for the lumped mass m (per DOF) and the tangent at d (power iteration).
-double critical_time_step(const TotalLagrangian<2>& model, const Eigen::VectorXd& lumped,
+template <int dim>
+double critical_time_step(const TotalLagrangian<dim>& model, const Eigen::VectorXd& lumped,
                           const Eigen::VectorXd& d);
 
 /// Integrates from (d0, v0) at t = 0 to end_time; on_step after every step (and at step 0),
@@ -139,10 +147,12 @@ double critical_time_step(const TotalLagrangian<2>& model, const Eigen::VectorXd
 /// run wrote by the step, at times of the run so far with kinetic energies of 0 or more, and
 /// det F > 0 at every quadrature point of d. The model's history (laws with history) is
 /// committed at d0 and after every step.
-DynamicsResult integrate_dynamics(TotalLagrangian<2>& model, const std::vector<Vec2>& node_positions,
+/// Instantiated for dim = 2, 3 (dim from the model).
+template <int dim>
+DynamicsResult integrate_dynamics(TotalLagrangian<dim>& model, const std::vector<Point<dim>>& node_positions,
                                   Eigen::VectorXd d0, Eigen::VectorXd v0, const DynamicsSettings& settings,
                                   StageTimer& timer,
                                   const std::function<void(const DynamicState&)>& on_step = {},
-                                  const DynamicsCheckpoints& checkpoints = {});
+                                  const DynamicsCheckpoints<dim>& checkpoints = {});
 
 }  // namespace mfree

@@ -70,7 +70,8 @@ ElasticitySystem assemble_elasticity(const ElasticityProblem& problem, const Dom
 
 /// Voigt strain at quadrature point k of q for coefficients d: (eps_xx, eps_yy, gamma_xy).
 Eigen::Vector3d strain_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d);
-/// u^h at point k of q.
-Vec2 displacement_at(const GalerkinQuadrature<2>& q, Index k, const Eigen::VectorXd& d);
+/// u^h = sum_I phi_I d_I at point k of q (dim = 2, 3).
+template <int dim>
+Point<dim> displacement_at(const GalerkinQuadrature<dim>& q, Index k, const Eigen::VectorXd& d);
 
 }  // namespace mfree

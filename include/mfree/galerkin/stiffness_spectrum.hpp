@@ -27,6 +27,6 @@ inline constexpr Index spectrum_max_dofs = 6000;
 /// with every boundary condition and body force dropped. A non-symmetric stiffness (VCI)
 /// is symmetrised: (K + K^T) / 2 holds the energy u^T K u.
 StiffnessSpectrum stiffness_spectrum(const ElasticityProblem& problem, const Domain& domain,
-                                     const Discretisation& disc, int count, double zero_tolerance = 1e-8);
+                                     const Discretisation<2>& disc, int count, double zero_tolerance = 1e-8);
 
 }  // namespace mfree

@@ -1,5 +1,5 @@
 #pragma once
-// The 2D axis-aligned vibration problem (SPEC section 6; seed 000 after Sadeghirad et al.
+// The axis-aligned vibration problem (SPEC section 6; seed 000 after Sadeghirad et al.
 // 2011): a manufactured large-deformation solution of rho0 u_tt = Div P + rho0 b for the
 // compressible Neo-Hookean material on the square [0, L]^2, with c = sqrt(E / rho0):
 //
@@ -9,6 +9,11 @@
 // restored), evaluated at reference positions. F is diagonal, so the walls X, Y in {0, L}
 // carry no shear traction and the normal displacement vanishes there: slip walls. The period
 // is 2 L / c. Units: SI as given (m, s, Pa, kg/m^3).
+//
+// On the cube [0, L]^3 the same with u_z = A sin(2 pi Z / L) sin(c pi t / L) (as u_x): with
+// F = diag(F_ii), Div P_i = F_ii,i [mu (1 + 1 / F_ii^2) + lambda (1 - ln J) / F_ii^2] and
+// F_ii,i = -(2 pi / L)^2 u_i, so b_i has the plane form with J = F_xx F_yy F_zz. The
+// members are templates on the dimension (2, 3) of the point they take.
 
 #include "mfree/core/exact_motion.hpp"
 #include "mfree/core/types.hpp"
@@ -27,13 +32,19 @@ struct AxisAlignedVibration {
   [[nodiscard]] double period() const { return 2.0 * length / wave_speed(); }
   [[nodiscard]] NeoHookean material() const { return {lame_constants(youngs_modulus, poisson_ratio)}; }
 
-  [[nodiscard]] Vec2 displacement(const Vec2& x, double t) const;
-  [[nodiscard]] Vec2 velocity(const Vec2& x, double t) const;
-  [[nodiscard]] Vec2 acceleration(const Vec2& x, double t) const;
-  [[nodiscard]] Mat2 deformation_gradient(const Vec2& x, double t) const;
-  [[nodiscard]] Mat2 cauchy_stress(const Vec2& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Point<dim> displacement(const Point<dim>& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Point<dim> velocity(const Point<dim>& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Point<dim> acceleration(const Point<dim>& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Tensor2<dim> deformation_gradient(const Point<dim>& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Tensor2<dim> cauchy_stress(const Point<dim>& x, double t) const;
   /// b (force per unit mass) with rho0 u_tt = Div P + rho0 b.
-  [[nodiscard]] Vec2 body_force(const Vec2& x, double t) const;
+  template <int dim>
+  [[nodiscard]] Point<dim> body_force(const Point<dim>& x, double t) const;
   /// The fields above as the solvers' error measures take them.
   [[nodiscard]] ExactMotion motion() const;
 };

@@ -11,6 +11,7 @@
 // crack crosses is quartered (crack_depth).
 
 #include "mfree/geometry/domain.hpp"
+#include "mfree/geometry/solid.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 
 namespace mfree {
@@ -23,6 +24,9 @@ inline constexpr int crack_depth = 3;
 
 /// n x n Gauss points per cell (n >= 1).
 QuadratureRule<2> gauss_cell_rule(const Domain& domain, double cell_size, int n);
+/// n x n x n Gauss points per cell of a solid (a box: every cell whole), cells fitted to its
+/// bounding box as above; exact for polynomials of degree 2 n - 1 in each coordinate.
+QuadratureRule<3> gauss_cell_rule(const Solid& solid, double cell_size, int n);
 
 /// Appends the points of one cell: n x n Gauss points, or a polygon rule of degree 2 n on its
 /// part in the domain (each region's part apart, polygon_quadrature.hpp); a cell a crack
