@@ -232,10 +232,11 @@ class TotalLagrangian {
   [[nodiscard]] Point<dim> boundary_load(Index p, const Eigen::VectorXd& d, const LoadState& load) const;
   /// Replaces the history (a resumed run); InputError when the sizes do not fit.
   void set_history(PointHistory<dim> history);
-  /// sum_K w_K D_K: the plastic work per unit thickness done so far (committed) [J/m].
+  /// sum_K w_K D_K: the plastic work done so far (committed) [J/m per unit thickness in the
+  /// plane, J in 3D].
   [[nodiscard]] double dissipated() const;
   /// sum_K w_K over the points that have yielded (committed alpha > 0): the area of the
-  /// plastic zone [m^2].
+  /// plastic zone [m^2; m^3 in 3D].
   [[nodiscard]] double plastic_area() const;
   /// The update at quadrature point k from its committed state: Cauchy stress, sigma_zz and
   /// the state (for output: the stress where it lives).
