@@ -232,7 +232,7 @@ TEST_CASE("3D discretisation refuses the schemes and the correction that are pla
   CHECK(none.consistency_after == none.consistency_before);
 }
 
-TEST_CASE("3D stiffness: CG with GAMG and the six rigid-body modes gives the direct solution",
+TEST_CASE("3D stiffness: PETSc CG with GAMG and the six rigid-body modes gives the direct solution",
           "[galerkin][3d]") {
   // A box clamped at x = 0 under a shear traction at x = 1, the symmetric form (projected
   // gradients, no VCI): CHOLMOD, then CG preconditioned by GAMG with block size 3.
