@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "mfree/core/child_process.hpp"
+#include "gmsh_reader.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/memory.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
@@ -28,6 +28,10 @@
 namespace mfree {
 
 namespace {
+
+using gmsh_reader::lower_case;
+using gmsh_reader::put;
+using gmsh_reader::quoted_list;
 
 /// One line element of the boundary of the domain or of a region: its end nodes (gmsh node
 /// tags), its part and its region. An element two regions share appears once for each.
@@ -57,106 +61,11 @@ struct BoundaryMesh {
   std::vector<std::string> crack_names;  // physical names of the crack curves, by group tag
 };
 
-std::string lower_case(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-std::string accepted_extensions() {
-  std::string list;
-  for (const std::string_view e : gmsh_extensions) list += fmt::format("{}{}", list.empty() ? "" : ", ", e);
-  return list;
-}
-
 /// "curve 5" or "curves 5, 6 and 9" for kind "curve".
 std::string tag_list(std::string_view kind, const std::vector<int>& tags) {
   std::string out = fmt::format("{}{} ", kind, tags.size() == 1 ? "" : "s");
   for (std::size_t i = 0; i < tags.size(); ++i)
     out += fmt::format("{}{}", i == 0 ? "" : (i + 1 == tags.size() ? " and " : ", "), tags[i]);
-  return out;
-}
-
-/// "'a'" or "'a', 'b' and 'c'".
-std::string quoted_list(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    out += fmt::format("{}'{}'", i == 0 ? "" : (i + 1 == names.size() ? " and " : ", "), names[i]);
-  return out;
-}
-
-/// One gmsh session: initialised quietly (no configuration files, nothing on the terminal),
-/// its messages collected by the logger, finalised when it ends. gmsh keeps one model, one
-/// option set and one logger for a whole process: a session runs in a process of its own
-/// (read_isolated below).
-class GmshSession {
- public:
-  GmshSession() {
-    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::logger::start();
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-  ~GmshSession() {
-    // gmsh reports errors by throwing std::string; none may leave a destructor.
-    try {
-      gmsh::logger::stop();
-      gmsh::finalize();
-    } catch (...) {
-    }
-  }
-
-  /// gmsh's error messages so far, joined by "; ", or `thrown` (the message gmsh threw) if
-  /// the log holds none.
-  [[nodiscard]] static std::string errors(const std::string& thrown) {
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    std::string out;
-    const std::string_view prefix = "Error: ";
-    for (const std::string& line : log) {
-      if (line.compare(0, prefix.size(), prefix) == 0) {
-        out += fmt::format("{}{}", out.empty() ? "" : "; ", line.substr(prefix.size()));
-      }
-    }
-    return out.empty() ? thrown : out;
-  }
-};
-
-/// The part index of every curve (-1: none) with the part names, from the dim-1 physical
-/// groups. Parts are numbered by group tag; groups of the same name are one part. `kind` names
-/// the curves in messages ("boundary curve").
-std::map<int, int> curve_parts(const gmsh::vectorpair& curves, std::vector<std::string>& part_names,
-                               const std::string& source, std::string_view kind) {
-  std::map<int, int> group_of_curve;  // curve tag -> physical group tag, 0: none
-  std::map<int, std::string> used;    // group tag -> name, groups on the boundary only
-  for (const auto& [dim, curve] : curves) {
-    std::vector<int> groups;
-    gmsh::model::getPhysicalGroupsForEntity(1, curve, groups);
-    std::vector<std::string> names;
-    for (int g : groups) {
-      std::string name;
-      gmsh::model::getPhysicalName(1, g, name);
-      names.push_back(name.empty() ? std::to_string(g) : name);
-    }
-    std::sort(names.begin(), names.end());
-    names.erase(std::unique(names.begin(), names.end()), names.end());
-    if (names.size() > 1) {
-      throw InputError(
-          fmt::format("{}: {} {} belongs to the physical curves {}; a {} belongs to one "
-                      "named part only",
-                      source, kind, curve, quoted_list(names), kind));
-    }
-    group_of_curve[curve] = groups.empty() ? 0 : groups.front();
-    if (!groups.empty()) used[groups.front()] = names.front();
-  }
-  std::map<int, int> part_of_group;
-  for (const auto& [group, name] : used) {
-    const auto known = std::find(part_names.begin(), part_names.end(), name);
-    part_of_group[group] = static_cast<int>(known - part_names.begin());
-    if (known == part_names.end()) part_names.push_back(name);
-  }
-  std::map<int, int> out;
-  for (const auto& [curve, group] : group_of_curve) out[curve] = group == 0 ? -1 : part_of_group[group];
   return out;
 }
 
@@ -285,7 +194,8 @@ BoundaryMesh read_boundary(const std::string& file) {
   if (boundary.empty()) throw InputError(fmt::format("{}: the surfaces have no boundary curves", file));
 
   BoundaryMesh mesh;
-  const std::map<int, int> part = curve_parts(boundary, mesh.part_names, file, "boundary curve");
+  const std::map<int, int> part =
+      gmsh_reader::entity_parts(1, boundary, mesh.part_names, file, "boundary curve");
   // With physical surfaces, the boundary of each region (its curves bounding exactly one of its
   // surfaces): the domain's boundary curves with their parts, and the interfaces, which two
   // regions share and which carry no part.
@@ -316,7 +226,8 @@ BoundaryMesh read_boundary(const std::string& file) {
     }
   }
   const gmsh::vectorpair cracks = crack_curves(surfaces, curves);
-  const std::map<int, int> crack_name = curve_parts(cracks, mesh.crack_names, file, "embedded curve");
+  const std::map<int, int> crack_name =
+      gmsh_reader::entity_parts(1, cracks, mesh.crack_names, file, "embedded curve");
   for (const auto& [dim, curve] : cracks) {
     const auto elements = curve_elements(curve);
     for (const auto& [a, b] : elements)
@@ -348,11 +259,6 @@ BoundaryMesh read_boundary(const std::string& file) {
 // curve, name; crack names), or 'E' and an error message. Counts are std::size_t, names their
 // length and bytes.
 
-template <class T>
-void put(std::string& out, const T& value) {
-  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
 std::string serialise(const BoundaryMesh& mesh) {
   std::string out = "M";
   put(out, mesh.nodes.size());
@@ -363,134 +269,37 @@ std::string serialise(const BoundaryMesh& mesh) {
   }
   put(out, mesh.edges.size());
   for (const BoundaryEdge& e : mesh.edges) put(out, e);
-  const auto put_names = [&out](const std::vector<std::string>& names) {
-    put(out, names.size());
-    for (const std::string& name : names) {
-      put(out, name.size());
-      out += name;
-    }
-  };
-  put_names(mesh.part_names);
-  put_names(mesh.region_names);
+  gmsh_reader::put_names(out, mesh.part_names);
+  gmsh_reader::put_names(out, mesh.region_names);
   put(out, mesh.crack_edges.size());
   for (const CrackEdge& e : mesh.crack_edges) put(out, e);
-  put_names(mesh.crack_names);
+  gmsh_reader::put_names(out, mesh.crack_names);
   return out;
 }
 
 BoundaryMesh deserialise(const std::string& bytes, const std::string& file) {
-  std::size_t at = 1;
-  const auto take = [&](void* to, std::size_t n) {
-    if (n > bytes.size() - at) throw Error(fmt::format("{}: the gmsh reader process sent a truncated mesh", file));
-    std::memcpy(to, bytes.data() + at, n);
-    at += n;
-  };
-  const auto count = [&] {
-    std::size_t n;
-    take(&n, sizeof n);
-    if (n > bytes.size()) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
-    return n;
-  };
+  gmsh_reader::MessageReader in(bytes, file);
   BoundaryMesh mesh;
-  for (std::size_t k = 0, n = count(); k < n; ++k) {
-    std::size_t tag;
-    double x, y;
-    take(&tag, sizeof tag);
-    take(&x, sizeof x);
-    take(&y, sizeof y);
+  for (std::size_t k = 0, n = in.count(); k < n; ++k) {
+    const auto tag = in.take<std::size_t>();
+    const auto x = in.take<double>();
+    const auto y = in.take<double>();
     mesh.nodes.emplace(tag, Vec2(x, y));
   }
-  mesh.edges.resize(count());
-  for (BoundaryEdge& e : mesh.edges) take(&e, sizeof e);
-  const auto take_names = [&](std::vector<std::string>& names) {
-    names.resize(count());
-    for (std::string& name : names) {
-      name.resize(count());
-      take(name.data(), name.size());
-    }
-  };
-  take_names(mesh.part_names);
-  take_names(mesh.region_names);
-  mesh.crack_edges.resize(count());
-  for (CrackEdge& e : mesh.crack_edges) take(&e, sizeof e);
-  take_names(mesh.crack_names);
+  mesh.edges.resize(in.count());
+  for (BoundaryEdge& e : mesh.edges) e = in.take<BoundaryEdge>();
+  mesh.part_names = in.names();
+  mesh.region_names = in.names();
+  mesh.crack_edges.resize(in.count());
+  for (CrackEdge& e : mesh.crack_edges) e = in.take<CrackEdge>();
+  mesh.crack_names = in.names();
+  in.finish();
   const int regions = static_cast<int>(mesh.region_names.size());
   const bool regions_known = std::all_of(mesh.edges.begin(), mesh.edges.end(), [&](const BoundaryEdge& e) {
     return regions == 0 ? e.region == -1 : e.region >= 0 && e.region < regions;
   });
-  if (at != bytes.size() || !regions_known)
-    throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
+  if (!regions_known) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
   return mesh;
-}
-
-/// What the child process sends: the serialised mesh, or 'E' and an error message.
-std::string read_boundary_message(const std::string& file) {
-  try {
-    const GmshSession session;
-    try {
-      return serialise(read_boundary(file));
-    } catch (const std::string& thrown) {
-      return "E" + fmt::format("{}: gmsh cannot read it: {}", file, GmshSession::errors(thrown));
-    }
-  } catch (const std::bad_alloc&) {
-    return "E" + fmt::format(
-                     "{}: gmsh ran out of memory reading it: element sizes too small for the domain "
-                     "(point sizes, Mesh.MeshSizeMax) are the usual cause; coarsen them",
-                     file);
-  } catch (const std::exception& e) {
-    return std::string("E") + e.what();
-  } catch (...) {
-    return "E" + fmt::format("{}: gmsh cannot read it", file);
-  }
-}
-
-/// Whether a signal is one a crash raises (rather than one sent from outside).
-bool is_crash_signal(int signal) {
-  for (const int crash : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGSYS, SIGTRAP})
-    if (signal == crash) return true;
-  return false;
-}
-
-/// read_boundary in a child process (mfree/core/child_process.hpp) under the limits: libgmsh
-/// crashes on some malformed files (tests/fuzz/known_crashes), loops forever on others and
-/// may exhaust the memory; each must end as an error naming the file, not take the program
-/// down. gmsh's global state also stays out of this process, so reads from several threads
-/// need no lock.
-BoundaryMesh read_isolated(const std::string& file, const GmshReaderLimits& limits) {
-  const ChildOutcome out = run_in_child([&file] { return read_boundary_message(file); },
-                                        ChildLimits{limits.wall_time, limits.memory_bytes},
-                                        fmt::format("{}: the gmsh reader", file));
-  switch (out.end) {
-    case ChildOutcome::End::out_of_time:
-      throw InputError(fmt::format(
-          "{}: gmsh did not finish reading it within {:g} s (the limit of the gmsh reader; see README): an "
-          "endless loop in a .geo script, an Include of a file that never ends (such as a device) or element "
-          "sizes far too small for the domain",
-          file, std::chrono::duration<double>(limits.wall_time).count()));
-    case ChildOutcome::End::out_of_memory:
-      throw InputError(fmt::format(
-          "{}: gmsh used more than {:g} MiB of memory reading it (the limit of the gmsh reader; see README): "
-          "element sizes too small for the domain (point sizes, Mesh.MeshSizeMax) are the usual cause; "
-          "coarsen them",
-          file, static_cast<double>(limits.memory_bytes) / (1024.0 * 1024.0)));
-    case ChildOutcome::End::signalled:
-      if (is_crash_signal(out.code))
-        throw InputError(fmt::format("{}: gmsh crashed reading it ({}): the file is malformed", file,
-                                     ::strsignal(out.code)));
-      throw Error(
-          fmt::format("{}: the gmsh reader process was ended from outside by signal {} ({}) while "
-                      "reading it{}",
-                      file, out.code, ::strsignal(out.code),
-                      out.code == SIGKILL ? ", most likely by the system for lack of memory (element "
-                                            "sizes too small for the domain?)"
-                                          : ""));
-    case ChildOutcome::End::exited:
-      break;
-  }
-  if (out.code != 0 || out.output.empty())
-    throw Error(fmt::format("{}: the gmsh reader process failed (exit status {})", file, out.code));
-  if (out.output[0] == 'E') throw InputError(out.output.substr(1));
-  return deserialise(out.output, file);
 }
 
 /// Closed rings from boundary edges: every node must end exactly two edges. Returns the
@@ -792,18 +601,10 @@ GmshReaderLimits default_gmsh_reader_limits() {
 
 Domain read_gmsh_domain(const std::filesystem::path& file, const GmshReaderLimits& limits, bool interfaces) {
   const std::string source = file.string();
-  if (!is_gmsh_file(file)) {
-    throw InputError(fmt::format("{}: unknown extension '{}' for a gmsh file; gmsh files end in {}", source,
-                                 file.extension().string(), accepted_extensions()));
-  }
-  // gmsh opens a missing file without complaint (an empty model), so look first.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(fmt::format("mesh file '{}' does not exist or is not a regular file", source));
-  }
-  if (!std::ifstream(file)) throw InputError(fmt::format("cannot read mesh file '{}'", source));
-
-  BoundaryMesh mesh = read_isolated(source, limits);
+  gmsh_reader::check_file(file);
+  BoundaryMesh mesh = deserialise(
+      gmsh_reader::read_in_child(source, limits, [&source] { return serialise(read_boundary(source)); }),
+      source);
   Domain domain =
       mesh.region_names.empty() ? one_polygon(mesh, source) : union_of_regions(mesh, source, interfaces);
   std::vector<CrackChain> cracks = chain_cracks(mesh, source);
