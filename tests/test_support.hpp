@@ -10,6 +10,10 @@
 
 #include <unistd.h>
 
+namespace mfree {
+class Solid;
+}
+
 namespace mfree::testing {
 
 /// The source tree's root (meshes/, verification/, tests/ below it), set by the build for
@@ -49,6 +53,10 @@ struct ScratchFolder {
     return names;
   }
 };
+
+/// meshes/thick_sphere_octant.geo (a = 1 <= r <= b = 2, x, y, z >= 0) meshed by gmsh with
+/// element size `size`, as a solid.
+Solid thick_sphere_octant(double size);
 
 /// True when two doubles are the same bit pattern (a value written and read back unchanged).
 inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include "mfree/core/error.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
 
 namespace mfree {
 
@@ -36,5 +37,33 @@ Solid Solid::box(const Point<3>& lo, const Point<3>& hi) {
     }
   return Solid(box, std::move(surface), std::move(parts));
 }
+
+Solid Solid::from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
+                       std::vector<std::string> parts, const std::string& source) {
+  if (surface.empty()) throw InputError(fmt::format("{}: the solid has no surface triangle", source));
+  // Divergence theorem: the volume enclosed by the outward surface, about its box's centre.
+  const Point<3> centre = mesh.bounding_box().center();
+  double enclosed = 0.0;
+  for (std::size_t t = 0; t < surface.size(); ++t) {
+    const SurfaceTriangle& tri = surface[t];
+    if (tri.part < -1 || tri.part >= static_cast<int>(parts.size()))
+      throw InputError(fmt::format("{}: surface triangle {} is in part {}, not one of the {} parts", source,
+                                   t, tri.part, parts.size()));
+    const Point<3> mid = (tri.vertices[0] + tri.vertices[1] + tri.vertices[2]) / 3.0 - centre;
+    enclosed += mid.dot(tri.area_normal()) / 6.0;
+  }
+  if (!(std::abs(enclosed - mesh.volume()) <= 1e-9 * mesh.volume()))
+    throw InputError(
+        fmt::format("{}: the surface encloses a volume of {:.10g}, its tetrahedra fill {:.10g}: the "
+                    "surface does not bound the solid (triangles missing or facing inward)",
+                    source, enclosed, mesh.volume()));
+  const AlignedBox<3> box = mesh.bounding_box();
+  return Solid(box, std::move(surface), std::move(parts),
+               std::make_shared<const TetrahedralMesh>(std::move(mesh)));
+}
+
+bool Solid::contains(const Point<3>& x) const { return mesh_ ? mesh_->contains(x) : box_.contains(x); }
+
+double Solid::measure() const { return mesh_ ? mesh_->volume() : box_.volume(); }
 
 }  // namespace mfree

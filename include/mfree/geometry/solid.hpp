@@ -7,19 +7,24 @@
 // each oriented outward ((b - a) x (c - a) points out of the solid) and in one named part;
 // the conditions of a problem select pieces of it (geometry/boundary_selection.hpp).
 //
-// For now a solid is an axis-aligned box [lo, hi] (length units), inside which every cell of
-// a lattice fitted to it is whole, its surface two triangles per face in the parts x_min,
-// x_max, y_min, y_max, z_min, z_max; solids from gmsh (.geo, .msh, STEP/BREP/IGES through
-// OpenCASCADE) with curved surfaces and cut cells take the same interface.
+// A solid is either an axis-aligned box [lo, hi] (length units), inside which every cell of a
+// lattice fitted to it is whole, its surface two triangles per face in the parts x_min,
+// x_max, y_min, y_max, z_min, z_max; or a mesh of tetrahedra Omega_h (gmsh's, from .geo,
+// .msh, STEP/BREP/IGES: geometry/gmsh_solid.hpp) with the triangles of its boundary, which is
+// the solid for the inside test, the measure and the cut cells of the background lattice:
+// a curved surface enters as the flat triangles of its mesh.
 
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "mfree/core/types.hpp"
 
 namespace mfree {
+
+class TetrahedralMesh;
 
 /// An axis-aligned box in dim dimensions: min() and max() corners, sizes(), volume().
 template <int dim>
@@ -43,22 +48,34 @@ class Solid {
   /// The box [lo, hi]; InputError unless lo < hi in every coordinate (all finite).
   static Solid box(const Point<3>& lo, const Point<3>& hi);
 
+  /// The solid Omega_h filled by `mesh`, bounded by `surface` (outward triangles, each in one
+  /// of `parts`, or in none: part -1). Throws InputError naming `source` when the surface is
+  /// empty, a triangle's part is out of range, or the surface does not enclose the mesh's
+  /// volume (sum of (x . n) dA / 3 over the surface against the volume, 1e-9 relative: a
+  /// surface missing triangles or turned inward).
+  static Solid from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
+                         std::vector<std::string> parts, const std::string& source);
+
   [[nodiscard]] const AlignedBox<3>& bounding_box() const { return box_; }
   /// Whether x lies in the closed solid.
-  [[nodiscard]] bool contains(const Point<3>& x) const { return box_.contains(x); }
+  [[nodiscard]] bool contains(const Point<3>& x) const;
   /// |Omega| (length units cubed).
-  [[nodiscard]] double measure() const { return box_.volume(); }
+  [[nodiscard]] double measure() const;
+  /// The tetrahedra filling the solid; null for a box.
+  [[nodiscard]] const TetrahedralMesh* mesh() const { return mesh_.get(); }
   /// The boundary: outward triangles.
   [[nodiscard]] const std::vector<SurfaceTriangle>& surface() const { return surface_; }
   /// The names of the surface's parts, in the order SurfaceTriangle::part counts them.
   [[nodiscard]] const std::vector<std::string>& parts() const { return parts_; }
 
  private:
-  Solid(const AlignedBox<3>& box, std::vector<SurfaceTriangle> surface, std::vector<std::string> parts)
-      : box_(box), surface_(std::move(surface)), parts_(std::move(parts)) {}
+  Solid(const AlignedBox<3>& box, std::vector<SurfaceTriangle> surface, std::vector<std::string> parts,
+        std::shared_ptr<const TetrahedralMesh> mesh = nullptr)
+      : box_(box), surface_(std::move(surface)), parts_(std::move(parts)), mesh_(std::move(mesh)) {}
   AlignedBox<3> box_;
   std::vector<SurfaceTriangle> surface_;
   std::vector<std::string> parts_;
+  std::shared_ptr<const TetrahedralMesh> mesh_;
 };
 
 }  // namespace mfree

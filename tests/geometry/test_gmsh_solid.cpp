@@ -1,0 +1,109 @@
+// Solids from gmsh files: the octant of a thick sphere (meshes/thick_sphere_octant.geo) read
+// as tetrahedra with named surface parts; its volume and areas converging to the curved
+// solid's at second order in the element size; the surface closed and outward; the inside
+// test; and the files refused, each naming what is wrong.
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include "../test_support.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/geometry/boundary_selection.hpp"
+#include "mfree/geometry/gmsh_solid.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
+
+using namespace mfree;
+
+namespace {
+
+using P3 = Point<3>;
+const double pi = std::acos(-1.0);
+
+std::string write_file(const testing::ScratchFolder& folder, const std::string& name,
+                       const std::string& text) {
+  const std::string path = (folder.path / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string input_error(const std::string& path) {
+  return testing::message_of<InputError>([&] { (void)read_gmsh_solid(path); });
+}
+
+}  // namespace
+
+TEST_CASE("gmsh solid: the thick sphere's octant, its parts, closed surface and second-order geometry",
+          "[geometry][3d]") {
+  // Exact: volume (b^3 - a^3) pi / 6, the bore's area pi a^2 / 2, the outside's pi b^2 / 2,
+  // each symmetry face a quarter annulus pi (b^2 - a^2) / 4.
+  const std::map<std::string, double> exact_area{{"bore", pi / 2},
+                                                 {"outside", 2 * pi},
+                                                 {"x_sym", 3 * pi / 4},
+                                                 {"y_sym", 3 * pi / 4},
+                                                 {"z_sym", 3 * pi / 4}};
+  const double exact_volume = 7 * pi / 6;
+  std::vector<double> volume_error, bore_error;
+  for (const double size : {0.2, 0.1}) {
+    const Solid solid = testing::thick_sphere_octant(size);
+    REQUIRE(solid.parts() == std::vector<std::string>{"bore", "outside", "x_sym", "y_sym", "z_sym"});
+    P3 closed = P3::Zero();
+    double enclosed = 0.0;
+    for (const SurfaceTriangle& t : solid.surface()) {
+      REQUIRE(t.part >= 0);  // every boundary surface is named
+      closed += t.area_normal() / 2;
+      enclosed += t.vertices[0].dot(t.area_normal()) / 6;
+    }
+    CHECK(closed.norm() <= 1e-13);
+    CHECK(enclosed == Approx(solid.measure()).epsilon(1e-13));
+    for (const auto& [name, area] : exact_area) {
+      const double a = selection_area(solid, select_part(solid, name));
+      CAPTURE(name, size, a, area);
+      CHECK(std::abs(a - area) <= 0.01 * area);
+    }
+    volume_error.push_back(exact_volume - solid.measure());
+    bore_error.push_back(pi / 2 - selection_area(solid, select_part(solid, "bore")));
+    CHECK(solid.contains(P3(0.9, 0.9, 0.3)));          // r = 1.31
+    CHECK_FALSE(solid.contains(P3(0.5, 0.5, 0.5)));    // r = 0.87: in the bore
+    CHECK_FALSE(solid.contains(P3(1.2, 1.2, 1.2)));    // r = 2.08: outside
+    CHECK_FALSE(solid.contains(P3(-0.01, 1.5, 0.1)));  // beyond x = 0
+    CHECK(solid.contains(P3(0.0, 1.5, 0.0)));          // on two symmetry faces
+  }
+  // Inscribed flat triangles: the errors are positive and fall at second order.
+  WARN(fmt::format("volume error {:.3e}, {:.3e}; bore area error {:.3e}, {:.3e}", volume_error[0],
+                   volume_error[1], bore_error[0], bore_error[1]));
+  CHECK(volume_error[1] > 0.0);
+  CHECK(std::log2(volume_error[0] / volume_error[1]) >= 1.8);
+  CHECK(std::log2(bore_error[0] / bore_error[1]) >= 1.8);
+}
+
+TEST_CASE("gmsh solid: files that are not solids of tetrahedra are refused, naming the file and the reason",
+          "[geometry][3d]") {
+  const testing::ScratchFolder folder("gmsh_solid_bad");
+  const std::string plane =
+      write_file(folder, "plane.geo", "SetFactory(\"OpenCASCADE\");\nRectangle(1) = {0, 0, 0, 1, 1};\n");
+  CHECK_THAT(input_error(plane), Catch::Contains("plane.geo") && Catch::Contains("no 3D entity (volume)"));
+  const std::string hexahedra = write_file(folder, "hex.geo",
+                                           "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                                           "Transfinite Curve{:} = 3;\nTransfinite Surface{:};\n"
+                                           "Recombine Surface{:};\nTransfinite Volume{1};\n");
+  CHECK_THAT(input_error(hexahedra), Catch::Contains("hex.geo: volume 1") && Catch::Contains("Hexahedron") &&
+                                         Catch::Contains("takes Tetrahedrons only"));
+  const std::string twice = write_file(folder, "twice.geo",
+                                       "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                                       "Physical Surface(\"a\") = {1};\nPhysical Surface(\"b\") = {1, 2};\n");
+  CHECK_THAT(input_error(twice),
+             Catch::Contains("boundary surface 1 belongs to the physical surfaces 'a' and 'b'"));
+  CHECK_THAT(input_error(write_file(folder, "box.txt", "")), Catch::Contains("unknown extension '.txt'"));
+  CHECK_THAT(input_error((folder.path / "missing.geo").string()), Catch::Contains("does not exist"));
+  CHECK_THAT(input_error(write_file(folder, "broken.geo", "Box(1) = {0, 0;\n")),
+             Catch::Contains("broken.geo: gmsh cannot read it"));
+  // A box without names: one solid of tetrahedra, its faces in no part.
+  const Solid box = read_gmsh_solid(
+      write_file(folder, "box.geo", "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 2, 3};\n"));
+  CHECK(box.measure() == Approx(6.0).epsilon(1e-12));
+  CHECK(box.parts().empty());
+  for (const SurfaceTriangle& t : box.surface()) CHECK(t.part == -1);
+}
