@@ -12,6 +12,8 @@
 #include "mfree/core/parallel.hpp"
 #include "mfree/geometry/crack_faces.hpp"
 #include "mfree/geometry/polygon_integrals.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
+#include "mfree/geometry/tetrahedron.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/quadrature_rule.hpp"
 #include "mfree/quadrature/rule_on_cracks.hpp"
@@ -80,13 +82,19 @@ void monomial_moments(const std::vector<Ring>& rings, const Vec2& centre, double
   for (int k = 0; k < m; ++k) out[k] *= side * side;
 }
 
+/// The weights nearest w0 that integrate the monomials exactly (moment fitting):
+///   w = w0 + V^T (V V^T)^-1 (m - V w0),  V_jk = monomial j at point k.
+Eigen::VectorXd moment_fitted(const Eigen::MatrixXd& v, const Eigen::VectorXd& moments,
+                              const Eigen::VectorXd& w0) {
+  return w0 + v.transpose() * (v * v.transpose()).ldlt().solve(moments - v * w0);
+}
+
 /// A quadrature rule for the part of one cell inside the domain (`rings`, from
 /// Domain::clip), with every point in the closed domain and exact for polynomials of degree
 /// <= order. Points: the rings' vertices and edge midpoints (on the boundary of the cut
 /// part; they make a degree-2 unisolvent set even for a sliver triangle) and the cell's
 /// (order + 1)^2 Gauss points that lie inside. Weights: the equal-share weights corrected
-/// by the least change that matches the exact moments (moment fitting):
-///   w = w0 + V^T (V V^T)^-1 (m - V w0),  V_jk = monomial j at point k.
+/// by the least change that matches the exact moments (moment_fitted).
 /// Keeping the points inside the domain matters: the quadrature-cloud functions need not
 /// be defined outside it (a point inside a hole may see its neighbours on one line).
 void cut_cell_rule(const Domain& domain, const std::vector<Ring>& rings, const Vec2& lo,
@@ -110,9 +118,7 @@ void cut_cell_rule(const Domain& domain, const std::vector<Ring>& rings, const V
   for (Index k = 0; k < n; ++k) monomials((x[k] - centre) / side, order, v.col(k).data());
   Eigen::VectorXd moments(m);
   monomial_moments(rings, centre, side, order, moments.data());
-  const Eigen::VectorXd w0 = Eigen::VectorXd::Constant(n, moments[0] / n);
-  const Eigen::VectorXd w =
-      w0 + v.transpose() * (v * v.transpose()).ldlt().solve(moments - v * w0);
+  const Eigen::VectorXd w = moment_fitted(v, moments, Eigen::VectorXd::Constant(n, moments[0] / n));
   for (Index k = 0; k < n; ++k) {
     points.push_back(x[k]);
     weights.push_back(w[k]);
@@ -270,6 +276,150 @@ BackgroundLattice<2>::BackgroundLattice(const Domain& domain, double spacing, in
   cells_ = ncells;
 }
 
+namespace {
+
+/// The 1 + 3 (order 1) or 10 (order 2) monomials of degree <= order in u.
+int monomial_count_3d(int order) { return order == 1 ? 4 : 10; }
+void monomials(const Point<3>& u, int order, double* out) {
+  out[0] = 1.0;
+  for (int c = 0; c < 3; ++c) out[1 + c] = u[c];
+  if (order == 2)
+    for (int a = 0, k = 4; a < 3; ++a)
+      for (int b = a; b < 3; ++b) out[k++] = u[a] * u[b];
+}
+
+/// The same monomials integrated over a tetrahedron (closed forms: volume, centroid and
+/// tetrahedron_second_moments), added to out.
+void add_monomial_moments(const Tetrahedron& t, int order, double* out) {
+  const double volume = tetrahedron_volume(t);
+  const Point<3> centroid = tetrahedron_centroid(t);
+  out[0] += volume;
+  for (int c = 0; c < 3; ++c) out[1 + c] += volume * centroid[c];
+  if (order == 2) {
+    const Tensor2<3> m = tetrahedron_second_moments(t);
+    for (int a = 0, k = 4; a < 3; ++a)
+      for (int b = a; b < 3; ++b) out[k++] += m(a, b);
+  }
+}
+
+/// A quadrature rule for the part of a cut cell inside the solid, from the tetrahedra of the
+/// solid's mesh that meet it (`tets`): each clipped to the cell, then to the cell's s^3
+/// sub-boxes (s = 2 order - 1); each sub-box's part is one point, its centroid, with its volume
+/// as weight (a sub-box part whose centroid lies outside the solid, a part that is not convex,
+/// gives the centroids of its pieces instead: those lie in their tetrahedra). These weights
+/// integrate degree 1 exactly; for order 2 they are corrected by the least change that
+/// integrates the 10 monomials of degree <= 2 exactly (moment_fitted), where the points allow
+/// it (at least 10 of them, unisolvent; a cell the surface only grazes keeps the degree-1
+/// weights, as more points there would cost more than their accuracy gains). Every point lies
+/// in the closed solid.
+void cut_cell_rule(const Solid& solid, const std::vector<Tetrahedron>& tets, const AlignedBox<3>& cell,
+                   int order, std::vector<Point<3>>& points, std::vector<double>& weights) {
+  const int s = 2 * order - 1;
+  const Point<3> lo = cell.min(), side = cell.sizes(), centre = cell.center();
+  const double volume_scale = side.prod();
+  std::vector<std::vector<Tetrahedron>> parts(static_cast<std::size_t>(s * s * s));
+  std::vector<Tetrahedron> pieces, sub_pieces;
+  const int m = monomial_count_3d(order);
+  Eigen::VectorXd moments = Eigen::VectorXd::Zero(m);
+  for (const Tetrahedron& tet : tets) {
+    pieces.clear();
+    clip_to_box(tet, cell, pieces);
+    for (const Tetrahedron& piece : pieces) {
+      Tetrahedron local;  // in the cell coordinates u = (x - centre) / side
+      for (int k = 0; k < 4; ++k) local[k] = (piece[k] - centre).cwiseQuotient(side);
+      add_monomial_moments(local, order, moments.data());
+      if (s == 1) {
+        parts[0].push_back(piece);
+        continue;
+      }
+      AlignedBox<3> bounds(piece[0]);
+      for (const Point<3>& v : piece) bounds.extend(v);
+      std::array<int, 3> from, to;
+      for (int c = 0; c < 3; ++c) {
+        const auto sub = [&](double x) {
+          return std::clamp(static_cast<int>(std::floor((x - lo[c]) / side[c] * s)), 0, s - 1);
+        };
+        from[c] = sub(bounds.min()[c]);
+        to[c] = sub(bounds.max()[c]);
+      }
+      for (int z = from[2]; z <= to[2]; ++z)
+        for (int y = from[1]; y <= to[1]; ++y)
+          for (int x = from[0]; x <= to[0]; ++x) {
+            const Point<3> a = lo + Point<3>(x, y, z).cwiseProduct(side) / s;
+            sub_pieces.clear();
+            clip_to_box(piece, AlignedBox<3>(a, Point<3>(a + side / s)), sub_pieces);
+            auto& part = parts[static_cast<std::size_t>((z * s + y) * s + x)];
+            part.insert(part.end(), sub_pieces.begin(), sub_pieces.end());
+          }
+    }
+  }
+  std::vector<Point<3>> x;
+  std::vector<double> w0;
+  for (const std::vector<Tetrahedron>& part : parts) {
+    double volume = 0.0;
+    Point<3> first = Point<3>::Zero();
+    for (const Tetrahedron& piece : part) {
+      const double v = tetrahedron_volume(piece);
+      volume += v;
+      first += v * tetrahedron_centroid(piece);
+    }
+    if (!(volume > 1e-14 * volume_scale)) continue;
+    const Point<3> centroid = first / volume;
+    if (solid.contains(centroid)) {
+      x.push_back(centroid);
+      w0.push_back(volume);
+      continue;
+    }
+    for (const Tetrahedron& piece : part)
+      if (const double v = tetrahedron_volume(piece); v > 0.0) {
+        x.push_back(tetrahedron_centroid(piece));
+        w0.push_back(v);
+      }
+  }
+  const auto n = static_cast<Index>(x.size());
+  Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(w0.data(), n);
+  if (order == 2 && n >= m) {
+    Eigen::MatrixXd v(m, n);
+    for (Index k = 0; k < n; ++k)
+      monomials(Point<3>((x[k] - centre).cwiseQuotient(side)), order, v.col(k).data());
+    const Eigen::VectorXd fitted = moment_fitted(v, moments, w / volume_scale) * volume_scale;
+    // Points on (or near) a quadric cannot fit: keep the degree-1 weights there.
+    if (fitted.allFinite() && (v * fitted / volume_scale - moments).norm() <= 1e-10 * moments[0]) w = fitted;
+  }
+  for (Index k = 0; k < n; ++k) {
+    points.push_back(x[k]);
+    weights.push_back(w[k]);
+  }
+}
+
+/// The cells of the lattice that a surface triangle may cross: those whose interior meets
+/// the triangle's bounding box (a triangle in a cell's face plane crosses none).
+std::vector<char> cells_crossed(const Solid& solid, const std::array<Index, 3>& cells, const Point<3>& lo,
+                                const std::array<double, 3>& side) {
+  std::vector<char> cut(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
+  for (const SurfaceTriangle& tri : solid.surface()) {
+    AlignedBox<3> bounds(tri.vertices[0]);
+    for (const Point<3>& v : tri.vertices) bounds.extend(v);
+    std::array<Index, 3> from, to;
+    bool none = false;
+    for (int c = 0; c < 3; ++c) {
+      // Cells k with lo + k side < max and lo + (k + 1) side > min.
+      from[c] = std::max<Index>(0, static_cast<Index>(std::floor((bounds.min()[c] - lo[c]) / side[c])));
+      to[c] = std::min<Index>(cells[c] - 1,
+                              static_cast<Index>(std::ceil((bounds.max()[c] - lo[c]) / side[c])) - 1);
+      if (from[c] > to[c]) none = true;
+    }
+    if (none) continue;
+    for (Index z = from[2]; z <= to[2]; ++z)
+      for (Index y = from[1]; y <= to[1]; ++y)
+        for (Index x = from[0]; x <= to[0]; ++x)
+          cut[(static_cast<std::size_t>(z) * cells[1] + y) * cells[0] + x] = 1;
+  }
+  return cut;
+}
+
+}  // namespace
+
 template <>
 BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int order)
     : spacing_(spacing), order_(order) {
@@ -280,38 +430,130 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
   // Newton–Cotes weight of each vertex: the sum over the cells holding it of side Lambda_i(1)
   // (above: {1/2, 1/2} trapezoid, {1/6, 2/3, 1/6} Simpson).
   std::array<std::vector<double>, 3> axis;
-  std::array<double, 3> step;
+  std::array<double, 3> step, side;
+  std::array<Index, 3> cells;
   double vertices = 1.0;
   for (int c = 0; c < 3; ++c) {
-    const Index cells = std::max<Index>(1, static_cast<Index>(std::ceil(size[c] / (order * spacing) - 1e-9)));
-    const double side = size[c] / cells;
-    step[c] = side / order;
-    axis[c].assign(static_cast<std::size_t>(cells) * order + 1, 0.0);
-    for (Index cell = 0; cell < cells; ++cell)
+    cells[c] = std::max<Index>(1, static_cast<Index>(std::ceil(size[c] / (order * spacing) - 1e-9)));
+    side[c] = size[c] / cells[c];
+    step[c] = side[c] / order;
+    axis[c].assign(static_cast<std::size_t>(cells[c]) * order + 1, 0.0);
+    for (Index cell = 0; cell < cells[c]; ++cell)
       for (int i = 0; i <= order; ++i)
         axis[c][static_cast<std::size_t>(cell) * order + i] +=
-            side * horner(antiderivative[order - 1][i], 1.0);
+            side[c] * horner(antiderivative[order - 1][i], 1.0);
     vertices *= static_cast<double>(axis[c].size());
-    cells_ = c == 0 ? cells : cells_ * cells;
   }
+  cells_ = cells[0] * cells[1] * cells[2];
   if (vertices > 2e9)
     throw InputError(
         fmt::format("background lattice: {} x {} x {} vertices is too many; increase the lattice spacing",
                     axis[0].size(), axis[1].size(), axis[2].size()));
   check_memory(vertices * (sizeof(Point<3>) + sizeof(double)),
                fmt::format("a background lattice of {:.3g} vertices", vertices));
-  points_.reserve(static_cast<std::size_t>(vertices));
-  weights_.reserve(static_cast<std::size_t>(vertices));
   // The last vertex of each axis snapped onto the box's face.
   const auto coordinate = [&](int c, std::size_t i) {
     return i + 1 == axis[c].size() ? box.max()[c] : box.min()[c] + static_cast<double>(i) * step[c];
   };
-  for (std::size_t k = 0; k < axis[2].size(); ++k)
-    for (std::size_t j = 0; j < axis[1].size(); ++j)
-      for (std::size_t i = 0; i < axis[0].size(); ++i) {
-        points_.emplace_back(coordinate(0, i), coordinate(1, j), coordinate(2, k));
-        weights_.push_back(axis[0][i] * axis[1][j] * axis[2][k]);
+  const auto vertex = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return Point<3>(coordinate(0, i), coordinate(1, j), coordinate(2, k));
+  };
+  if (solid.mesh() == nullptr) {
+    // A box: every cell whole, the weights the tensor product of the axes'.
+    points_.reserve(static_cast<std::size_t>(vertices));
+    weights_.reserve(static_cast<std::size_t>(vertices));
+    for (std::size_t k = 0; k < axis[2].size(); ++k)
+      for (std::size_t j = 0; j < axis[1].size(); ++j)
+        for (std::size_t i = 0; i < axis[0].size(); ++i) {
+          points_.push_back(vertex(i, j, k));
+          weights_.push_back(axis[0][i] * axis[1][j] * axis[2][k]);
+        }
+    return;
+  }
+  // A meshed solid: cells crossed by its surface are cut; the others are whole when their
+  // centre is inside, and give their vertices the tensor Newton–Cotes weights.
+  const std::vector<char> cut = cells_crossed(solid, cells, box.min(), side);
+  const auto cell_index = [&](Index x, Index y, Index z) {
+    return (static_cast<std::size_t>(z) * cells[1] + y) * cells[0] + x;
+  };
+  std::vector<double> weight(static_cast<std::size_t>(vertices), 0.0);
+  std::array<double, 3> newton_cotes{};
+  for (int i = 0; i <= order; ++i) newton_cotes[i] = horner(antiderivative[order - 1][i], 1.0);
+  const double cell_volume = side[0] * side[1] * side[2];
+  for (Index z = 0; z < cells[2]; ++z)
+    for (Index y = 0; y < cells[1]; ++y)
+      for (Index x = 0; x < cells[0]; ++x) {
+        if (cut[cell_index(x, y, z)]) continue;
+        const Point<3> centre =
+            box.min() + Point<3>((x + 0.5) * side[0], (y + 0.5) * side[1], (z + 0.5) * side[2]);
+        if (!solid.contains(centre)) continue;
+        for (int c = 0; c <= order; ++c)
+          for (int b = 0; b <= order; ++b)
+            for (int a = 0; a <= order; ++a)
+              weight[(static_cast<std::size_t>(z * order + c) * axis[1].size() +
+                      static_cast<std::size_t>(y * order + b)) *
+                         axis[0].size() +
+                     static_cast<std::size_t>(x * order + a)] +=
+                  cell_volume * newton_cotes[a] * newton_cotes[b] * newton_cotes[c];
       }
+  for (std::size_t k = 0, v = 0; k < axis[2].size(); ++k)
+    for (std::size_t j = 0; j < axis[1].size(); ++j)
+      for (std::size_t i = 0; i < axis[0].size(); ++i, ++v)
+        if (weight[v] != 0.0) {
+          points_.push_back(vertex(i, j, k));
+          weights_.push_back(weight[v]);
+        }
+  // The cut cells: the tetrahedra meeting each (bounding boxes overlapping its interior).
+  const TetrahedralMesh& mesh = *solid.mesh();
+  std::vector<std::pair<std::size_t, Index>> meets;  // (cut cell, tetrahedron)
+  for (Index t = 0; t < mesh.size(); ++t) {
+    const Tetrahedron tet = mesh.tetrahedron(t);
+    AlignedBox<3> bounds(tet[0]);
+    for (const Point<3>& v : tet) bounds.extend(v);
+    std::array<Index, 3> from, to;
+    for (int c = 0; c < 3; ++c) {
+      from[c] =
+          std::max<Index>(0, static_cast<Index>(std::floor((bounds.min()[c] - box.min()[c]) / side[c])));
+      to[c] = std::min<Index>(cells[c] - 1,
+                              static_cast<Index>(std::ceil((bounds.max()[c] - box.min()[c]) / side[c])) - 1);
+    }
+    for (Index z = from[2]; z <= to[2]; ++z)
+      for (Index y = from[1]; y <= to[1]; ++y)
+        for (Index x = from[0]; x <= to[0]; ++x)
+          if (cut[cell_index(x, y, z)]) meets.emplace_back(cell_index(x, y, z), t);
+  }
+  std::sort(meets.begin(), meets.end());
+  std::vector<std::size_t> starts;  // the first entry of each cut cell in `meets`
+  for (std::size_t e = 0; e < meets.size(); ++e)
+    if (e == 0 || meets[e].first != meets[e - 1].first) starts.push_back(e);
+  starts.push_back(meets.size());
+  const auto n_cut = static_cast<Index>(starts.size() - 1);
+  std::vector<std::vector<Point<3>>> cut_points(static_cast<std::size_t>(n_cut));
+  std::vector<std::vector<double>> cut_weights(static_cast<std::size_t>(n_cut));
+  parallel_blocks(n_cut, 64, [&](Index begin, Index end) {
+    std::vector<Tetrahedron> tets;
+    for (Index c = begin; c < end; ++c) {
+      const auto u = static_cast<std::size_t>(c);
+      tets.clear();
+      for (std::size_t e = starts[u]; e < starts[u + 1]; ++e)
+        tets.push_back(mesh.tetrahedron(meets[e].second));
+      const std::size_t cell = meets[starts[u]].first;
+      const auto x = static_cast<Index>(cell % static_cast<std::size_t>(cells[0]));
+      const auto y =
+          static_cast<Index>(cell / static_cast<std::size_t>(cells[0]) % static_cast<std::size_t>(cells[1]));
+      const auto z = static_cast<Index>(
+          cell / (static_cast<std::size_t>(cells[0]) * static_cast<std::size_t>(cells[1])));
+      const Point<3> a = box.min() + Point<3>(x * side[0], y * side[1], z * side[2]);
+      cut_cell_rule(solid, tets, AlignedBox<3>(a, Point<3>(a + Point<3>(side[0], side[1], side[2]))), order,
+                    cut_points[u], cut_weights[u]);
+    }
+  });
+  cut_cells_ = n_cut;
+  for (Index c = 0; c < n_cut; ++c) {
+    const auto u = static_cast<std::size_t>(c);
+    points_.insert(points_.end(), cut_points[u].begin(), cut_points[u].end());
+    weights_.insert(weights_.end(), cut_weights[u].begin(), cut_weights[u].end());
+  }
 }
 
 template class BackgroundLattice<2>;

@@ -9,8 +9,10 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/geometry/crack_faces.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
 #include "mfree/quadrature/polygon_quadrature.hpp"
 #include "mfree/quadrature/rule_on_cracks.hpp"
+#include "mfree/quadrature/tetrahedron_rule.hpp"
 
 namespace mfree {
 
@@ -91,8 +93,34 @@ QuadratureRule<3> gauss_cell_rule(const Solid& solid, double cell_size, int n) {
     cells[a] = std::max(1, static_cast<int>(std::lround(box.sizes()[a] / cell_size)));
     size[a] = box.sizes()[a] / cells[a];
   }
-  const double weight = size.prod();
   QuadratureRule<3> rule;
+  if (const TetrahedralMesh* mesh = solid.mesh()) {
+    // The tetrahedra clipped to the cells, each piece with the collapsed rule.
+    std::vector<Tetrahedron> pieces;
+    for (Index t = 0; t < mesh->size(); ++t) {
+      const Tetrahedron tet = mesh->tetrahedron(t);
+      AlignedBox<3> bounds(tet[0]);
+      for (const Point<3>& v : tet) bounds.extend(v);
+      std::array<int, 3> from, to;
+      for (int a = 0; a < 3; ++a) {
+        const auto cell = [&](double x) {
+          return std::clamp(static_cast<int>(std::floor((x - box.min()[a]) / size[a])), 0, cells[a] - 1);
+        };
+        from[a] = cell(bounds.min()[a]);
+        to[a] = cell(bounds.max()[a]);
+      }
+      for (int k = from[2]; k <= to[2]; ++k)
+        for (int j = from[1]; j <= to[1]; ++j)
+          for (int i = from[0]; i <= to[0]; ++i) {
+            const Point<3> lo = box.min() + size.cwiseProduct(Point<3>(i, j, k));
+            pieces.clear();
+            clip_to_box(tet, AlignedBox<3>(lo, Point<3>(lo + size)), pieces);
+            for (const Tetrahedron& piece : pieces) add_tetrahedron_rule(piece, g, rule);
+          }
+    }
+    return rule;
+  }
+  const double weight = size.prod();
   for (int k = 0; k < cells[2]; ++k)
     for (int j = 0; j < cells[1]; ++j)
       for (int i = 0; i < cells[0]; ++i) {

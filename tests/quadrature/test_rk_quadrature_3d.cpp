@@ -7,9 +7,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "../test_support.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
 
@@ -25,21 +27,22 @@ const Solid& box() {
 }
 
 /// The quadrature points (a cell-centred cloud of the kind) and their RK weights.
-std::pair<std::vector<P3>, std::vector<double>> rk_rule(CloudKind kind, double h, RKOrder order) {
+std::pair<std::vector<P3>, std::vector<double>> rk_rule(CloudKind kind, double h, RKOrder order,
+                                                        const Solid& solid = box()) {
   CloudSettings cs;
   cs.kind = kind;
   cs.spacing = h;
   cs.perturbation = 0.5;
   cs.cell_centred = true;
   cs.seed = 4;
-  std::vector<P3> x = make_cloud(box(), cs);
+  std::vector<P3> x = make_cloud(solid, cs);
   const double factor = order == RKOrder::linear ? 2.0 : 3.0;
   RKSettings rs;
   rs.order = order;
   rs.radius = factor * h;
   if (kind != CloudKind::lattice) rs.node_radii = nodal_support_radii(x, h, factor * 1.25);
   const RKShapeFunctions<3> rk(x, rs);
-  const BackgroundLattice<3> lattice(box(), h / 2, order == RKOrder::linear ? 1 : 2);
+  const BackgroundLattice<3> lattice(solid, h / 2, order == RKOrder::linear ? 1 : 2);
   return {x, rk_quadrature_weights(rk, lattice)};
 }
 
@@ -85,6 +88,60 @@ TEST_CASE(
   }
   CHECK_THROWS_WITH(BackgroundLattice<3>(box(), 0.0, 1), Catch::Contains("spacing must be positive"));
   CHECK_THROWS_WITH(Solid::box(P3(0, 0, 0), P3(1, 0, 1)), Catch::Contains("do not span a box"));
+}
+
+TEST_CASE(
+    "3D background lattice on a meshed solid: cut cells integrate Omega_h's volume and first moments to "
+    "round-off",
+    "[quadrature][3d]") {
+  // The thick sphere's octant of tetrahedra (curved faces as flat triangles): the exact
+  // moments of Omega_h are sums over its tetrahedra (closed forms).
+  const Solid solid = testing::thick_sphere_octant(0.15);
+  const TetrahedralMesh& mesh = *solid.mesh();
+  double volume = 0.0;
+  P3 first = P3::Zero();
+  Tensor2<3> second = Tensor2<3>::Zero();
+  for (Index t = 0; t < mesh.size(); ++t) {
+    const Tetrahedron tet = mesh.tetrahedron(t);
+    volume += tetrahedron_volume(tet);
+    first += tetrahedron_volume(tet) * tetrahedron_centroid(tet);
+    second += tetrahedron_second_moments(tet);
+  }
+  for (const int order : {1, 2}) {
+    CAPTURE(order);
+    const BackgroundLattice<3> lattice(solid, 0.06, order);
+    CHECK(lattice.cut_cells() > 0);
+    double w = 0.0;
+    P3 wx = P3::Zero();
+    Tensor2<3> wxx = Tensor2<3>::Zero();
+    for (std::size_t k = 0; k < lattice.points().size(); ++k) {
+      const P3& x = lattice.points()[k];
+      REQUIRE(solid.contains(x));
+      w += lattice.weights()[k];
+      wx += lattice.weights()[k] * x;
+      wxx += lattice.weights()[k] * x * x.transpose();
+    }
+    CHECK(w == Approx(volume).epsilon(1e-13));
+    CHECK((wx - first).norm() <= 1e-12 * first.norm());
+    // Second moments: Simpson's rule exact on the whole cells and the cut cells' weights fitted
+    // to them where their points allow; the trapezoid's error is O(h^2).
+    CAPTURE((wxx - second).norm() / second.norm());
+    CHECK((wxx - second).norm() <= (order == 2 ? 1e-6 : 1e-2) * second.norm());
+  }
+  // The RK weights of quadrature clouds in the solid carry these moments over: sum w_K = |Omega_h|
+  // and sum w_K x_K = its first moment, to round-off (partition of unity, linear reproduction).
+  for (const CloudKind kind : {CloudKind::lattice, CloudKind::random}) {
+    CAPTURE(to_string(kind));
+    const auto [x, w] = rk_rule(kind, 0.15, RKOrder::linear, solid);
+    double sum = 0.0;
+    P3 sum_x = P3::Zero();
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      sum += w[k];
+      sum_x += w[k] * x[k];
+    }
+    CHECK(sum == Approx(volume).epsilon(1e-12));
+    CHECK((sum_x - first).norm() <= 1e-12 * first.norm());
+  }
 }
 
 TEST_CASE("3D RK quadrature weights integrate the polynomials of the RK order to round-off on every cloud",

@@ -25,7 +25,9 @@ inline constexpr int crack_depth = 3;
 /// n x n Gauss points per cell (n >= 1).
 QuadratureRule<2> gauss_cell_rule(const Domain& domain, double cell_size, int n);
 /// n x n x n Gauss points per cell of a solid (a box: every cell whole), cells fitted to its
-/// bounding box as above; exact for polynomials of degree 2 n - 1 in each coordinate.
+/// bounding box as above; exact for polynomials of degree 2 n - 1 in each coordinate. A
+/// meshed solid: its tetrahedra clipped to the cells, n^3 collapsed Gauss points on each
+/// piece (quadrature/tetrahedron_rule.hpp: exact to total degree 2 n - 3 over Omega_h).
 QuadratureRule<3> gauss_cell_rule(const Solid& solid, double cell_size, int n);
 
 /// Appends the points of one cell: n x n Gauss points, or a polygon rule of degree 2 n on its
