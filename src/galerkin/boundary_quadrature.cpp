@@ -34,9 +34,16 @@ int boundary_part(const Domain& domain, const std::vector<BoundarySelection<2>>&
 
 int boundary_part(const Solid&, const std::vector<BoundarySelection<3>>& parts, Index triangle,
                   const Point<3>& x) {
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    for (const BoundaryPiece<3>& piece : parts[k])
-      if (piece.triangle == triangle && (!piece.clip || piece.clip->contains(x))) return static_cast<int>(k);
+  // A selection's pieces are in triangle order: those of this triangle by bisection.
+  const auto by_triangle = [](const BoundaryPiece<3>& p, const BoundaryPiece<3>& q) {
+    return p.triangle < q.triangle;
+  };
+  const BoundaryPiece<3> key{triangle, std::nullopt};
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const auto [from, to] = std::equal_range(parts[k].begin(), parts[k].end(), key, by_triangle);
+    for (auto piece = from; piece != to; ++piece)
+      if (!piece->clip || piece->clip->contains(x)) return static_cast<int>(k);
+  }
   return -1;
 }
 
