@@ -392,6 +392,21 @@ void cut_cell_rule(const Solid& solid, const std::vector<Tetrahedron>& tets, con
   }
 }
 
+/// The first and last cell per axis whose interior meets the box `bounds`: cells k with
+/// lo + k side < max and lo + (k + 1) side > min (from > to on an axis: none).
+std::pair<std::array<Index, 3>, std::array<Index, 3>> cells_meeting(const AlignedBox<3>& bounds,
+                                                                    const std::array<Index, 3>& cells,
+                                                                    const Point<3>& lo,
+                                                                    const std::array<double, 3>& side) {
+  std::array<Index, 3> from, to;
+  for (int c = 0; c < 3; ++c) {
+    from[c] = std::max<Index>(0, static_cast<Index>(std::floor((bounds.min()[c] - lo[c]) / side[c])));
+    to[c] =
+        std::min<Index>(cells[c] - 1, static_cast<Index>(std::ceil((bounds.max()[c] - lo[c]) / side[c])) - 1);
+  }
+  return {from, to};
+}
+
 /// The cells of the lattice that a surface triangle may cross: those whose interior meets
 /// the triangle's bounding box (a triangle in a cell's face plane crosses none).
 std::vector<char> cells_crossed(const Solid& solid, const std::array<Index, 3>& cells, const Point<3>& lo,
@@ -400,16 +415,7 @@ std::vector<char> cells_crossed(const Solid& solid, const std::array<Index, 3>& 
   for (const SurfaceTriangle& tri : solid.surface()) {
     AlignedBox<3> bounds(tri.vertices[0]);
     for (const Point<3>& v : tri.vertices) bounds.extend(v);
-    std::array<Index, 3> from, to;
-    bool none = false;
-    for (int c = 0; c < 3; ++c) {
-      // Cells k with lo + k side < max and lo + (k + 1) side > min.
-      from[c] = std::max<Index>(0, static_cast<Index>(std::floor((bounds.min()[c] - lo[c]) / side[c])));
-      to[c] = std::min<Index>(cells[c] - 1,
-                              static_cast<Index>(std::ceil((bounds.max()[c] - lo[c]) / side[c])) - 1);
-      if (from[c] > to[c]) none = true;
-    }
-    if (none) continue;
+    const auto [from, to] = cells_meeting(bounds, cells, lo, side);
     for (Index z = from[2]; z <= to[2]; ++z)
       for (Index y = from[1]; y <= to[1]; ++y)
         for (Index x = from[0]; x <= to[0]; ++x)
@@ -510,13 +516,7 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
     const Tetrahedron tet = mesh.tetrahedron(t);
     AlignedBox<3> bounds(tet[0]);
     for (const Point<3>& v : tet) bounds.extend(v);
-    std::array<Index, 3> from, to;
-    for (int c = 0; c < 3; ++c) {
-      from[c] =
-          std::max<Index>(0, static_cast<Index>(std::floor((bounds.min()[c] - box.min()[c]) / side[c])));
-      to[c] = std::min<Index>(cells[c] - 1,
-                              static_cast<Index>(std::ceil((bounds.max()[c] - box.min()[c]) / side[c])) - 1);
-    }
+    const auto [from, to] = cells_meeting(bounds, cells, box.min(), side);
     for (Index z = from[2]; z <= to[2]; ++z)
       for (Index y = from[1]; y <= to[1]; ++y)
         for (Index x = from[0]; x <= to[0]; ++x)

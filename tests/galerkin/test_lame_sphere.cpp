@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "../test_support.hpp"
+#include "elastic_errors_3d.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/geometry/gmsh_solid.hpp"
@@ -42,11 +43,9 @@ struct LameSphere {
   }
 };
 
-struct Errors {
-  double l2 = 0.0, energy = 0.0;
-};
+using testing::ElasticErrors;
 
-Errors solve_and_measure(double h, double size, RKOrder order) {
+ElasticErrors solve_and_measure(double h, double size, RKOrder order) {
   const LameSphere lame;
   const Solid solid = testing::thick_sphere_octant(size);
   const LinearElastic law{lame.young, lame.nu, PlaneModel::strain};
@@ -74,53 +73,26 @@ Errors solve_and_measure(double h, double size, RKOrder order) {
   ns.load_steps = 1;
   const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
 
-  const Lame constants = lame_constants(lame.young, lame.nu);
-  const auto stress = [&](const M3& g) {
-    const M3 eps = 0.5 * (g + g.transpose());
-    return M3(constants.lambda * eps.trace() * M3::Identity() + 2.0 * constants.mu * eps);
-  };
-  const QuadratureRule<3> rule = gauss_cell_rule(solid, h, 3);
-  double l2 = 0.0, l2_norm = 0.0, energy = 0.0, energy_norm = 0.0;
-  // In blocks of points: the functions at all of them at once would take gigabytes.
-  constexpr std::size_t block = 100000;
-  for (std::size_t begin = 0; begin < rule.size(); begin += block) {
-    const std::size_t end = std::min(rule.size(), begin + block);
-    const std::vector<P3> points(rule.points.begin() + begin, rule.points.begin() + end);
-    const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, points, true);
-    for (Index k = 0; k < at.size(); ++k) {
-      const P3& x = points[k];
-      const double w = rule.weights[begin + k];
-      M3 g = M3::Zero();
-      for (Index j = at.row_begin(k); j < at.row_end(k); ++j)
-        g += sol.coefficients.segment<3>(3 * at.nodes[j]) * at.grad[j].transpose();
-      const P3 u = lame.displacement(x);
-      const M3 exact = lame.gradient(x), e = g - exact;
-      l2 += w * (displacement_at(at, k, sol.coefficients) - u).squaredNorm();
-      l2_norm += w * u.squaredNorm();
-      energy += w * (stress(e).array() * e.array()).sum();
-      energy_norm += w * (stress(exact).array() * exact.array()).sum();
-    }
-  }
+  const ElasticErrors e = testing::elastic_errors(
+      *disc.trial, sol.coefficients, gauss_cell_rule(solid, h, 3), lame_constants(lame.young, lame.nu),
+      [&](const P3& x) { return lame.displacement(x); }, [&](const P3& x) { return lame.gradient(x); });
   std::string stages;
   for (const auto& [name, seconds] : timer.stages()) stages += fmt::format(" {} {:.2f} s,", name, seconds);
   WARN(fmt::format(
       "{} RK, h = {:.4g}, mesh size {:.4g}: {} nodes, {} tetrahedra, {} quadrature points; L2 {:.3e}, "
       "energy {:.3e};{}",
-      to_string(order), h, size, disc.node_count(), solid.mesh()->size(), disc.quadrature.size(),
-      std::sqrt(l2 / l2_norm), std::sqrt(energy / energy_norm), stages));
-  return {std::sqrt(l2 / l2_norm), std::sqrt(energy / energy_norm)};
+      to_string(order), h, size, disc.node_count(), solid.mesh()->size(), disc.quadrature.size(), e.l2,
+      e.energy, stages));
+  return e;
 }
 
 void check_rates(RKOrder order, const std::vector<double>& spacings, double l2_rate, double energy_rate) {
-  std::vector<Errors> e;
+  std::vector<ElasticErrors> e;
   for (const double h : spacings) e.push_back(solve_and_measure(h, h / 2, order));
-  const std::size_t n = spacings.size() - 1;
-  const double ratio = std::log(spacings[n - 1] / spacings[n]);
-  const double l2 = std::log(e[n - 1].l2 / e[n].l2) / ratio,
-               energy = std::log(e[n - 1].energy / e[n].energy) / ratio;
-  WARN(fmt::format("{} RK rates: L2 {:.2f}, energy {:.2f}", to_string(order), l2, energy));
-  CHECK(l2 >= l2_rate);
-  CHECK(energy >= energy_rate);
+  const ElasticErrors rates = testing::last_rates(spacings, e);
+  WARN(fmt::format("{} RK rates: L2 {:.2f}, energy {:.2f}", to_string(order), rates.l2, rates.energy));
+  CHECK(rates.l2 >= l2_rate);
+  CHECK(rates.energy >= energy_rate);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "elastic_errors_3d.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
@@ -44,10 +45,7 @@ struct Manufactured {
     const P3 grad_phi = pi * P3(k[0] * s[1] * s[2], s[0] * k[1] * s[2], s[0] * s[1] * k[2]);
     return amplitude * c * grad_phi.transpose();
   }
-  [[nodiscard]] M3 stress(const M3& g) const {
-    const M3 eps = 0.5 * (g + g.transpose());
-    return lame.lambda * eps.trace() * M3::Identity() + 2.0 * lame.mu * eps;
-  }
+  [[nodiscard]] M3 stress(const M3& g) const { return testing::linear_stress(lame, g); }
   [[nodiscard]] P3 body_force(const P3& x) const {
     const P3 s(std::sin(pi * x[0]), std::sin(pi * x[1]), std::sin(pi * x[2]));
     const P3 k(std::cos(pi * x[0]), std::cos(pi * x[1]), std::cos(pi * x[2]));
@@ -60,11 +58,9 @@ struct Manufactured {
   }
 };
 
-struct Errors {
-  double l2 = 0.0, energy = 0.0;
-};
+using testing::ElasticErrors;
 
-Errors solve_and_measure(double h, RKOrder order) {
+ElasticErrors solve_and_measure(double h, RKOrder order) {
   const Manufactured m;
   SolidProblem<3> p;
   p.material = LinearElastic{1.0, 0.3, PlaneModel::strain};
@@ -95,37 +91,21 @@ Errors solve_and_measure(double h, RKOrder order) {
   ns.load_steps = 1;
   const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
 
-  const QuadratureRule<3> rule = gauss_cell_rule(unit_cube(), h, 4);
-  const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, rule.points, true);
-  double l2 = 0.0, l2_norm = 0.0, energy = 0.0, energy_norm = 0.0;
-  for (Index k = 0; k < at.size(); ++k) {
-    const P3& x = rule.points[k];
-    M3 g = M3::Zero();
-    for (Index s = at.row_begin(k); s < at.row_end(k); ++s)
-      g += sol.coefficients.segment<3>(3 * at.nodes[s]) * at.grad[s].transpose();
-    const P3 u = m.displacement(x);
-    const M3 exact = m.gradient(x), e = g - exact;
-    l2 += rule.weights[k] * (displacement_at(at, k, sol.coefficients) - u).squaredNorm();
-    l2_norm += rule.weights[k] * u.squaredNorm();
-    energy += rule.weights[k] * (m.stress(e).array() * e.array()).sum();
-    energy_norm += rule.weights[k] * (m.stress(exact).array() * exact.array()).sum();
-  }
-  return {std::sqrt(l2 / l2_norm), std::sqrt(energy / energy_norm)};
+  return testing::elastic_errors(
+      *disc.trial, sol.coefficients, gauss_cell_rule(unit_cube(), h, 4), m.lame,
+      [&](const P3& x) { return m.displacement(x); }, [&](const P3& x) { return m.gradient(x); });
 }
 
 void check_rates(RKOrder order, const std::vector<double>& spacings, double l2_rate, double energy_rate) {
-  std::vector<Errors> e;
+  std::vector<ElasticErrors> e;
   for (const double h : spacings) e.push_back(solve_and_measure(h, order));
   for (std::size_t k = 0; k < spacings.size(); ++k)
     WARN(fmt::format("{} RK, h = {:.4g}: L2 {:.3e}, energy {:.3e}", to_string(order), spacings[k], e[k].l2,
                      e[k].energy));
-  const std::size_t n = spacings.size() - 1;
-  const double ratio = std::log(spacings[n - 1] / spacings[n]);
-  const double l2 = std::log(e[n - 1].l2 / e[n].l2) / ratio,
-               energy = std::log(e[n - 1].energy / e[n].energy) / ratio;
-  INFO(fmt::format("{} RK rates: L2 {:.2f}, energy {:.2f}", to_string(order), l2, energy));
-  CHECK(l2 >= l2_rate);
-  CHECK(energy >= energy_rate);
+  const ElasticErrors rates = testing::last_rates(spacings, e);
+  INFO(fmt::format("{} RK rates: L2 {:.2f}, energy {:.2f}", to_string(order), rates.l2, rates.energy));
+  CHECK(rates.l2 >= l2_rate);
+  CHECK(rates.energy >= energy_rate);
 }
 
 }  // namespace

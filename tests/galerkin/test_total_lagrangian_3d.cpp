@@ -11,6 +11,7 @@
 #include <random>
 
 #include "../test_support.hpp"
+#include "elastic_errors_3d.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/stage_timer.hpp"
@@ -61,9 +62,7 @@ LinearElastic steel_like() { return LinearElastic{1.0, 0.3, PlaneModel::strain};
 
 /// sigma of the 3D linear law for a displacement gradient g.
 M3 linear_stress(const LinearElastic& m, const M3& g) {
-  const Lame l = lame_constants(m.youngs_modulus, m.poisson_ratio);
-  const M3 eps = 0.5 * (g + g.transpose());
-  return l.lambda * eps.trace() * M3::Identity() + 2.0 * l.mu * eps;
+  return testing::linear_stress(lame_constants(m.youngs_modulus, m.poisson_ratio), g);
 }
 
 }  // namespace
