@@ -135,7 +135,7 @@ TotalLagrangian<2> model_on(const SolidProblem<2>& p, const Domain& domain, cons
 }  // namespace
 
 TEST_CASE("two parts tied along a kinked edge reproduce linear and quadratic fields of one part",
-          "[galerkin][regions]") {
+          "[galerkin][regions][heavy]") {
   const Domain tied = two_parts(true);
   REQUIRE(tied.cracks().size() == 1);
   CHECK(tied.cracks()[0].name == "left/right");
@@ -144,7 +144,7 @@ TEST_CASE("two parts tied along a kinked edge reproduce linear and quadratic fie
 }
 
 TEST_CASE("an inclusion tied round its closed interface reproduces linear and quadratic fields of one part",
-          "[galerkin][regions]") {
+          "[galerkin][regions][heavy]") {
   const Domain tied = with_inclusion();
   REQUIRE(tied.cracks().size() == 1);
   const Crack& loop = tied.cracks()[0];
@@ -245,7 +245,7 @@ TEST_CASE("two layers under their weight: quadratic RK tied at the interface rep
 }
 
 TEST_CASE("supports end at a curved interface: no function of one layer is nonzero in the other",
-          "[galerkin][regions]") {
+          "[galerkin][regions][heavy]") {
   // The two-layer cylinder's interface, r = 1.5 in 768 pieces: a path bending at one of its
   // vertices itself (not on its reflex face) passed from one layer to the other.
   const Domain d = Domain::from_file(testing::source_dir() +

@@ -167,13 +167,13 @@ void cracked_plate_patch_tests(QuadratureScheme q) {
 TEST_CASE(
     "patch tests to round-off across cracks, a slot and re-entrant corners, with every support rule that "
     "respects them: Gauss cells",
-    "[galerkin][crack]") {
+    "[galerkin][crack][heavy]") {
   cracked_plate_patch_tests(QuadratureScheme::gauss_cells);
 }
 
 TEST_CASE(
     "patch tests to round-off across cracks, a slot and re-entrant corners, with every support rule that "
     "respects them: projected gradients",
-    "[galerkin][crack]") {
+    "[galerkin][crack][heavy]") {
   cracked_plate_patch_tests(QuadratureScheme::projected);
 }

@@ -530,7 +530,7 @@ TEST_CASE("crack plate, edge crack a/w = 0.5: K_I approaches the handbook's 2.82
 }
 
 TEST_CASE("tied parts scene: two parts tied along a wavy edge with unmatched vertices pass the patch test",
-          "[io][problems][regions]") {
+          "[io][problems][regions][heavy]") {
   // verification/tied-parts: the linear field with linear RK and the quadratic one with
   // quadratic RK, every cloud and both rules that respect the interface: errors at round-off.
   const std::vector<std::string> quadratic{"kernel.order=\"quadratic\"", "exact.solution=\"quadratic\"",

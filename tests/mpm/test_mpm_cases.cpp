@@ -70,7 +70,7 @@ TEST_CASE("colliding disks, hats and GIMP: the total momentum stays zero to roun
   check_disk_momentum({"classic", "ugimp", "cpgimp"});
 }
 TEST_CASE("colliding disks, CPDI: the total momentum stays zero to round-off through the impact",
-          "[mpm][cases]") {
+          "[mpm][cases][heavy]") {
   check_disk_momentum({"cpdi", "qcpdi", "cpdi2"});
 }
 TEST_CASE("colliding disks, B-splines: the total momentum stays zero to round-off through the impact",
