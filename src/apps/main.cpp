@@ -28,12 +28,14 @@
 #include "mfree/apps/mpm_app.hpp"
 #include "mfree/apps/path_app.hpp"
 #include "mfree/apps/report.hpp"
+#include "mfree/apps/solid_scene_app.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/checkpoint.hpp"
 #include "mfree/io/interrupt.hpp"
 #include "mfree/io/scene_reader.hpp"
+#include "mfree/io/solid_scene.hpp"
 
 namespace {
 
@@ -115,6 +117,18 @@ int main(int argc, char** argv) {
                                             "(and its increments with --set path.increments=N)",
                                             scene.string()));
       return mfree::run_path_scene(scene, overrides, restart);
+    }
+    // A scene whose [domain] is a box or a solid part is a solid (3D) run.
+    if ((*run || *converge) && mfree::is_solid_scene(scene)) {
+      if (*converge)
+        throw mfree::InputError(
+            fmt::format("{}: a solid scene has no refinement study yet; run it with mfree run at "
+                        "each spacing (--set nodes.spacing=H)",
+                        scene.string()));
+      if (!restart.empty())
+        throw mfree::InputError(fmt::format(
+            "{}: a solid scene is static: there is no checkpoint to restart from", scene.string()));
+      return mfree::run_solid_scene(scene, overrides);
     }
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {

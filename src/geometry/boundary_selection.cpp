@@ -129,6 +129,20 @@ double selection_area(const Solid& solid, const BoundarySelection<3>& s) {
   return area;
 }
 
+double overlap_area(const Solid& solid, const BoundarySelection<3>& a, const BoundarySelection<3>& b) {
+  double area = 0.0;
+  auto first = b.begin();  // both in triangle order
+  for (const BoundaryPiece<3>& p : a) {
+    while (first != b.end() && first->triangle < p.triangle) ++first;
+    for (auto q = first; q != b.end() && q->triangle == p.triangle; ++q) {
+      std::vector<Point<3>> shared = piece_polygon(solid, p);
+      if (q->clip) shared = clip_to_box(ConvexPolygon(shared.begin(), shared.end()), *q->clip);
+      area += polygon_area(shared);
+    }
+  }
+  return area;
+}
+
 std::vector<Point<3>> piece_polygon(const Solid& solid, const BoundaryPiece<3>& piece) {
   const auto& v = solid.surface()[static_cast<std::size_t>(piece.triangle)].vertices;
   ConvexPolygon p(v.begin(), v.end());

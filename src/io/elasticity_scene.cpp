@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "mfree/core/error.hpp"
+#include "mfree/io/elasticity_sections.hpp"
 #include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_sections.hpp"
 
@@ -13,16 +14,6 @@ namespace mfree {
 
 namespace {
 
-const NameTable<bool> quadrature_cloud_table{{"lattice", true}, {"like_nodes", false}};
-/// auto (the solver the system's symmetry picks), then every solver by name.
-const NameTable<std::optional<SolverKind>>& solver_choices() {
-  static const NameTable<std::optional<SolverKind>> table = [] {
-    std::vector<std::pair<std::string, std::optional<SolverKind>>> e{{"auto", std::nullopt}};
-    for (const auto& [name, kind] : solver_kind_names().entries()) e.emplace_back(name, kind);
-    return NameTable<std::optional<SolverKind>>(std::move(e));
-  }();
-  return table;
-}
 using ConditionType = BoundaryCondition<2>::Type;
 const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
                                                  {"slip", ConditionType::slip},
@@ -190,47 +181,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     }
     t.finish();
   }
-  {
-    const SceneTable t = root.table("nodes");
-    s.nodes.kind = read_choice(t, "cloud", cloud_kind_names());
-    s.nodes.spacing = t.number("spacing", 1e-12, 1e12);
-    s.nodes.perturbation = t.number_or("perturbation", 0.3, 0.0, 1.0);
-    s.nodes.seed = static_cast<std::uint64_t>(t.integer_or("seed", 1, 0, 1LL << 62));
-    t.finish();
-  }
-  {
-    const SceneTable t = root.table("kernel");
-    s.order = read_choice(t, "order", order_names());
-    s.window = read_choice_or(t, "window", window_names(), Window::cubic_bspline);
-    s.support = read_choice_or(t, "support", support_names(), SupportShape::circular);
-    s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
-    s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
-    const bool circular = s.support == SupportShape::circular;
-    s.support_rule = read_choice_or(t, "support_rule", support_rule_names(),
-                                    circular ? SupportRule::geodesic : SupportRule::visibility);
-    s.allow_bridging = t.boolean_or("allow_bridging", false);
-    if (s.allow_bridging && s.support_rule != SupportRule::plain)
-      t.error("allow_bridging",
-              "applies to support_rule = \"plain\" only: the other rules do not bridge gaps");
-    if (s.support_rule == SupportRule::geodesic && !circular)
-      t.error("support_rule",
-              "geodesic distances need circular supports; tensor supports take \"visibility\" or "
-              "\"plain\"");
-    t.finish();
-  }
+  read_nodes_section(root.table("nodes"), s);
+  read_kernel_section(root.table("kernel"), s, 2);
   const SceneTable quadrature = root.optional_table("quadrature");
-  {
-    const SceneTable& t = quadrature;
-    s.scheme = read_choice_or(t, "scheme", scheme_names(), QuadratureScheme::gauss_cells);
-    s.quadrature_ratio = t.number_or("ratio", 4.0, 1.0, 64.0);
-    s.quadrature_lattice = read_choice_or(t, "cloud", quadrature_cloud_table, true);
-    s.quadrature_order = read_choice_or(t, "order", order_names(), RKOrder::linear);
-    if (t.has("factor")) s.quadrature_factor = t.number("factor", 0.5, 10.0);
-    s.lattice_refinement = static_cast<int>(t.integer_or("lattice_refinement", 2, 1, 16));
-    if (t.has("consistency")) s.consistency = read_choice(t, "consistency", consistency_names());
-    if (t.has("gauss_points")) s.gauss_points = static_cast<int>(t.integer("gauss_points", 1, 12));
-    t.finish();
-  }
+  read_quadrature_section(quadrature, s, 2);
   if (root.is_array_of_tables("material")) {
     // One law per region, each [[material]] naming the regions it fills.
     const std::vector<Region>& regions = out.domain.regions();
@@ -401,56 +355,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     s.problem.conditions.push_back(c);
   }
   s.problem.body_force = out.static_body_force();
-  if (root.has("nitsche")) {
-    const SceneTable t = root.table("nitsche");
-    s.problem.nitsche_beta = t.number_or("beta", s.problem.nitsche_beta, 1e-6, 1e12);
-    t.finish();
-  }
-  if (root.has("solver")) {
-    const SceneTable t = root.table("solver");
-    SolverSettings& v = s.solver;
-    v.kind = read_choice_or(t, "kind", solver_choices(), std::optional<SolverKind>{});
-    // Keys the chosen solver would not read are errors, not silently dropped: the Krylov
-    // settings with a direct kind, the crossing size with a kind that is fixed.
-    if (v.kind && is_direct(*v.kind))
-      for (const char* key : {"preconditioner", "tolerance", "max_iterations"})
-        if (t.has(key))
-          t.error(key, fmt::format("is a setting of the Krylov solvers (cg, gmres, auto), not of kind = \"{}\"",
-                                   to_string(*v.kind)));
-    // VCI's test gradients differ from the trial ones: its stiffness is not symmetric.
-    if (v.kind && (*v.kind == SolverKind::cholmod || *v.kind == SolverKind::cg) &&
-        s.consistency.value_or(default_consistency(s.scheme)) == Consistency::vci)
-      t.error("kind", fmt::format("\"{}\" needs a symmetric positive definite system; the stiffness of "
-                                  "consistency = \"vci\" is not symmetric (use {} or auto)",
-                                  to_string(*v.kind), *v.kind == SolverKind::cg ? "gmres" : "umfpack"));
-    if (v.kind && t.has("direct_limit"))
-      t.error("direct_limit", "is the size at which kind = \"auto\" turns iterative; kind is not auto");
-    if (t.has("preconditioner")) v.preconditioner = read_choice(t, "preconditioner", preconditioner_names());
-    v.tolerance = t.number_or("tolerance", v.tolerance, 1e-15, 0.1);
-    v.max_iterations = static_cast<int>(t.integer_or("max_iterations", v.max_iterations, 1, 1000000));
-    v.direct_limit = static_cast<Index>(t.integer_or("direct_limit", v.direct_limit, 0, 2000000000));
-    t.finish();
-  }
-  if (root.has("newton")) {
-    const SceneTable t = root.table("newton");
-    NewtonSettings n;
-    n.tolerance = t.number_or("tolerance", n.tolerance, 1e-16, 1.0);
-    n.absolute_tolerance = t.number_or("absolute_tolerance", 0.0, 0.0, 1e300);
-    n.max_iterations = static_cast<int>(t.integer_or("max_iterations", n.max_iterations, 1, 1000));
-    n.line_search = t.boolean_or("line_search", true);
-    if (t.has("load_factors") && t.has("load_steps")) t.error("load_factors", "give load_steps or load_factors, not both");
-    if (t.has("load_factors")) {
-      n.load_factors = t.numbers("load_factors", 0, 1e-300, 1.0);
-      for (std::size_t i = 1; i < n.load_factors.size(); ++i)
-        if (!(n.load_factors[i] > n.load_factors[i - 1])) t.error("load_factors", "must increase");
-      if (n.load_factors.back() != 1.0) t.error("load_factors", "must end at 1 (the full load)");
-    }
-    n.load_steps = static_cast<int>(t.integer_or("load_steps", n.load_steps, 1, 100000));
-    n.max_cutbacks = static_cast<int>(t.integer_or("max_cutbacks", n.max_cutbacks, 0, 50));
-    n.solver = s.solver;
-    t.finish();
-    out.newton = n;
-  }
+  if (root.has("nitsche"))
+    s.problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), s.problem.nitsche_beta);
+  if (root.has("solver")) read_solver_section(root.table("solver"), s);
+  if (root.has("newton")) out.newton = read_newton_section(root.table("newton"), s.solver);
   if (root.has("dynamics")) {
     const SceneTable t = root.table("dynamics");
     DynamicsScene dyn;

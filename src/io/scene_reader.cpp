@@ -350,25 +350,36 @@ bool SceneTable::boolean_or(std::string_view key, bool fallback) const {
   return *v;
 }
 
-std::vector<std::array<double, 2>> SceneTable::pairs(std::string_view key, std::size_t size) const {
-  const toml::node* n = get(key, true);
-  const toml::array* a = n->as_array();
+template <std::size_t n>
+std::vector<std::array<double, n>> SceneTable::points(std::string_view key, std::size_t size) const {
+  const std::string point = n == 2 ? "[x, y]" : "[x, y, z]";
+  const toml::node* node = get(key, true);
+  const toml::array* a = node->as_array();
   if (!a || a->empty() || (size && a->size() != size))
-    fail(n, key, size ? fmt::format("expected an array of {} points [x, y]", size)
-                      : std::string("expected a non-empty array of points [x, y]"));
-  std::vector<std::array<double, 2>> out;
+    fail(node, key,
+         size ? fmt::format("expected an array of {} points {}", size, point)
+              : fmt::format("expected a non-empty array of points {}", point));
+  std::vector<std::array<double, n>> out;
   for (const toml::node& item : *a) {
     const toml::array* p = item.as_array();
-    if (!p || p->size() != 2) fail(&item, key, "expected a point [x, y]");
-    std::array<double, 2> xy{};
-    for (std::size_t c = 0; c < 2; ++c) {
+    if (!p || p->size() != n) fail(&item, key, fmt::format("expected a point {}", point));
+    std::array<double, n> xyz{};
+    for (std::size_t c = 0; c < n; ++c) {
       const auto v = as_number(*p->get(c));
       if (!v || !std::isfinite(*v)) fail(p->get(c), key, "expected finite numbers");
-      xy[c] = *v;
+      xyz[c] = *v;
     }
-    out.push_back(xy);
+    out.push_back(xyz);
   }
   return out;
+}
+
+std::vector<std::array<double, 2>> SceneTable::pairs(std::string_view key, std::size_t size) const {
+  return points<2>(key, size);
+}
+
+std::vector<std::array<double, 3>> SceneTable::triples(std::string_view key, std::size_t size) const {
+  return points<3>(key, size);
 }
 
 std::vector<SceneTable> SceneTable::tables(std::string_view key) const {

@@ -13,9 +13,18 @@ namespace mfree {
 
 MaterialSection read_material(const SceneTable& root) { return read_material_keys(root.table("material")); }
 
-MaterialSection read_material_keys(const SceneTable& t) {
+MaterialSection read_material_keys(const SceneTable& t, int dimension) {
   MaterialSection m;
-  m.model = t.choice("model", material_models().names());
+  if (dimension == 3) {
+    // A solid's small-strain law is the 3D one (the plane-strain law's parent), named as such;
+    // the plane laws are no choice.
+    std::vector<std::string> models{"linear_elastic"};
+    for (const std::string& name : material_models().names())
+      if (name != "plane_stress" && name != "plane_strain") models.push_back(name);
+    m.model = t.choice("model", models);
+  } else {
+    m.model = t.choice("model", material_models().names());
+  }
   m.linear.model = m.model == "plane_stress" ? PlaneModel::stress : PlaneModel::strain;
   m.linear.youngs_modulus = t.number("youngs_modulus", 0.0, 1e300);
   m.linear.poisson_ratio = t.number("poisson_ratio", -1.0, 0.5);
@@ -29,6 +38,10 @@ MaterialSection read_material_keys(const SceneTable& t) {
   const double degrees = std::numbers::pi / 180.0;
   if (m.model == "j2" || m.model == "drucker_prager")
     p.kinematics = read_choice_or(t, "kinematics", kinematics_names(), Kinematics::multiplicative);
+  if (dimension == 3 && p.kinematics == Kinematics::logarithmic)
+    t.error("kinematics",
+            "the logarithmic kinematics is plane only; a solid takes \"multiplicative\" or "
+            "\"small_strain\"");
   if (m.model == "j2") {
     p.yield_stress = t.number("yield_stress", 0.0, 1e300);
     p.isotropic_modulus = t.number_or("isotropic_modulus", 0.0, 0.0, 1e300);
@@ -49,7 +62,7 @@ MaterialSection read_material_keys(const SceneTable& t) {
     if (t.has("tension_cutoff")) p.tension_cutoff = t.number("tension_cutoff", -1e300, 1e300);
     if (p.friction_angle == 0.0 && !(p.cohesion > 0.0)) t.error("cohesion", "must be positive with a zero friction angle");
   }
-  m.material = make_material(m.model, p);
+  m.material = make_material(m.model == "linear_elastic" ? "plane_strain" : m.model, p);
   if (t.has("density")) {
     m.density = t.number("density", 0.0, 1e300);
     if (!(m.density > 0.0)) t.error("density", "must be positive");
@@ -62,6 +75,12 @@ Box read_box(const SceneTable& t, const std::string& key) {
   const auto p = t.pairs(key, 2);
   return {Vec2(std::min(p[0][0], p[1][0]), std::min(p[0][1], p[1][1])),
           Vec2(std::max(p[0][0], p[1][0]), std::max(p[0][1], p[1][1]))};
+}
+
+AlignedBox<3> read_space_box(const SceneTable& t, const std::string& key) {
+  const auto p = t.triples(key, 2);
+  const Vec3 a(p[0][0], p[0][1], p[0][2]), b(p[1][0], p[1][1], p[1][2]);
+  return {a.cwiseMin(b), a.cwiseMax(b)};
 }
 
 Constants read_constants(const SceneTable& root) {
@@ -89,7 +108,7 @@ Constants read_constants(const SceneTable& root) {
         ++it;
         continue;
       }
-      c[it->first] = (*f)(Vec2::Zero());
+      c[it->first] = (*f)(Vec2(0.0, 0.0));
       it = pending.erase(it);
       ++resolved;
     }
@@ -107,13 +126,20 @@ Constants read_constants(const SceneTable& root) {
   return c;
 }
 
-Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
-  return Formula(t.expression(key), constants, t.where(key));
+Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants, int dimension) {
+  return Formula(t.expression(key), constants, t.where(key), dimension);
 }
 
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants) {
   const std::vector<std::string> e = t.expressions(key, 2);
   return {Formula(e[0], constants, t.where(key, 0)), Formula(e[1], constants, t.where(key, 1))};
+}
+
+SpaceVectorFormula read_space_vector_formula(const SceneTable& t, const std::string& key,
+                                             const Constants& constants) {
+  const std::vector<std::string> e = t.expressions(key, 3);
+  return {Formula(e[0], constants, t.where(key, 0), 3), Formula(e[1], constants, t.where(key, 1), 3),
+          Formula(e[2], constants, t.where(key, 2), 3)};
 }
 
 std::filesystem::path read_output_folder(const SceneTable& t) {

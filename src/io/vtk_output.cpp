@@ -66,12 +66,14 @@ std::string tidy(const std::string& report) {
 }
 
 /// Refuses non-finite point coordinates before any file is touched.
-void check_points(const std::filesystem::path& path, const std::vector<Vec2>& points) {
+template <int dim>
+void check_points(const std::filesystem::path& path, const std::vector<Point<dim>>& points) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) {
-      throw NumericalError(fmt::format("{}: point coordinates are not finite at point {} "
-                                       "(({}, {})); nothing was written",
-                                       path.string(), i, points[i].x(), points[i].y()));
+      throw NumericalError(
+          fmt::format("{}: point coordinates are not finite at point {} "
+                      "(({})); nothing was written",
+                      path.string(), i, fmt::join(points[i].data(), points[i].data() + dim, ", ")));
     }
   }
 }
@@ -107,15 +109,17 @@ void check_fields(const std::filesystem::path& path, std::size_t n,
   }
 }
 
-/// The point-data array for one field (2D vectors padded with z = 0, see the header).
+/// The point-data array for one field of points in dim dimensions (2D vectors padded with
+/// z = 0, symmetric tensors' components named; see the header).
+template <int dim>
 vtkSmartPointer<vtkDoubleArray> make_array(const PointField& f, std::size_t n) {
   auto array = vtkSmartPointer<vtkDoubleArray>::New();
   array->SetName(f.name.c_str());
-  const int written = f.components == 2 ? 3 : f.components;
+  const int written = dim == 2 && f.components == 2 ? 3 : f.components;
   array->SetNumberOfComponents(written);
   array->SetNumberOfTuples(static_cast<vtkIdType>(n));
   double* out = array->GetPointer(0);
-  if (f.components == 2) {
+  if (dim == 2 && f.components == 2) {
     for (std::size_t i = 0; i < n; ++i) {
       out[3 * i] = f.values[2 * i];
       out[3 * i + 1] = f.values[2 * i + 1];
@@ -124,21 +128,27 @@ vtkSmartPointer<vtkDoubleArray> make_array(const PointField& f, std::size_t n) {
   } else {
     std::copy(f.values.begin(), f.values.end(), out);
   }
-  if (f.components == 3) {
+  if (dim == 2 && f.components == 3) {
     array->SetComponentName(0, "xx");
     array->SetComponentName(1, "yy");
     array->SetComponentName(2, "xy");
+  }
+  if (dim == 3 && f.components == 6) {
+    const char* names[] = {"xx", "yy", "zz", "yz", "xz", "xy"};
+    for (int c = 0; c < 6; ++c) array->SetComponentName(c, names[c]);
   }
   return array;
 }
 
 /// Attaches the fields of n points to a data set's point data.
+template <int dim>
 void add_fields(vtkPointData& data, const std::vector<PointField>& fields, std::size_t n) {
-  for (const PointField& f : fields) data.AddArray(make_array(f, n));
+  for (const PointField& f : fields) data.AddArray(make_array<dim>(f, n));
 }
 
-/// The grid of the points (z = 0) and fields; cells are added by the caller.
-vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<Vec2>& points,
+/// The grid of the points (plane points at z = 0) and fields; cells are added by the caller.
+template <int dim>
+vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<Point<dim>>& points,
                                                const std::vector<PointField>& fields) {
   const std::size_t n = points.size();
   vtkNew<vtkDoubleArray> xyz;
@@ -148,14 +158,14 @@ vtkSmartPointer<vtkUnstructuredGrid> make_grid(const std::vector<Vec2>& points,
   for (std::size_t i = 0; i < n; ++i) {
     out[3 * i] = points[i].x();
     out[3 * i + 1] = points[i].y();
-    out[3 * i + 2] = 0.0;
+    out[3 * i + 2] = dim == 3 ? points[i][dim - 1] : 0.0;
   }
   vtkNew<vtkPoints> vtk_points;
   vtk_points->SetData(xyz);
 
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->SetPoints(vtk_points);
-  add_fields(*grid->GetPointData(), fields, n);
+  add_fields<dim>(*grid->GetPointData(), fields, n);
   return grid;
 }
 
@@ -305,25 +315,40 @@ std::string xml_escaped(const std::string& text) {
 
 }  // namespace
 
-void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
-                           const std::vector<PointField>& fields) {
-  check_points(path, points);
+namespace {
+
+template <int dim>
+void write_points_vtu(const std::filesystem::path& path, const std::vector<Point<dim>>& points,
+                      const std::vector<PointField>& fields) {
+  check_points<dim>(path, points);
   check_fields(path, points.size(), fields);
-  const auto grid = make_grid(points, fields);
+  const auto grid = make_grid<dim>(points, fields);
   set_cells(*grid, points.size(), 1, VTK_VERTEX,
             [](std::size_t c, int) { return static_cast<vtkIdType>(c); });
   write_grid(path, *grid);
+}
+
+}  // namespace
+
+void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
+                           const std::vector<PointField>& fields) {
+  write_points_vtu<2>(path, points, fields);
+}
+
+void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                           const std::vector<PointField>& fields) {
+  write_points_vtu<3>(path, points, fields);
 }
 
 namespace {
 
 /// Writes cells of n points each (indices into `points`) of one VTK type; `kind` names a
 /// cell in messages.
-template <std::size_t n>
-void write_cells_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
-                     const std::vector<std::array<Index, n>>& cells, unsigned char type,
-                     const char* kind, const std::vector<PointField>& fields) {
-  check_points(path, points);
+template <int dim, std::size_t n>
+void write_cells_vtu(const std::filesystem::path& path, const std::vector<Point<dim>>& points,
+                     const std::vector<std::array<Index, n>>& cells, unsigned char type, const char* kind,
+                     const std::vector<PointField>& fields) {
+  check_points<dim>(path, points);
   check_fields(path, points.size(), fields);
   const auto size = static_cast<std::size_t>(points.size());
   for (std::size_t t = 0; t < cells.size(); ++t) {
@@ -334,7 +359,7 @@ void write_cells_vtu(const std::filesystem::path& path, const std::vector<Vec2>&
       }
     }
   }
-  const auto grid = make_grid(points, fields);
+  const auto grid = make_grid<dim>(points, fields);
   set_cells(*grid, cells.size(), static_cast<int>(n), type, [&](std::size_t c, int k) {
     return static_cast<vtkIdType>(cells[c][static_cast<std::size_t>(k)]);
   });
@@ -346,12 +371,24 @@ void write_cells_vtu(const std::filesystem::path& path, const std::vector<Vec2>&
 void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
                          const std::vector<std::array<Index, 3>>& triangles,
                          const std::vector<PointField>& fields) {
-  write_cells_vtu<3>(path, points, triangles, VTK_TRIANGLE, "triangle", fields);
+  write_cells_vtu<2, 3>(path, points, triangles, VTK_TRIANGLE, "triangle", fields);
+}
+
+void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                         const std::vector<std::array<Index, 3>>& triangles,
+                         const std::vector<PointField>& fields) {
+  write_cells_vtu<3, 3>(path, points, triangles, VTK_TRIANGLE, "triangle", fields);
+}
+
+void write_tetrahedra_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                          const std::vector<std::array<Index, 4>>& tetrahedra,
+                          const std::vector<PointField>& fields) {
+  write_cells_vtu<3, 4>(path, points, tetrahedra, VTK_TETRA, "tetrahedron", fields);
 }
 
 void write_quads_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
                      const std::vector<std::array<Index, 4>>& quads, const std::vector<PointField>& fields) {
-  write_cells_vtu<4>(path, points, quads, VTK_QUAD, "quadrilateral", fields);
+  write_cells_vtu<2, 4>(path, points, quads, VTK_QUAD, "quadrilateral", fields);
 }
 
 void write_pvd(const std::filesystem::path& path,
@@ -388,6 +425,7 @@ VtuContents read_vtu(const std::filesystem::path& path) {
     double x[3];
     grid->GetPoint(i, x);
     out.points.emplace_back(x[0], x[1]);
+    out.z.push_back(x[2]);
   }
   read_point_arrays(*grid->GetPointData(), out.array_names, out.arrays, out.components);
   out.cells = static_cast<Index>(grid->GetNumberOfCells());
@@ -417,7 +455,7 @@ void write_image_vti(const std::filesystem::path& path, const Vec2& origin, doub
   image->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
   image->SetOrigin(origin.x(), origin.y(), 0.0);
   image->SetSpacing(spacing, spacing, spacing);
-  add_fields(*image->GetPointData(), fields, n);
+  add_fields<2>(*image->GetPointData(), fields, n);
   vtkNew<vtkXMLImageDataWriter> writer;
   write_dataset(path, *writer, *image);
 }

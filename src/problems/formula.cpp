@@ -16,7 +16,10 @@ namespace mfree {
 
 namespace {
 
-constexpr std::array<const char*, 5> variable_names{"x", "y", "X", "Y", "t"};
+constexpr std::array<const char*, 7> variable_names{"x", "y", "X", "Y", "t", "z", "Z"};
+/// The variables of a formula of `dimension`: the first 5 of variable_names, or all 7.
+std::size_t variable_count(int dimension) { return dimension == 3 ? 7 : 5; }
+std::string variable_list(int dimension) { return dimension == 3 ? "x, y, z, X, Y, Z, t" : "x, y, X, Y, t"; }
 constexpr int max_threads = 1024;
 
 bool is_identifier(const std::string& s) {
@@ -38,14 +41,18 @@ std::size_t token_position(const std::string& text, const std::string& name) {
 /// One parser with its own variables: a thread evaluates through its own copy.
 struct Evaluator {
   mu::Parser parser;
-  double x = 0.0, y = 0.0, t = 0.0;
+  double x = 0.0, y = 0.0, z = 0.0, t = 0.0;
 
-  Evaluator(const std::string& expression, const Constants& constants) {
+  Evaluator(const std::string& expression, const Constants& constants, int dimension) {
     parser.DefineVar("x", &x);
     parser.DefineVar("y", &y);
     parser.DefineVar("X", &x);
     parser.DefineVar("Y", &y);
     parser.DefineVar("t", &t);
+    if (dimension == 3) {
+      parser.DefineVar("z", &z);
+      parser.DefineVar("Z", &z);
+    }
     parser.DefineConst("pi", M_PI);
     parser.DefineConst("e", M_E);
     for (const auto& [name, value] : constants) parser.DefineConst(name, value);
@@ -58,6 +65,7 @@ struct Evaluator {
 struct Formula::Impl {
   std::string expression, key;
   Constants constants;
+  int dimension = 2;
   std::optional<double> value;  ///< set when the formula is a constant
   bool time = false;
   bool space = false;  ///< uses x, y, X or Y
@@ -67,21 +75,26 @@ struct Formula::Impl {
   Evaluator& mine() const {
     const int k = omp_in_parallel() ? omp_get_thread_num() : 0;
     if (k >= max_threads) throw NumericalError(fmt::format("{}: formula evaluated on thread {} (at most {})", key, k, max_threads));
-    if (!evaluators[k]) evaluators[k] = std::make_unique<Evaluator>(expression, constants);
+    if (!evaluators[k]) evaluators[k] = std::make_unique<Evaluator>(expression, constants, dimension);
     return *evaluators[k];
   }
 };
 
-Formula::Formula(const std::string& expression, const Constants& constants, std::string key) {
+Formula::Formula(const std::string& expression, const Constants& constants, std::string key, int dimension) {
   auto impl = std::make_shared<Impl>();
   impl->expression = expression;
   impl->key = std::move(key);
+  if (dimension != 2 && dimension != 3)
+    throw InputError(fmt::format("{}: a formula has dimension 2 or 3, not {}", impl->key, dimension));
+  impl->dimension = dimension;
+  const auto variables_end = variable_names.begin() + static_cast<std::ptrdiff_t>(variable_count(dimension));
   for (const auto& [name, value] : constants) {
     if (!is_identifier(name))
       throw InputError(fmt::format("{}: constant name '{}' is not a name (letters, digits and _, not starting with a digit)",
                                    impl->key, name));
-    for (const char* v : variable_names)
-      if (name == v) throw InputError(fmt::format("{}: constant '{}' would hide the variable {}", impl->key, name, v));
+    for (auto v = variable_names.begin(); v != variables_end; ++v)
+      if (name == *v)
+        throw InputError(fmt::format("{}: constant '{}' would hide the variable {}", impl->key, name, *v));
     if (name == "pi" || name == "e") throw InputError(fmt::format("{}: constant '{}' is predefined", impl->key, name));
     if (!std::isfinite(value)) throw InputError(fmt::format("{}: constant '{}' is not finite", impl->key, name));
   }
@@ -102,16 +115,19 @@ Formula::Formula(const std::string& expression, const Constants& constants, std:
     // defined or not.
     const mu::varmap_type used = e.parser.GetUsedVar();
     for (const auto& [name, where] : used)
-      if (std::find(variable_names.begin(), variable_names.end(), name) == variable_names.end()) {
+      if (std::find(variable_names.begin(), variables_end, name) == variables_end) {
         const std::size_t at = token_position(expression, name);
-        throw InputError(fmt::format("{}: formula '{}' names \"{}\" (at character {}), which is no variable and no "
-                                     "constant; variables are x, y, X, Y, t, constants pi, e{}",
-                                     impl->key, expression, name, at + 1,
-                                     constants.empty() ? std::string(" (the scene has no [constants])")
-                                                       : " and those of [constants]"));
+        throw InputError(
+            fmt::format("{}: formula '{}' names \"{}\" (at character {}), which is no variable and no "
+                        "constant; variables are {}, constants pi, e{}",
+                        impl->key, expression, name, at + 1, variable_list(dimension),
+                        constants.empty() ? std::string(" (the scene has no [constants])")
+                                          : " and those of [constants]"));
       }
     impl->time = used.count("t") > 0;
-    impl->space = used.count("x") + used.count("y") + used.count("X") + used.count("Y") > 0;
+    impl->space = used.count("x") + used.count("y") + used.count("X") + used.count("Y") + used.count("z") +
+                      used.count("Z") >
+                  0;
     if (used.empty()) {
       const double v = e.parser.Eval();
       if (!std::isfinite(v))
@@ -122,9 +138,10 @@ Formula::Formula(const std::string& expression, const Constants& constants, std:
     const int pos = err.GetPos();
     std::string where;
     if (pos >= 0) where = fmt::format(" (at character {}: '{}' <-- here)", pos + 1, expression.substr(0, static_cast<std::size_t>(pos) + 1));
-    throw InputError(fmt::format("{}: formula '{}' does not parse: {}{}; variables are x, y, X, Y, t, constants pi, e "
-                                 "and those of [constants]",
-                                 impl->key, expression, err.GetMsg(), where));
+    throw InputError(
+        fmt::format("{}: formula '{}' does not parse: {}{}; variables are {}, constants pi, e "
+                    "and those of [constants]",
+                    impl->key, expression, err.GetMsg(), where, variable_list(dimension)));
   }
   impl_ = std::move(impl);
 }
@@ -150,6 +167,22 @@ double Formula::operator()(const Vec2& x, double t) const {
   if (!std::isfinite(v))
     throw InputError(fmt::format("{}: formula '{}' is {} at (x, y) = ({:.6g}, {:.6g}), t = {:.6g}", impl_->key,
                                      impl_->expression, v, x.x(), x.y(), t));
+  return v;
+}
+
+double Formula::operator()(const Vec3& x, double t) const {
+  if (impl_->value) return *impl_->value;
+  if (impl_->dimension != 3)
+    throw Error(fmt::format("{}: a plane formula evaluated at a point in space", impl_->key));
+  Evaluator& e = impl_->mine();
+  e.x = x.x();
+  e.y = x.y();
+  e.z = x.z();
+  e.t = t;
+  const double v = e.parser.Eval();
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{}: formula '{}' is {} at (x, y, z) = ({:.6g}, {:.6g}, {:.6g}), t = {:.6g}",
+                                 impl_->key, impl_->expression, v, x.x(), x.y(), x.z(), t));
   return v;
 }
 

@@ -45,7 +45,7 @@ struct Manufactured {
     const P3 grad_phi = pi * P3(k[0] * s[1] * s[2], s[0] * k[1] * s[2], s[0] * s[1] * k[2]);
     return amplitude * c * grad_phi.transpose();
   }
-  [[nodiscard]] M3 stress(const M3& g) const { return testing::linear_stress(lame, g); }
+  [[nodiscard]] M3 stress(const M3& g) const { return linear_stress(lame, g); }
   [[nodiscard]] P3 body_force(const P3& x) const {
     const P3 s(std::sin(pi * x[0]), std::sin(pi * x[1]), std::sin(pi * x[2]));
     const P3 k(std::cos(pi * x[0]), std::cos(pi * x[1]), std::cos(pi * x[2]));
@@ -91,7 +91,7 @@ ElasticErrors solve_and_measure(double h, RKOrder order) {
   ns.load_steps = 1;
   const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
 
-  return testing::elastic_errors(
+  return small_strain_errors(
       *disc.trial, sol.coefficients, gauss_cell_rule(unit_cube(), h, 4), m.lame,
       [&](const P3& x) { return m.displacement(x); }, [&](const P3& x) { return m.gradient(x); });
 }

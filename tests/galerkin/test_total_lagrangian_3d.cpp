@@ -62,7 +62,7 @@ LinearElastic steel_like() { return LinearElastic{1.0, 0.3, PlaneModel::strain};
 
 /// sigma of the 3D linear law for a displacement gradient g.
 M3 linear_stress(const LinearElastic& m, const M3& g) {
-  return testing::linear_stress(lame_constants(m.youngs_modulus, m.poisson_ratio), g);
+  return linear_stress(lame_constants(m.youngs_modulus, m.poisson_ratio), g);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ template <int dim>
 using Tensor2 = Eigen::Matrix<double, dim, dim>;
 
 using Vec2 = Point<2>;
+using Vec3 = Point<3>;
 using Mat2 = Tensor2<2>;
 using Index = std::int32_t;
 

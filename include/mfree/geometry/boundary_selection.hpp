@@ -70,6 +70,8 @@ BoundarySelection<3> select_part(const Solid& solid, const std::string& name);
 BoundarySelection<3> select_box(const Solid& solid, const AlignedBox<3>& box);
 /// Total area of the pieces.
 double selection_area(const Solid& solid, const BoundarySelection<3>& s);
+/// The area two selections share (pieces of one triangle, clipped by both boxes).
+double overlap_area(const Solid& solid, const BoundarySelection<3>& a, const BoundarySelection<3>& b);
 /// The piece of its triangle as a polygon.
 std::vector<Point<3>> piece_polygon(const Solid& solid, const BoundaryPiece<3>& piece);
 

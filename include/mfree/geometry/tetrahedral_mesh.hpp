@@ -29,6 +29,7 @@ class TetrahedralMesh {
                   const std::string& source);
 
   [[nodiscard]] const std::vector<Point<3>>& nodes() const { return nodes_; }
+  [[nodiscard]] const std::vector<std::array<Index, 4>>& tetrahedra() const { return tetrahedra_; }
   [[nodiscard]] Index size() const { return static_cast<Index>(tetrahedra_.size()); }
   [[nodiscard]] Tetrahedron tetrahedron(Index k) const;
   [[nodiscard]] const AlignedBox<3>& bounding_box() const { return box_; }

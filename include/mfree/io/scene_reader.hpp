@@ -57,6 +57,8 @@ class SceneTable {
   bool boolean_or(std::string_view key, bool fallback) const;
   /// Array of points [[x, y], ...] of length `size` (any length >= 1 when 0).
   std::vector<std::array<double, 2>> pairs(std::string_view key, std::size_t size) const;
+  /// Array of points in space [[x, y, z], ...], likewise.
+  std::vector<std::array<double, 3>> triples(std::string_view key, std::size_t size) const;
   /// A value that is a number or a formula (a string): its text, numbers written so that
   /// they read back to the same double.
   std::string expression(std::string_view key) const;
@@ -90,6 +92,9 @@ class SceneTable {
   /// choices() with `allowed`, names() without.
   std::vector<std::string> string_list(std::string_view key, const std::vector<std::string>* allowed) const;
   [[noreturn]] void fail(const toml::node* at, std::string_view key, const std::string& what) const;
+  /// pairs() (n = 2) and triples() (n = 3).
+  template <std::size_t n>
+  std::vector<std::array<double, n>> points(std::string_view key, std::size_t size) const;
   /// The scene file, or the --set override a value came from.
   [[nodiscard]] const std::string& origin_of(const toml::source_region& region) const;
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "mfree/core/types.hpp"
+#include "mfree/geometry/solid.hpp"
 #include "mfree/io/scene_reader.hpp"
 #include "mfree/materials/material.hpp"
 #include "mfree/problems/builtin_solutions.hpp"
@@ -30,20 +31,29 @@ struct MaterialSection {
 /// Reads [material] (every key range-checked, unknown keys refused).
 MaterialSection read_material(const SceneTable& root);
 /// The keys of [material] from a table holding them (e.g. one of [[material]]), then
-/// t.finish(): read any other key of t first.
-MaterialSection read_material_keys(const SceneTable& t);
+/// t.finish(): read any other key of t first. In a solid (dimension 3) the models are
+/// linear_elastic (the 3D small-strain law) and the finite-strain and plastic laws, without
+/// the logarithmic kinematics.
+MaterialSection read_material_keys(const SceneTable& t, int dimension = 2);
 
 /// The box of two corners under `key`.
 Box read_box(const SceneTable& t, const std::string& key);
 
+/// The box in space of two corners [[x0, y0, z0], [x1, y1, z1]] under `key` (any order).
+AlignedBox<3> read_space_box(const SceneTable& t, const std::string& key);
+
 /// Reads [constants] (optional; empty when absent).
 Constants read_constants(const SceneTable& root);
 
-/// The number or formula under `key`, parsed (errors name the key).
-Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants);
+/// The number or formula under `key`, parsed (errors name the key); dimension 3: in x, y, z.
+Formula read_formula(const SceneTable& t, const std::string& key, const Constants& constants,
+                     int dimension = 2);
 
 /// The two numbers or formulas under `key`.
 VectorFormula read_vector_formula(const SceneTable& t, const std::string& key, const Constants& constants);
+/// The three numbers or formulas (in x, y, z) under `key`.
+SpaceVectorFormula read_space_vector_formula(const SceneTable& t, const std::string& key,
+                                             const Constants& constants);
 
 /// [output] folder: a folder of its own (not "", ".", ".." or a root), relative to the
 /// working directory; the run creates it and replaces what it held.

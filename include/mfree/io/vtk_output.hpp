@@ -4,7 +4,7 @@
 // grids as VTK XML image data (.vti, likewise), and ParaView collections (.pvd) that string
 // such files into a time series.
 //
-// Points are 2D; the files hold them with z = 0. Values are written as 64-bit floats, so a
+// Points are 2D (the files hold them with z = 0) or 3D (solids). Values are written as 64-bit floats, so a
 // file read back gives every value bit for bit. NaN and infinity are never written: a field
 // or point holding one is a NumericalError naming the field (or "point coordinates") and the
 // first bad point index, and no file is touched.
@@ -32,6 +32,8 @@ namespace mfree {
 ///   2  a 2D vector, written as a 3-component VTK vector with z = 0 so ParaView can warp by it;
 ///   3  a symmetric 2D tensor in the order xx, yy, xy, written as 3 components named xx, yy, xy;
 ///   any other count >= 1: written as given.
+/// On 3D points: 3 components are a vector, 6 a symmetric tensor in the order xx, yy, zz, yz,
+/// xz, xy (components so named), any other count as given.
 /// Names must be non-empty and distinct within one file.
 struct PointField {
   std::string name;
@@ -45,6 +47,8 @@ struct PointField {
 /// written. Every message names the path.
 void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
                            const std::vector<PointField>& fields);
+void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                           const std::vector<PointField>& fields);
 
 /// Writes the triangles (three indices into `points` each) as VTK_TRIANGLE cells with the
 /// fields at the points. Errors as write_point_cloud_vtu, plus InputError for an index
@@ -52,6 +56,15 @@ void write_point_cloud_vtu(const std::filesystem::path& path, const std::vector<
 void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec2>& points,
                          const std::vector<std::array<Index, 3>>& triangles,
                          const std::vector<PointField>& fields);
+/// The same in space (a solid's surface).
+void write_triangles_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                         const std::vector<std::array<Index, 3>>& triangles,
+                         const std::vector<PointField>& fields);
+/// Writes the tetrahedra (four indices into `points` each) as VTK_TETRA cells with the fields
+/// at the points. Errors as write_triangles_vtu.
+void write_tetrahedra_vtu(const std::filesystem::path& path, const std::vector<Vec3>& points,
+                          const std::vector<std::array<Index, 4>>& tetrahedra,
+                          const std::vector<PointField>& fields);
 
 /// Writes the quadrilaterals (four indices into `points` each, counter-clockwise) as VTK_QUAD
 /// cells with the fields at the points. Errors as write_triangles_vtu.
@@ -91,7 +104,8 @@ VtiContents read_vti(const std::filesystem::path& path);
 
 /// What read_vtu finds in a .vtu file.
 struct VtuContents {
-  std::vector<Vec2> points;                         ///< x, y of every point (z dropped)
+  std::vector<Vec2> points;                         ///< x, y of every point
+  std::vector<double> z;                            ///< z of every point
   std::vector<std::string> array_names;             ///< point-data arrays in file order
   std::map<std::string, std::vector<double>> arrays;  ///< values point after point
   std::map<std::string, int> components;            ///< components per point of each array

@@ -1,0 +1,40 @@
+#pragma once
+// The sections plane and solid elasticity scenes share (io/elasticity_scene.hpp,
+// io/solid_scene.hpp), each read by one function; `dimension` (2 or 3) sets what a section
+// takes in a solid:
+//
+//   [nodes]       cloud (lattice | perturbed | random), spacing, perturbation, seed
+//   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor,
+//                 irregular_factor_scale; plane only: support_rule, allow_bridging
+//   [quadrature]  scheme, ratio, cloud, order, factor, lattice_refinement, consistency,
+//                 gauss_points. A solid integrates by the projected scheme only (its default),
+//                 with ratio default 8 (quadrature points per node), the quadrature cloud's
+//                 order default the RK order, consistency vci (default) or none
+//   [nitsche]     beta
+//   [solver]      kind, preconditioner, tolerance, max_iterations, direct_limit
+//   [newton]      tolerance, absolute_tolerance, max_iterations, line_search, load_steps or
+//                 load_factors, max_cutbacks
+//
+// Every key is type- and range-checked and each table finished (unknown keys refused), as in
+// scene_reader.hpp.
+
+#include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/io/scene_reader.hpp"
+
+namespace mfree {
+
+/// [nodes] into s.nodes.
+void read_nodes_section(const SceneTable& t, ElasticitySettings& s);
+/// [kernel] into s (order, window, support, factors; in the plane the support rule).
+void read_kernel_section(const SceneTable& t, ElasticitySettings& s, int dimension);
+/// [quadrature] (an empty table when absent) into s; s.order must be read first.
+void read_quadrature_section(const SceneTable& t, ElasticitySettings& s, int dimension);
+/// [nitsche] beta (the Nitsche penalty), `beta` when the key is absent.
+double read_nitsche_section(const SceneTable& t, double beta);
+/// [solver] into s.solver; a symmetric solver with VCI's non-symmetric stiffness is refused.
+void read_solver_section(const SceneTable& t, ElasticitySettings& s);
+/// [newton], its linear solves by `solver`.
+NewtonSettings read_newton_section(const SceneTable& t, const SolverSettings& solver);
+
+}  // namespace mfree

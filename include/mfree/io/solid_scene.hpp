@@ -1,0 +1,90 @@
+#pragma once
+// Solid scenes: one TOML file describes a three-dimensional elasticity run (see
+// verification/lame-sphere/lame_sphere.toml). A scene is a solid scene when its [domain]
+// gives `box` or `solid`; `rectangle` and `mesh` make a plane scene (elasticity_scene.hpp).
+//
+//   [domain]      box = [[x0, y0, z0], [x1, y1, z1]] (its faces are the parts x_min, x_max,
+//                 y_min, y_max, z_min, z_max), or solid = "part.geo" (a gmsh file: .geo, .msh,
+//                 .step, .stp, .brep, .iges, .igs, relative to the scene, meshed into
+//                 tetrahedra; its parts are the physical surfaces: geometry/gmsh_solid.hpp)
+//   [nodes], [kernel], [quadrature], [nitsche], [solver], [newton]: io/elasticity_sections.hpp
+//                 (a solid integrates by the projected scheme, with VCI by default)
+//   [material]    model (linear_elastic | neo_hookean | st_venant_kirchhoff | j2 |
+//                 drucker_prager), youngs_modulus, poisson_ratio, the plastic laws' keys
+//                 (io/scene_sections.hpp), density (with gravity)
+//   [constants]   name = number: constants for every formula of the scene
+//   [loads]       body_force = [fx, fy, fz] (per unit reference volume; numbers or formulas in
+//                 x, y, z), gravity = [gx, gy, gz] (per unit mass, times density)
+//   [exact]       displacement = [ux, uy, uz] and gradient = [dux/dx, dux/dy, dux/dz, duy/dx,
+//                 ..., duz/dz] (9 formulas, row by row): errors in L2 and in energy (the
+//                 small-strain law's) over an independent rule; needs linear_elastic
+//   [[boundary]]  name, type (displacement | slip | traction | pressure), one selector: part =
+//                 "name" or region = [[x0, y0, z0], [x1, y1, z1]] (the surface triangles' parts
+//                 inside the box); value = "exact", [vx, vy, vz] (numbers or formulas), or for
+//                 pressure p (positive into the body). A selector that selects no area, and two
+//                 conditions on one part of the surface, are errors.
+//   [output]      folder, fields (displacement, stress, von_mises, plastic_strain, error), vtk,
+//                 probe = [x, y, z] (u^h there after every load step)
+//
+// Statics by Newton with load steps (a linear law: one step, one iteration). Formulas take
+// no t: a static run scales its loads by the load factor. Every key is type- and
+// range-checked; unknown keys are errors (scene_reader.hpp).
+
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
+#include "mfree/geometry/solid.hpp"
+#include "mfree/problems/formula.hpp"
+
+namespace mfree {
+
+/// [exact] of a solid scene: u and grad u (row i: the gradient of u_i) as formulas.
+struct SolidExact {
+  SpaceVectorFormula displacement;
+  std::vector<Formula> gradient;  ///< 9 formulas, row by row
+  [[nodiscard]] Tensor2<3> gradient_at(const Point<3>& x) const;
+};
+
+struct SolidOutput {
+  std::filesystem::path folder;
+  std::set<std::string> fields;  ///< empty: nothing computed or written
+  bool vtk = true;
+  std::optional<Point<3>> probe;
+  [[nodiscard]] bool wants(const std::string& f) const { return fields.count(f) > 0; }
+};
+
+/// What a [[boundary]] table selected, for the run's report.
+struct SelectedSurface {
+  std::string name, type, selector;
+  double area = 0.0;
+};
+
+struct SolidScene {
+  std::filesystem::path file;
+  Solid solid;
+  std::string model;            ///< [material] model, as the scene names it
+  ElasticitySettings settings;  ///< nodes, kernel, quadrature, solver (settings.problem unused)
+  SolidProblem<3> problem;      ///< the law, the loads, the conditions, Nitsche's beta, the spacing
+  NewtonSettings newton;        ///< [newton], or one load step
+  std::optional<SolidExact> exact;
+  SolidOutput output;
+  std::vector<SelectedSurface> selected;  ///< per [[boundary]], in order
+
+  /// A line per [[boundary]]: name, type, what it selects and the area selected.
+  [[nodiscard]] std::string describe_conditions() const;
+};
+
+/// True when the scene's [domain] gives `box` or `solid`.
+bool is_solid_scene(const std::filesystem::path& file);
+
+/// Parses and checks a solid scene (reading and meshing its part); `overrides` as Scene::load.
+SolidScene read_solid_scene(const std::filesystem::path& file,
+                            const std::vector<std::string>& overrides = {});
+
+}  // namespace mfree

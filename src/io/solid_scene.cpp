@@ -1,0 +1,240 @@
+#include "mfree/io/solid_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "mfree/core/error.hpp"
+#include "mfree/geometry/boundary_selection.hpp"
+#include "mfree/geometry/gmsh_solid.hpp"
+#include "mfree/io/elasticity_sections.hpp"
+#include "mfree/io/read_choice.hpp"
+#include "mfree/io/scene_sections.hpp"
+#include "mfree/materials/finite_strain.hpp"
+
+namespace mfree {
+
+namespace {
+
+using ConditionType = BoundaryCondition<3>::Type;
+const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
+                                               {"slip", ConditionType::slip},
+                                               {"traction", ConditionType::traction},
+                                               {"pressure", ConditionType::pressure}};
+
+/// No formula of a static run may use t: it would be evaluated at t = 0 only.
+void check_static(const SceneTable& t, const std::string& key, const Formula& f) {
+  if (f.depends_on_time())
+    t.error(key, fmt::format("formula '{}' uses t, but a solid scene is static (loads are scaled by the load "
+                             "factor, not by time)",
+                             f.expression()));
+}
+void check_static(const SceneTable& t, const std::string& key, const SpaceVectorFormula& f) {
+  for (const Formula* c : {&f.x, &f.y, &f.z}) check_static(t, key, *c);
+}
+
+std::string box_text(const AlignedBox<3>& b) {
+  return fmt::format("[[{}, {}, {}], [{}, {}, {}]]", b.min().x(), b.min().y(), b.min().z(), b.max().x(),
+                     b.max().y(), b.max().z());
+}
+
+Solid read_domain(const SceneTable& t) {
+  if (t.has("box") == t.has("solid")) t.error("box", "give exactly one of 'box' and 'solid'");
+  Solid solid = [&] {
+    if (t.has("box")) {
+      const AlignedBox<3> b = read_space_box(t, "box");
+      if (!(b.max().array() > b.min().array()).all()) t.error("box", "the corners must differ in x, y and z");
+      return Solid::box(b.min(), b.max());
+    }
+    try {
+      return read_gmsh_solid(t.folder() / t.string("solid"));
+    } catch (const InputError& e) {
+      t.error("solid", e.what());
+    }
+  }();
+  t.finish();
+  return solid;
+}
+
+/// The selector of a [[boundary]] table: part or region.
+BoundarySelection<3> read_selection(const SceneTable& t, const Solid& solid, std::string& key,
+                                    std::string& what) {
+  if (t.has("part") == t.has("region")) t.error("name", "give exactly one selector: part or region");
+  try {
+    if (t.has("part")) {
+      key = "part";
+      what = fmt::format("part '{}'", t.string("part"));
+      return select_part(solid, t.string("part"));
+    }
+    key = "region";
+    const AlignedBox<3> b = read_space_box(t, "region");
+    what = "region " + box_text(b);
+    return select_box(solid, b);
+  } catch (const InputError& e) {
+    t.error(key, e.what());
+  }
+}
+
+SolidExact read_exact(const SceneTable& t, const Constants& constants, const Material& law) {
+  if (!std::holds_alternative<LinearElastic>(law))
+    t.error("displacement",
+            fmt::format("errors against an exact solution are those of the small-strain law: give "
+                        "[material] model = \"linear_elastic\", not \"{}\"",
+                        name(law)));
+  SolidExact e{read_space_vector_formula(t, "displacement", constants), {}};
+  check_static(t, "displacement", e.displacement);
+  const std::vector<std::string> texts = t.expressions("gradient", 9);
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    e.gradient.emplace_back(texts[i], constants, t.where("gradient", static_cast<int>(i)), 3);
+    check_static(t, "gradient", e.gradient.back());
+  }
+  t.finish();
+  return e;
+}
+
+}  // namespace
+
+Tensor2<3> SolidExact::gradient_at(const Point<3>& x) const {
+  Tensor2<3> g;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g(i, j) = gradient[static_cast<std::size_t>(3 * i + j)](x);
+  return g;
+}
+
+bool is_solid_scene(const std::filesystem::path& file) {
+  const Scene scene = Scene::load(file);
+  const SceneTable root = scene.root();
+  if (!root.has("domain")) return false;
+  const SceneTable domain = root.table("domain");
+  return domain.has("box") || domain.has("solid");
+}
+
+SolidScene read_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  const Scene scene = Scene::load(file, overrides);
+  const SceneTable root = scene.root();
+  for (const char* plane_only : {"dynamics", "study"})
+    if (root.has(plane_only))
+      root.error(plane_only,
+                 fmt::format("[{}] is plane only so far: a solid scene is solved by statics (Newton "
+                             "with load steps) with mfree run",
+                             plane_only));
+  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}};
+  ElasticitySettings& s = out.settings;
+  SolidProblem<3>& problem = out.problem;
+  read_nodes_section(root.table("nodes"), s);
+  read_kernel_section(root.table("kernel"), s, 3);
+  read_quadrature_section(root.optional_table("quadrature"), s, 3);
+  problem.spacing = s.nodes.spacing;
+  if (root.is_array_of_tables("material"))
+    root.error("material", "a solid is one region so far: give one [material] table");
+  const MaterialSection m = read_material_keys(root.table("material"), 3);
+  out.model = m.model;
+  problem.material = m.material;
+  problem.density = m.density;
+  const Constants constants = read_constants(root);
+
+  if (root.has("loads")) {
+    const SceneTable t = root.table("loads");
+    std::optional<SpaceVectorFormula> force;
+    Point<3> gravity = Point<3>::Zero();
+    if (t.has("body_force")) {
+      force = read_space_vector_formula(t, "body_force", constants);
+      check_static(t, "body_force", *force);
+    }
+    if (t.has("gravity")) {
+      const auto g = t.numbers("gravity", 3, -1e300, 1e300);
+      if (!(m.density > 0.0)) t.error("gravity", "gravity needs the material's density ([material] density)");
+      gravity = m.density * Point<3>(g[0], g[1], g[2]);
+    }
+    if (!t.has("body_force") && !t.has("gravity"))
+      t.error("body_force", "give body_force or gravity (or both)");
+    t.finish();
+    problem.body_force = [force, gravity](const Point<3>& x, double) {
+      return force ? Point<3>((*force)(x) + gravity) : gravity;
+    };
+  }
+  if (root.has("exact")) out.exact = read_exact(root.table("exact"), constants, m.material);
+
+  for (const SceneTable& t : root.tables("boundary")) {
+    BoundaryCondition<3> c;
+    c.name = t.string("name");
+    c.type = read_choice(t, "type", condition_table);
+    std::string key, what;
+    c.where = read_selection(t, out.solid, key, what);
+    const double area = selection_area(out.solid, c.where);
+    if (c.where.empty() || !(area > 0.0))
+      t.error(key, fmt::format("{} selects no part of the surface (the solid's bounding box is {})", what,
+                               box_text(out.solid.bounding_box())));
+    for (const BoundaryCondition<3>& other : problem.conditions) {
+      const double shared = overlap_area(out.solid, c.where, other.where);
+      if (shared > 1e-12 * area)
+        t.error(key, fmt::format(
+                         "{} overlaps boundary '{}' over an area of {:.6g}: each part of the surface takes "
+                         "one condition",
+                         what, other.name, shared));
+    }
+    out.selected.push_back({c.name, condition_table.name(c.type), what, area});
+    if (c.type == ConditionType::pressure) {
+      const Formula p = read_formula(t, "value", constants, 3);
+      check_static(t, "value", p);
+      c.pressure = [p](const Point<3>& x, double) { return p(x); };
+    } else if (t.is_string("value")) {
+      (void)t.choice("value", {"exact"});
+      if (!out.exact) t.error("value", "'exact' needs an [exact] section");
+      const SolidExact ex = *out.exact;
+      if (c.type != ConditionType::traction) {
+        c.value = [ex](const Point<3>& x, const Point<3>&, double) { return ex.displacement(x); };
+      } else {
+        const Lame lame = lame_constants(m.linear.youngs_modulus, m.linear.poisson_ratio);
+        c.value = [ex, lame](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
+          const Tensor2<3> g = ex.gradient_at(x), eps = 0.5 * (g + g.transpose());
+          const Tensor2<3> sigma = lame.lambda * eps.trace() * Tensor2<3>::Identity() + 2.0 * lame.mu * eps;
+          return sigma * n;
+        };
+      }
+    } else {
+      const SpaceVectorFormula v = read_space_vector_formula(t, "value", constants);
+      check_static(t, "value", v);
+      c.value = [v](const Point<3>& x, const Point<3>&, double) { return v(x); };
+    }
+    t.finish();
+    problem.conditions.push_back(std::move(c));
+  }
+  if (root.has("nitsche"))
+    problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), problem.nitsche_beta);
+  if (root.has("solver")) read_solver_section(root.table("solver"), s);
+  if (root.has("newton")) {
+    out.newton = read_newton_section(root.table("newton"), s.solver);
+  } else {
+    out.newton.load_steps = 1;
+    out.newton.solver = s.solver;
+  }
+  {
+    const SceneTable t = root.table("output");
+    out.output.folder = read_output_folder(t);
+    if (t.has("fields") && !t.is_array_empty("fields"))
+      for (const auto& f :
+           t.choices("fields", {"displacement", "stress", "von_mises", "plastic_strain", "error"}))
+        out.output.fields.insert(f);
+    if (out.output.wants("plastic_strain") && !has_history(problem.material))
+      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
+                                    name(problem.material)));
+    if (out.output.wants("error") && !out.exact) t.error("fields", "'error' needs an [exact] section");
+    out.output.vtk = t.boolean_or("vtk", true);
+    if (t.has("probe")) {
+      const auto p = t.numbers("probe", 3, -1e300, 1e300);
+      out.output.probe = Point<3>(p[0], p[1], p[2]);
+      if (!out.solid.contains(*out.output.probe)) t.error("probe", "the probe lies outside the solid");
+    }
+    t.finish();
+  }
+  root.finish();
+  return out;
+}
+
+std::string SolidScene::describe_conditions() const {
+  std::string text;
+  for (const SelectedSurface& c : selected)
+    text += fmt::format("  boundary '{}': {} on {} (area {:.6g})\n", c.name, c.type, c.selector, c.area);
+  return text;
+}
+
+}  // namespace mfree

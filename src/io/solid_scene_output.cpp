@@ -1,0 +1,148 @@
+#include "mfree/io/solid_scene_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/galerkin/small_strain_elasticity.hpp"
+#include "mfree/geometry/tetrahedral_mesh.hpp"
+#include "mfree/io/vtk_output.hpp"
+#include "mfree/materials/finite_strain.hpp"
+
+namespace mfree {
+
+namespace {
+
+struct Cells3 {
+  std::vector<Point<3>> points;
+  std::vector<std::array<Index, 4>> tetrahedra;
+};
+
+/// The box [lo, hi] in n_x n_y n_z cubes of about `spacing`, each split into the six
+/// tetrahedra round its diagonal (Kuhn's subdivision: one per order of the axes).
+Cells3 box_tetrahedra(const AlignedBox<3>& box, double spacing) {
+  std::array<Index, 3> n{};
+  for (int a = 0; a < 3; ++a)
+    n[a] = std::max<Index>(1, static_cast<Index>(std::ceil(box.sizes()[a] / spacing - 1e-9)));
+  Cells3 c;
+  const auto id = [&](Index i, Index j, Index k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
+  for (Index k = 0; k <= n[2]; ++k)
+    for (Index j = 0; j <= n[1]; ++j)
+      for (Index i = 0; i <= n[0]; ++i)
+        c.points.push_back(box.min() + box.sizes().cwiseProduct(Point<3>(static_cast<double>(i) / n[0],
+                                                                         static_cast<double>(j) / n[1],
+                                                                         static_cast<double>(k) / n[2])));
+  std::array<int, 3> axes{0, 1, 2};
+  for (Index k = 0; k < n[2]; ++k)
+    for (Index j = 0; j < n[1]; ++j)
+      for (Index i = 0; i < n[0]; ++i) do {
+          std::array<Index, 3> at{i, j, k};
+          std::array<Index, 4> tet{};
+          tet[0] = id(at[0], at[1], at[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++at[static_cast<std::size_t>(axes[static_cast<std::size_t>(s)])];
+            tet[static_cast<std::size_t>(s + 1)] = id(at[0], at[1], at[2]);
+          }
+          c.tetrahedra.push_back(tet);
+        } while (std::next_permutation(axes.begin(), axes.end()));
+  return c;
+}
+
+/// The surface triangles with their corners merged (equal coordinates, one point).
+std::pair<std::vector<Point<3>>, std::vector<std::array<Index, 3>>> surface_triangles(const Solid& solid) {
+  std::map<std::array<double, 3>, Index> index;
+  std::vector<Point<3>> points;
+  std::vector<std::array<Index, 3>> triangles;
+  for (const SurfaceTriangle& t : solid.surface()) {
+    std::array<Index, 3> tri{};
+    for (std::size_t v = 0; v < 3; ++v) {
+      const Point<3>& x = t.vertices[v];
+      const auto [it, added] = index.try_emplace({x.x(), x.y(), x.z()}, static_cast<Index>(points.size()));
+      if (added) points.push_back(x);
+      tri[v] = it->second;
+    }
+    triangles.push_back(tri);
+  }
+  return {std::move(points), std::move(triangles)};
+}
+
+void append_tensor(std::vector<double>& out, const Tensor2<3>& s) {
+  out.insert(out.end(), {s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1)});
+}
+
+/// The fields at `points` (the header's), those a law with history has elsewhere left out.
+std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<3>& disc,
+                                  const Eigen::VectorXd& d, const std::vector<Point<3>>& points) {
+  const SolidOutput& o = scene.output;
+  const Material& law = scene.problem.material;
+  const bool stresses = !has_history(law) && (o.wants("stress") || o.wants("von_mises"));
+  const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, points, stresses);
+  PointField u{"displacement", 3, {}}, stress{"stress", 6, {}}, mises{"von_mises", 1, {}},
+      error{"error", 3, {}};
+  for (Index k = 0; k < at.size(); ++k) {
+    const Point<3> uh = displacement_at(at, k, d);
+    u.values.insert(u.values.end(), uh.data(), uh.data() + 3);
+    if (o.wants("error")) {
+      const Point<3> e = uh - scene.exact->displacement(points[static_cast<std::size_t>(k)]);
+      error.values.insert(error.values.end(), e.data(), e.data() + 3);
+    }
+    if (!stresses) continue;
+    Tensor2<3> f = Tensor2<3>::Identity();
+    for (Index j = at.row_begin(k); j < at.row_end(k); ++j)
+      f += d.segment<3>(3 * at.nodes[j]) * at.grad[j].transpose();
+    const Tensor2<3> sigma = cauchy_stress<3>(law, f);
+    append_tensor(stress.values, sigma);
+    mises.values.push_back(von_mises(sigma));
+  }
+  std::vector<PointField> fields;
+  if (o.wants("displacement")) fields.push_back(std::move(u));
+  if (stresses && o.wants("stress")) fields.push_back(std::move(stress));
+  if (stresses && o.wants("von_mises")) fields.push_back(std::move(mises));
+  if (o.wants("error")) fields.push_back(std::move(error));
+  return fields;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, const Discretisation<3>& disc,
+                                                      const TotalLagrangian<3>& model,
+                                                      const Eigen::VectorXd& d) {
+  const std::filesystem::path& folder = scene.output.folder;
+  std::vector<std::filesystem::path> files;
+  const Cells3 volume = scene.solid.mesh()
+                            ? Cells3{scene.solid.mesh()->nodes(), scene.solid.mesh()->tetrahedra()}
+                            : box_tetrahedra(scene.solid.bounding_box(), scene.settings.nodes.spacing);
+  if (std::vector<PointField> fields = fields_at(scene, disc, d, volume.points); !fields.empty()) {
+    files.push_back(folder / "volume.vtu");
+    write_tetrahedra_vtu(files.back(), volume.points, volume.tetrahedra, fields);
+    const auto [points, triangles] = surface_triangles(scene.solid);
+    files.push_back(folder / "surface.vtu");
+    write_triangles_vtu(files.back(), points, triangles, fields_at(scene, disc, d, points));
+  }
+
+  const SolidOutput& o = scene.output;
+  if (has_history(scene.problem.material) &&
+      (o.wants("stress") || o.wants("von_mises") || o.wants("plastic_strain"))) {
+    const GalerkinQuadrature<3>& q = disc.quadrature;
+    PointField u{"displacement", 3, {}}, stress{"stress", 6, {}}, mises{"von_mises", 1, {}},
+        alpha{"plastic_strain", 1, {}};
+    for (Index k = 0; k < q.size(); ++k) {
+      const Point<3> uh = displacement_at(q, k, d);
+      u.values.insert(u.values.end(), uh.data(), uh.data() + 3);
+      const auto r = model.response(k, d);
+      append_tensor(stress.values, r.cauchy);
+      mises.values.push_back(von_mises(r.cauchy));
+      alpha.values.push_back(r.state.alpha);
+    }
+    std::vector<PointField> fields{std::move(u)};
+    if (o.wants("stress")) fields.push_back(std::move(stress));
+    if (o.wants("von_mises")) fields.push_back(std::move(mises));
+    if (o.wants("plastic_strain")) fields.push_back(std::move(alpha));
+    files.push_back(folder / "points.vtu");
+    write_point_cloud_vtu(files.back(), q.points, fields);
+  }
+  return files;
+}
+
+}  // namespace mfree

@@ -1,0 +1,189 @@
+// Solid scenes: a box or a gmsh part, formulas in x, y, z, conditions by part and by box,
+// errors against [exact], the fields written as tetrahedra and surface triangles; and the
+// refusals of what a solid does not take or a scene gets wrong.
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <regex>
+
+#include "../test_support.hpp"
+#include "mfree/apps/solid_scene_app.hpp"
+#include "mfree/core/error.hpp"
+#include "mfree/io/solid_scene.hpp"
+#include "mfree/io/vtk_output.hpp"
+
+using namespace mfree;
+
+namespace {
+
+/// A box [0, 1] x [0, 0.6] x [0, 0.8] holding the linear field u = G x + c of the gradient G
+/// below: clamped to it on x_min (by a box round the face), slip on y_min (where its shear
+/// stresses vanish), its tractions (sigma n, E = 1, nu = 0.3) on the other four faces. `order` the RK order,
+/// `extra` added to the end.
+std::string box_scene(const std::string& folder, const std::string& order = "linear",
+                      const std::string& extra = "") {
+  std::string sides;
+  for (const char* face : {"x_max", "y_max", "z_min", "z_max"})
+    sides += fmt::format(
+        "\n[[boundary]]\nname = \"{0}\"\ntype = \"traction\"\npart = \"{0}\"\nvalue = \"exact\"\n", face);
+  return fmt::format(R"([domain]
+box = [[0, 0, 0], [1, 0.6, 0.8]]
+
+[nodes]
+cloud = "perturbed"
+spacing = 0.2
+
+[kernel]
+order = "{}"
+
+[material]
+model = "linear_elastic"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+
+[exact]
+displacement = ["0.01 + 0.02 * x - 0.01 * y + 0.03 * z", "-0.02 + 0.01 * x + 0.015 * y", "0.005 * x - 0.01 * z"]
+gradient = [0.02, -0.01, 0.03, 0.01, 0.015, 0, 0.005, 0, -0.01]
+
+[[boundary]]
+name = "clamp"
+type = "displacement"
+region = [[-1, -1, -1], [0, 1, 1]]
+value = "exact"
+
+[[boundary]]
+name = "floor"
+type = "slip"
+part = "y_min"
+value = "exact"
+{}
+
+[output]
+folder = "{}"
+fields = ["displacement", "stress", "von_mises", "error"]
+probe = [0.5, 0.3, 0.4]
+{})",
+                     order, sides, folder, extra);
+}
+
+std::filesystem::path write_scene(const testing::ScratchFolder& folder, const std::string& text,
+                                  const std::string& name = "scene.toml") {
+  const auto path = folder.path / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string refusal(const std::string& text) {
+  static const testing::ScratchFolder folder("solid_scene_refusals");
+  const auto path = write_scene(folder, text, "bad.toml");
+  return testing::message_of<InputError>([&] { (void)read_solid_scene(path); });
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  return std::regex_replace(text, std::regex(from), to);
+}
+
+}  // namespace
+
+TEST_CASE("solid scenes: formulas take z in a solid and refuse it in the plane", "[io][solid]") {
+  const Formula f("x + 2 * y + 3 * Z - t", {}, "f", 3);
+  CHECK(f(Vec3(1.0, 2.0, 3.0), 0.5) == 1.0 + 4.0 + 9.0 - 0.5);
+  const std::string plane = testing::message_of<InputError>([] { (void)Formula("x + z", {}, "g"); });
+  CHECK_THAT(plane, Catch::Contains("names \"z\"") && Catch::Contains("variables are x, y, X, Y, t"));
+  // A plane scene may name a constant z; a solid's formulas may not.
+  CHECK(Formula("x + z", {{"z", 2.0}}, "h")(Vec2(1.0, 0.0)) == 3.0);
+  CHECK_THAT(testing::message_of<InputError>([] {
+               (void)Formula("x + z", {{"z", 2.0}}, "k", 3);
+             }),
+             Catch::Contains("would hide the variable z"));
+}
+
+TEST_CASE("solid scenes: a linear field on a box is reproduced to round-off, in the fields written too",
+          "[io][solid]") {
+  const testing::ScratchFolder folder("solid_scene_patch");
+  for (const char* order : {"linear", "quadratic"}) {
+    const auto out = folder.path / fmt::format("out_{}", order);
+    const auto path = write_scene(folder, box_scene(out.string(), order), fmt::format("{}.toml", order));
+    const SolidScene scene = read_solid_scene(path);
+    REQUIRE(scene.selected.size() == 6);
+    CHECK(scene.selected[0].area == Approx(0.48).epsilon(1e-14));  // the region holds x_min alone
+    REQUIRE(run_solid_scene(path, {}) == 0);
+    const std::string summary = [&] {
+      std::ifstream in(out / "summary.json");
+      return std::string{std::istreambuf_iterator<char>(in), {}};
+    }();
+    const std::smatch l2 = [&] {
+      std::smatch m;
+      REQUIRE(std::regex_search(summary, m, std::regex("\"l2_displacement\": ([0-9.e+-]+)")));
+      return m;
+    }();
+    WARN(fmt::format("{} RK: relative L2 error {}", order, l2[1].str()));
+    CHECK(std::stod(l2[1].str()) < 1e-10);
+    const VtuContents volume = read_vtu(out / "volume.vtu");
+    CHECK(volume.cells == 6 * 5 * 3 * 4);  // six tetrahedra in each cube of the spacing
+    REQUIRE(volume.z.size() == volume.points.size());
+    double worst = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < volume.points.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, std::abs(volume.arrays.at("error")[3 * i + static_cast<std::size_t>(c)]));
+        largest = std::max(largest,
+                           std::abs(volume.arrays.at("displacement")[3 * i + static_cast<std::size_t>(c)]));
+      }
+    CHECK(worst < 1e-10 * largest);
+    // sigma_xx = lambda tr(eps) + 2 mu eps_xx with tr = 0.025, eps_xx = 0.02 (E = 1, nu = 0.3).
+    const double lambda = 0.3 / (1.3 * 0.4), mu = 1.0 / 2.6;
+    CHECK(volume.arrays.at("stress")[0] == Approx(lambda * 0.025 + 2 * mu * 0.02).epsilon(1e-9));
+    CHECK(volume.components.at("stress") == 6);
+    const VtuContents surface = read_vtu(out / "surface.vtu");
+    CHECK(surface.cells == 2 * 6);
+    CHECK(surface.points.size() == 8);
+  }
+}
+
+TEST_CASE(
+    "solid scenes: what a solid does not take, and selections that select nothing or overlap, are refused",
+    "[io][solid]") {
+  const std::string ok = box_scene("out");
+  CHECK_THAT(refusal(replace(ok, "linear_elastic", "plane_strain")),
+             Catch::Contains("model") && Catch::Contains("linear_elastic"));
+  CHECK_THAT(refusal(replace(ok, "linear_elastic\"", "neo_hookean\"")),
+             Catch::Contains("exact") && Catch::Contains("linear_elastic"));
+  CHECK_THAT(refusal(replace(ok, "part = \"y_min\"", "region = [[2, 2, 2], [3, 3, 3]]")),
+             Catch::Contains("selects no part of the surface"));
+  CHECK_THAT(refusal(replace(ok, "part = \"y_min\"", "part = \"x_min\"")),
+             Catch::Contains("overlaps boundary 'clamp'"));
+  CHECK_THAT(refusal(replace(ok, "part = \"y_min\"", "region = [[0.5, -1, -1], [2, 2, 2]]")),
+             Catch::Contains("overlaps boundary"));
+  CHECK_THAT(refusal(replace(ok, "part = \"y_min\"", "part = \"bottom\"")),
+             Catch::Contains("y_min") && Catch::Contains("bottom"));
+  CHECK_THAT(refusal(ok + "\n[dynamics]\nscheme = \"newmark\"\n"), Catch::Contains("plane only so far"));
+  CHECK_THAT(refusal(replace(ok, "probe = \\[0.5, 0.3, 0.4\\]", "probe = [0.5, 0.3, 1.4]")),
+             Catch::Contains("outside the solid"));
+  CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[quadrature]\nscheme = \"gauss_cells\"\n[kernel]")),
+             Catch::Contains("plane only so far"));
+  CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[kernel]\nsupport_rule = \"visibility\"")),
+             Catch::Contains("plane only"));
+  CHECK_THAT(refusal(replace(ok, "0.005 \\* x", "0.005 * t")), Catch::Contains("uses t"));
+  CHECK_THAT(refusal(replace(ok, "0.005 \\* x", "0.005 * w")),
+             Catch::Contains("variables are x, y, z, X, Y, Z, t"));
+  CHECK_THAT(
+      refusal(replace(ok, "box = \\[\\[0, 0, 0\\], \\[1, 0.6, 0.8\\]\\]", "box = [[0, 0, 0], [1, 0.6, 0]]")),
+      Catch::Contains("differ in x, y and z"));
+  CHECK_THAT(refusal(replace(ok, "box = \\[\\[0, 0, 0\\], \\[1, 0.6, 0.8\\]\\]", "solid = \"missing.step\"")),
+             Catch::Contains("missing.step"));
+}
+
+TEST_CASE("solid scenes: a problem that leaves a rigid-body motion free is refused before it is solved",
+          "[io][solid]") {
+  const testing::ScratchFolder folder("solid_scene_free");
+  // Slip on y_min alone: translations in x and z and the rotation about y are free.
+  std::string text =
+      replace(box_scene((folder.path / "out").string()), "name = \"clamp\"\ntype = \"displacement\"",
+              "name = \"clamp\"\ntype = \"traction\"");
+  const auto path = write_scene(folder, text);
+  CHECK_THAT(testing::message_of<InputError>([&] { (void)run_solid_scene(path, {}); }),
+             Catch::Contains("not well posed"));
+  CHECK(!std::filesystem::exists(folder.path / "out"));
+}
