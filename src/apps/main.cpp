@@ -120,15 +120,10 @@ int main(int argc, char** argv) {
     }
     // A scene whose [domain] is a box or a solid part is a solid (3D) run.
     if ((*run || *converge) && mfree::is_solid_scene(scene)) {
-      if (*converge)
-        throw mfree::InputError(
-            fmt::format("{}: a solid scene has no refinement study yet; run it with mfree run at "
-                        "each spacing (--set nodes.spacing=H)",
-                        scene.string()));
       if (!restart.empty())
         throw mfree::InputError(fmt::format(
             "{}: a solid scene is static: there is no checkpoint to restart from", scene.string()));
-      return mfree::run_solid_scene(scene, overrides);
+      return mfree::run_solid_scene(scene, overrides, static_cast<bool>(*converge));
     }
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {

@@ -6,7 +6,8 @@
 
 namespace mfree {
 
-ProbeLevel probe_level(const std::vector<std::pair<double, Vec2>>& levels) {
+template <int dim>
+ProbeLevel probe_level(const std::vector<std::pair<double, Point<dim>>>& levels) {
   ProbeLevel out;
   const std::size_t n = levels.size();
   if (n < 2) return out;
@@ -18,11 +19,15 @@ ProbeLevel probe_level(const std::vector<std::pair<double, Vec2>>& levels) {
   const double p = std::log((u1 - u2).norm() / (u - u1).norm()) / std::log(h2 / h1);
   if (std::isfinite(p) && p > 0.0) {
     out.rate = fmt::format("{:.2f}", p);
-    const Vec2 extrapolated = u + (u - u1) / (std::pow(h1 / h, p) - 1.0);
+    const Point<dim> extrapolated = u + (u - u1) / (std::pow(h1 / h, p) - 1.0);
     out.extrapolated_x = fmt::format("{:.9g}", extrapolated.x());
     out.extrapolated_y = fmt::format("{:.9g}", extrapolated.y());
+    if constexpr (dim == 3) out.extrapolated_z = fmt::format("{:.9g}", extrapolated.z());
   }
   return out;
 }
+
+template ProbeLevel probe_level(const std::vector<std::pair<double, Point<2>>>&);
+template ProbeLevel probe_level(const std::vector<std::pair<double, Point<3>>>&);
 
 }  // namespace mfree

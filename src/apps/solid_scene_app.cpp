@@ -2,15 +2,21 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <functional>
 #include <iostream>
 
+#include "mfree/apps/probe_study.hpp"
 #include "mfree/apps/report.hpp"
+#include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
 #include "mfree/galerkin/small_strain_errors.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
+#include "mfree/io/atomic_file.hpp"
+#include "mfree/io/csv.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_scene.hpp"
 #include "mfree/io/solid_scene_output.hpp"
@@ -31,14 +37,35 @@ std::string describe_solid(const Solid& solid) {
       b.max().y(), b.max().z());
 }
 
-int solve(const SolidScene& scene) {
+/// What one solve of a solid scene gives.
+struct SolidLevel {
+  Index nodes = 0, dofs = 0, quadrature_points = 0;
+  double consistency_before = 0.0, consistency_after = 0.0;
+  std::string solver;
+  std::optional<SmallStrainErrors> errors;  ///< with [exact]
+  std::optional<Point<3>> probe;            ///< u^h at the probe, when there is one
+  double seconds = 0.0;                     ///< discretisation and solve (not the errors)
+};
+
+using StepReport = std::function<void(const LoadStepRecord&, const Eigen::VectorXd&,
+                                      const TotalLagrangian<3>&, const std::optional<Point<3>>& probe)>;
+using Finish =
+    std::function<void(const Discretisation<3>&, const TotalLagrangian<3>&, const Eigen::VectorXd&)>;
+
+/// One solve of the scene with settings s: the discretisation, the well-posedness check,
+/// Newton with the scene's load steps (on_step after each), the errors against [exact] over
+/// an independent rule (the solid's cells of the node spacing, tetrahedra clipped to them
+/// where it is meshed, n^3 Gauss points on each piece), then `finish` with the solution.
+SolidLevel solve_level(const SolidScene& scene, const ElasticitySettings& s,
+                       const std::optional<Point<3>>& probe, StageTimer& timer, bool verbose,
+                       const StepReport& on_step, const Finish& finish) {
   const Solid& solid = scene.solid;
-  const ElasticitySettings& s = scene.settings;
-  StageTimer timer;
-  timer.report_to(&std::cout);
-  const Discretisation<3> disc = discretise(solid, s, condition_parts(scene.problem.conditions), timer);
-  TotalLagrangian<3> model(scene.problem, solid, disc.node_count(), disc.quadrature, disc.test(),
-                           disc.boundary, disc.at_boundary);
+  SolidProblem<3> problem = scene.problem;
+  problem.spacing = s.nodes.spacing;
+  if (verbose) timer.report_to(&std::cout);
+  const Discretisation<3> disc = discretise(solid, s, condition_parts(problem.conditions), timer);
+  TotalLagrangian<3> model(problem, solid, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                           disc.at_boundary);
   timer.report_to(nullptr);
   {
     // Statics must be well posed: the reference tangent may leave none of the six rigid-body
@@ -47,70 +74,98 @@ int solve(const SolidScene& scene) {
     model.tangent(Eigen::VectorXd::Zero(model.dofs()), {}, k0);
     check_rigid_body_modes(k0, disc.nodes);
   }
-  std::cout << fmt::format(
-      "  {} nodes ({} DOFs), {} quadrature points, {} RK, {} cloud, spacing {}, consistency defect {:.2e} -> "
-      "{:.2e}, {} tangent\n",
-      disc.nodes.size(), model.dofs(), disc.quadrature.size(), to_string(s.order), to_string(s.nodes.kind),
-      s.nodes.spacing, disc.consistency_before, disc.consistency_after,
-      model.symmetric() ? "symmetric" : "non-symmetric");
-
-  const SolidOutput& o = scene.output;
+  SolidLevel level{static_cast<Index>(disc.nodes.size()),
+                   static_cast<Index>(model.dofs()),
+                   disc.quadrature.size(),
+                   disc.consistency_before,
+                   disc.consistency_after,
+                   {},
+                   {},
+                   {},
+                   0.0};
+  if (verbose)
+    std::cout << fmt::format(
+        "  {} nodes ({} DOFs), {} quadrature points, {} RK, {} cloud, spacing {}, consistency defect {:.2e} "
+        "-> "
+        "{:.2e}, {} tangent\n",
+        level.nodes, level.dofs, level.quadrature_points, to_string(s.order), to_string(s.nodes.kind),
+        s.nodes.spacing, level.consistency_before, level.consistency_after,
+        model.symmetric() ? "symmetric" : "non-symmetric");
   std::optional<GalerkinQuadrature<3>> probe_at;
-  if (o.probe) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
-  std::vector<RunSummary::Record> steps;
-  const StaticSolution sol = solve_static(
-      model, disc.nodes, scene.newton, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
-        RunSummary::Record r{{"factor", step.factor},
-                             {"iterations", static_cast<double>(step.history.size())},
-                             {"cutbacks", static_cast<double>(step.cutbacks)}};
-        std::string line =
-            fmt::format("  load factor {:.6g}: {} Newton iteration(s){}", step.factor, step.history.size(),
-                        step.cutbacks > 0 ? fmt::format(" after {} cut-back(s)", step.cutbacks) : "");
-        if (probe_at) {
-          const Point<3> u = displacement_at(*probe_at, 0, d);
-          line += fmt::format(", probe u^h = ({:.9e}, {:.9e}, {:.9e})", u.x(), u.y(), u.z());
-          r.insert(r.end(), {{"probe_ux", u.x()}, {"probe_uy", u.y()}, {"probe_uz", u.z()}});
-        }
-        if (model.has_history()) line += fmt::format(", plastic volume {:.6g}", model.plastic_area());
-        std::cout << line << '\n';
-        steps.push_back(std::move(r));
-      });
-  std::cout << fmt::format("  solver: {}\n", sol.solver.text());
-
-  RunSummary summary("solid_statics", scene.file);
-  summary.number("nodes", static_cast<double>(disc.nodes.size()));
-  summary.number("dofs", static_cast<double>(model.dofs()));
-  summary.number("quadrature_points", static_cast<double>(disc.quadrature.size()));
-  summary.number("volume", solid.measure());
-  summary.number("consistency_before", disc.consistency_before);
-  summary.number("consistency_after", disc.consistency_after);
-  summary.text("solver", sol.solver.text());
-  summary.records("load_steps", steps);
+  if (probe) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*probe}, false);
+  NewtonSettings newton = scene.newton;
+  newton.solver = s.solver;
+  const StaticSolution sol = solve_static(model, disc.nodes, newton, timer,
+                                          [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
+                                            if (probe_at) level.probe = displacement_at(*probe_at, 0, d);
+                                            if (on_step) on_step(step, d, model, level.probe);
+                                          });
+  level.solver = sol.solver.text();
+  level.seconds = timer.total();
   if (scene.exact) {
-    const auto* law = std::get_if<LinearElastic>(&scene.problem.material);
+    const auto* law = std::get_if<LinearElastic>(&problem.material);
     const SolidExact& ex = *scene.exact;
-    // An independent rule: the solid's cells of the node spacing (tetrahedra clipped to them
-    // where it is meshed), n^3 Gauss points on each piece.
     const int n = s.order == RKOrder::linear ? 3 : 4;
-    const SmallStrainErrors e = timer.time("errors", [&] {
+    level.errors = timer.time("errors", [&] {
       return small_strain_errors(
           *disc.trial, sol.coefficients, gauss_cell_rule(solid, s.nodes.spacing, n),
           lame_constants(law->youngs_modulus, law->poisson_ratio),
           [&](const Point<3>& x) { return ex.displacement(x); },
           [&](const Point<3>& x) { return ex.gradient_at(x); });
     });
-    std::cout << fmt::format("  relative errors: L2 displacement {:.4e}, energy {:.4e}\n", e.l2, e.energy);
-    summary.number("l2_displacement", e.l2);
-    summary.number("energy", e.energy);
   }
-  if (o.vtk && !o.fields.empty()) {
-    const auto files =
-        timer.time("output", [&] { return write_solid_fields(scene, disc, model, sol.coefficients); });
-    for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.filename().string());
-    if (!files.empty()) std::cout << "  open volume.vtu (or surface.vtu) in ParaView; warp by displacement\n";
-  } else {
+  if (finish) finish(disc, model, sol.coefficients);
+  return level;
+}
+
+int run(const SolidScene& scene) {
+  const SolidOutput& o = scene.output;
+  StageTimer timer;
+  RunSummary summary("solid_statics", scene.file);
+  std::vector<RunSummary::Record> steps;
+  const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd&,
+                           const TotalLagrangian<3>& model, const std::optional<Point<3>>& u) {
+    RunSummary::Record r{{"factor", step.factor},
+                         {"iterations", static_cast<double>(step.history.size())},
+                         {"cutbacks", static_cast<double>(step.cutbacks)}};
+    std::string line =
+        fmt::format("  load factor {:.6g}: {} Newton iteration(s){}", step.factor, step.history.size(),
+                    step.cutbacks > 0 ? fmt::format(" after {} cut-back(s)", step.cutbacks) : "");
+    if (u) {
+      line += fmt::format(", probe u^h = ({:.9e}, {:.9e}, {:.9e})", u->x(), u->y(), u->z());
+      r.insert(r.end(), {{"probe_ux", u->x()}, {"probe_uy", u->y()}, {"probe_uz", u->z()}});
+    }
+    if (model.has_history()) line += fmt::format(", plastic volume {:.6g}", model.plastic_area());
+    std::cout << line << '\n';
+    steps.push_back(std::move(r));
+  };
+  std::vector<std::filesystem::path> files;
+  const auto finish = [&](const Discretisation<3>& disc, const TotalLagrangian<3>& model,
+                          const Eigen::VectorXd& d) {
+    if (o.vtk && !o.fields.empty())
+      files = timer.time("output", [&] { return write_solid_fields(scene, disc, model, d); });
+  };
+  const SolidLevel level = solve_level(scene, scene.settings, o.probe, timer, true, on_step, finish);
+  std::cout << fmt::format("  solver: {}\n", level.solver);
+  summary.number("nodes", level.nodes);
+  summary.number("dofs", level.dofs);
+  summary.number("quadrature_points", level.quadrature_points);
+  summary.number("volume", scene.solid.measure());
+  summary.number("consistency_before", level.consistency_before);
+  summary.number("consistency_after", level.consistency_after);
+  summary.text("solver", level.solver);
+  summary.records("load_steps", steps);
+  if (level.errors) {
+    std::cout << fmt::format("  relative errors: L2 displacement {:.4e}, energy {:.4e}\n", level.errors->l2,
+                             level.errors->energy);
+    summary.number("l2_displacement", level.errors->l2);
+    summary.number("energy", level.errors->energy);
+  }
+  for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.filename().string());
+  if (!files.empty())
+    std::cout << "  open volume.vtu (or surface.vtu) in ParaView; warp by displacement\n";
+  else
     std::cout << "  no output fields asked for: no field files (summary.json only)\n";
-  }
   std::cout << "stages:\n";
   print_stages(timer);
   summary.stages(timer);
@@ -118,14 +173,110 @@ int solve(const SolidScene& scene) {
   return 0;
 }
 
+/// The refinement study: every order at every spacing; errors and their rates with [exact],
+/// else the probe's change (SPEC section 8); convergence.csv and its plots.
+int converge(const SolidScene& scene) {
+  const SolidStudy& st = *scene.study;
+  const std::optional<Point<3>> probe = st.probe ? st.probe : scene.output.probe;
+  if (!scene.exact && !probe)
+    throw InputError(
+        fmt::format("{}: a study without an [exact] solution measures the displacement at a probe: give "
+                    "[study] probe = [x, y, z] (or [output] probe)",
+                    scene.file.string()));
+  const std::size_t runs = st.orders.size() * st.spacings.size();
+  std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs,
+                           thread_count());
+  std::string csv =
+      "cloud,order,scheme,consistency,beta,spacing,nodes,dofs,quadrature_points,l2_displacement,energy,l2_"
+      "stress,"
+      "probe_uy,seconds,consistency_before,consistency_after,status\n";
+  std::string table;
+  std::size_t done = 0;
+  const std::string_view cloud = to_string(scene.settings.nodes.kind);
+  const std::string_view fix = to_string(scene.settings.consistency.value_or(Consistency::vci));
+  const double beta = scene.problem.nitsche_beta;
+  for (RKOrder order : st.orders) {
+    std::optional<std::pair<double, SmallStrainErrors>> last;
+    std::vector<std::pair<double, Point<3>>> probes;  // (h, u^h at the probe): the change between levels
+    for (double h : st.spacings) {
+      ElasticitySettings s = scene.settings;
+      s.nodes.spacing = h;
+      if (order != s.order) {
+        s.order = order;
+        s.support_factor = order == RKOrder::linear ? 2.0 : st.quadratic_factor;
+      }
+      s.quadrature_order = order;
+      StageTimer timer;
+      std::optional<SolidLevel> solved;
+      try {
+        solved = solve_level(scene, s, probe, timer, false, {}, {});
+      } catch (const NumericalError& e) {
+        // A study goes on past a run that fails (a sweep is meant to find where they do).
+        const std::string line = fmt::format("{:<9} {:8.4f} FAILED: {}", to_string(order), h, e.what());
+        table += line + "\n";
+        csv += fmt::format("{},{},projected,{},{},{},,,,,,,,,,,{}\n", cloud, to_string(order), fix, beta, h,
+                           csv_status(e.what()));
+        std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+        continue;
+      }
+      const SolidLevel& r = *solved;
+      std::string line = fmt::format("{:<9} {:8.4f} {:8d}", to_string(order), h, r.dofs);
+      if (r.errors) {
+        std::string rates;
+        if (last) {
+          const double lr = std::log(last->first / h);
+          rates = fmt::format("{:5.2f} {:5.2f}", std::log(last->second.l2 / r.errors->l2) / lr,
+                              std::log(last->second.energy / r.errors->energy) / lr);
+        }
+        last.emplace(h, *r.errors);
+        line += fmt::format(" {:10.3e} {:10.3e} {:11}", r.errors->l2, r.errors->energy, rates);
+      }
+      if (r.probe) {
+        line += fmt::format(" {:>15.9e} {:>15.9e} {:>15.9e}", r.probe->x(), r.probe->y(), r.probe->z());
+        if (!r.errors) {
+          probes.emplace_back(h, *r.probe);
+          const ProbeLevel p = probe_level(probes);
+          line += fmt::format(" {:>10} {:>6}", p.change, p.rate);
+        }
+      }
+      line += fmt::format(" {:8.3f}", r.seconds);
+      table += line + "\n";
+      csv += fmt::format("{},{},projected,{},{},{},{},{},{},{},{},,{},{:.6e},{:.3e},{:.3e},ok\n", cloud,
+                         to_string(order), fix, beta, h, r.nodes, r.dofs, r.quadrature_points,
+                         r.errors ? fmt::format("{:.9e}", r.errors->l2) : "",
+                         r.errors ? fmt::format("{:.9e}", r.errors->energy) : "",
+                         r.probe ? fmt::format("{:.12e}", r.probe->y()) : "", r.seconds, r.consistency_before,
+                         r.consistency_after);
+      std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
+    }
+  }
+  const std::filesystem::path csv_path = scene.output.folder / "convergence.csv";
+  write_file_atomically(csv_path, csv);
+  std::cout << fmt::format("\n{:<9} {:>8} {:>8}", "order", "h", "DOFs");
+  if (scene.exact) std::cout << fmt::format(" {:>10} {:>10} {:>11}", "L2 disp", "energy", "rates (L2 E)");
+  if (probe)
+    std::cout << fmt::format(" {:>15} {:>15} {:>15}{}", "probe u_x", "u_y", "u_z",
+                             scene.exact ? "" : fmt::format(" {:>10} {:>6}", "|change|", "rate"));
+  std::cout << fmt::format(" {:>8}\n{}", "time [s]", table);
+  if (probe)
+    std::cout << fmt::format(
+        "probe at ({:.6g}, {:.6g}, {:.6g}); time: discretisation and solve, not the errors\n", probe->x(),
+        probe->y(), probe->z());
+  std::cout << fmt::format("wrote {}\n", csv_path.filename().string());
+  if (scene.exact) plot("plot_convergence.py", csv_path, scene.output.folder);
+  return 0;
+}
+
 }  // namespace
 
-int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  SolidScene scene = read_solid_scene(file, overrides);
-  std::cout << fmt::format("mfree run: {} (solid, {}, {} thread(s))\n", file.string(), scene.model,
-                           thread_count());
+int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                    bool study) {
+  SolidScene scene = read_solid_scene(file, study, overrides);
+  if (!study)
+    std::cout << fmt::format("mfree run: {} (solid, {}, {} thread(s))\n", file.string(), scene.model,
+                             thread_count());
   std::cout << describe_solid(scene.solid) << scene.describe_conditions();
-  return in_staged_folder(scene.output.folder, [&] { return solve(scene); });
+  return in_staged_folder(scene.output.folder, [&] { return study ? converge(scene) : run(scene); });
 }
 
 }  // namespace mfree

@@ -76,25 +76,26 @@ RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, Cl
   return r;
 }
 
-/// A lower bound of the bytes a discretisation takes, from the node count N = |Omega| / h^2
-/// and the supports (radius f h holds about pi f^2 nodes): the quadrature rows (ratio N
-/// points, pi f^2 nodes each, value, gradient and index: 28 bytes), for the projected scheme
-/// the lattice rows of the quadrature cloud's functions (ratio r^2 N lattice points, r the
-/// lattice refinement, pi f_q^2 quadrature points each, 28 bytes), and the stiffness matrix
-/// (2 N rows, 2 pi (2 f)^2 entries each, 12 bytes), without the factorisation's fill. With
-/// the defaults that is 9.5 kB a node; the measured peak is 21-44 kB a node (unit square,
-/// spacings 0.01 to 0.002: 0.45 GB for 10^4 nodes, 5.3 GB for 2.5 10^5).
-double memory_lower_bound(const Domain& domain, const ElasticitySettings& s) {
-  const double n = domain.area() / (s.nodes.spacing * s.nodes.spacing);
+/// A lower bound of the bytes a discretisation takes in dim dimensions, from the node count
+/// N = |Omega| / h^dim and the supports (radius f h holds about |B_f| nodes, the ball's volume:
+/// pi f^2, 4/3 pi f^3): the quadrature rows (ratio N points, |B_f| nodes each, value, gradient
+/// and index: 12 + 8 dim bytes), for the projected scheme the lattice rows of the quadrature
+/// cloud's functions (ratio r^dim N lattice points, r the lattice refinement, |B_fq|
+/// quadrature points each), and the stiffness matrix (dim N rows, dim |B_2f| entries each, 12
+/// bytes), without the factorisation's fill. In the plane, with the defaults, that is 9.5 kB a
+/// node; the measured peak is 21-44 kB a node (unit square, spacings 0.01 to 0.002: 0.45 GB
+/// for 10^4 nodes, 5.3 GB for 2.5 10^5).
+template <int dim>
+double memory_lower_bound(double measure, const ElasticitySettings& s, double quadrature_factor) {
+  const double n = measure / std::pow(s.nodes.spacing, dim);
   const double f = s.support_factor, pi = std::numbers::pi;
+  const auto ball = [&](double r) { return dim == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r; };
+  const double row = 12.0 + 8.0 * dim;
   const double lattice =
       s.scheme == QuadratureScheme::projected
-          ? s.quadrature_ratio * s.lattice_refinement * s.lattice_refinement * pi *
-                std::pow(s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain)),
-                         2) *
-                28.0
+          ? s.quadrature_ratio * std::pow(s.lattice_refinement, dim) * ball(quadrature_factor) * row
           : 0.0;
-  return n * (16.0 + s.quadrature_ratio * pi * f * f * 28.0 + lattice + 2.0 * 2.0 * pi * 4.0 * f * f * 12.0);
+  return n * (8.0 * dim + s.quadrature_ratio * ball(f) * row + lattice + dim * dim * ball(2.0 * f) * 12.0);
 }
 
 /// Plain supports must not join material across a gap (a slot, a thin cavity): the place,
@@ -156,8 +157,11 @@ Discretisation<2> discretise(const Domain& domain, const ElasticitySettings& s, 
   Discretisation<2> res;
   const double h = s.nodes.spacing;
 
-  check_memory(memory_lower_bound(domain, s), fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
-                                                          domain.area() / (h * h)));
+  check_memory(
+      memory_lower_bound<2>(
+          domain.area(), s,
+          s.quadrature_factor.value_or(default_quadrature_factor(s.quadrature_order, domain))),
+      fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h, domain.area() / (h * h)));
   if (!domain.cracks().empty() && s.scheme == QuadratureScheme::nodal)
     throw InputError(
         fmt::format("the nodal scheme does not integrate cracked domains yet (its Voronoi cells do not "
@@ -218,6 +222,11 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
     throw InputError(
         "the symmetric consistency correction is plane only so far: use consistency = \"vci\" in 3D");
   const double h = s.nodes.spacing;
+  const double quadrature_factor =
+      s.quadrature_factor.value_or(s.quadrature_order == RKOrder::linear ? 2.0 : 3.0);
+  check_memory(memory_lower_bound<3>(solid.measure(), s, quadrature_factor),
+               fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
+                           solid.measure() / (h * h * h)));
   Discretisation<3> res;
   res.nodes = timer.time("clouds", [&] { return make_cloud(solid, s.nodes); });
   res.trial = timer.time("shape functions", [&] {
@@ -229,9 +238,8 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
     if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
     const double hq = h / std::cbrt(s.quadrature_ratio);
     const std::vector<Point<3>> xq = make_quadrature_cloud(solid, qc, s.quadrature_ratio);
-    const RKShapeFunctions<3> quad(
-        xq, rk_settings(xq, qc.kind, hq, s.quadrature_order, s,
-                        s.quadrature_factor.value_or(s.quadrature_order == RKOrder::linear ? 2.0 : 3.0)));
+    const RKShapeFunctions<3> quad(xq,
+                                   rk_settings(xq, qc.kind, hq, s.quadrature_order, s, quadrature_factor));
     const BackgroundLattice<3> lattice(solid, hq / s.lattice_refinement,
                                        s.quadrature_order == RKOrder::linear ? 1 : 2);
     return projected_quadrature(*res.trial, quad, lattice);

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/geometry/gmsh_solid.hpp"
@@ -73,6 +76,40 @@ BoundarySelection<3> read_selection(const SceneTable& t, const Solid& solid, std
   }
 }
 
+/// A region drawn round a face (thin across it) also clips strips off the faces it crosses
+/// edge-on: a condition meant for the face would hold on them too (a traction along a side, a
+/// clamp on a strip of it). Refused when the box, inside the solid's bounding box, is thinner
+/// than 5 % of its largest side along one axis and keeps pieces of triangles turned more than
+/// 10 degrees from that axis; allow_small_selection = true lifts it.
+void check_slivers(const SceneTable& t, const std::string& what, const BoundarySelection<3>& selected,
+                   const std::optional<AlignedBox<3>>& region, const Solid& solid) {
+  if (!region) {
+    if (t.has("allow_small_selection"))
+      t.error("allow_small_selection", "applies to conditions selected by a region");
+    return;
+  }
+  if (t.boolean_or("allow_small_selection", false)) return;
+  const AlignedBox<3> inside = region->intersection(solid.bounding_box());
+  const Point<3> extent = inside.sizes().cwiseMax(0.0);
+  Index axis = 0;
+  if (!(extent.minCoeff(&axis) < 0.05 * extent.maxCoeff())) return;
+  const double turned = std::cos(10.0 * std::numbers::pi / 180.0);
+  double area = 0.0;
+  int pieces = 0;
+  for (const BoundaryPiece<3>& p : selected) {
+    const Point<3> n = solid.surface()[static_cast<std::size_t>(p.triangle)].area_normal().normalized();
+    if (std::abs(n[axis]) >= turned) continue;
+    area += selection_area(solid, {p});
+    ++pieces;
+  }
+  if (pieces == 0) return;
+  t.error("region",
+          fmt::format("{} is thin across {} and clips {} piece(s) of area {:.3g} off the faces it crosses "
+                      "edge-on, turned from {}: the condition would hold there too. Select the face by its "
+                      "part, end the region inside the face, or set allow_small_selection = true",
+                      what, "xyz"[axis], pieces, area, "xyz"[axis]));
+}
+
 SolidExact read_exact(const SceneTable& t, const Constants& constants, const Material& law) {
   if (!std::holds_alternative<LinearElastic>(law))
     t.error("displacement",
@@ -107,16 +144,15 @@ bool is_solid_scene(const std::filesystem::path& file) {
   return domain.has("box") || domain.has("solid");
 }
 
-SolidScene read_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
+                            const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
-  for (const char* plane_only : {"dynamics", "study"})
-    if (root.has(plane_only))
-      root.error(plane_only,
-                 fmt::format("[{}] is plane only so far: a solid scene is solved by statics (Newton "
-                             "with load steps) with mfree run",
-                             plane_only));
-  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}};
+  if (root.has("dynamics"))
+    root.error("dynamics",
+               "[dynamics] is plane only so far: a solid scene is solved by statics (Newton with load "
+               "steps)");
+  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
   SolidProblem<3>& problem = out.problem;
   read_nodes_section(root.table("nodes"), s);
@@ -159,6 +195,8 @@ SolidScene read_solid_scene(const std::filesystem::path& file, const std::vector
     c.type = read_choice(t, "type", condition_table);
     std::string key, what;
     c.where = read_selection(t, out.solid, key, what);
+    check_slivers(t, what, c.where,
+                  key == "region" ? read_space_box(t, "region") : std::optional<AlignedBox<3>>(), out.solid);
     const double area = selection_area(out.solid, c.where);
     if (c.where.empty() || !(area > 0.0))
       t.error(key, fmt::format("{} selects no part of the surface (the solid's bounding box is {})", what,
@@ -225,6 +263,20 @@ SolidScene read_solid_scene(const std::filesystem::path& file, const std::vector
       if (!out.solid.contains(*out.output.probe)) t.error("probe", "the probe lies outside the solid");
     }
     t.finish();
+  }
+  if (want_study || root.has("study")) {
+    const SceneTable t = root.table("study");
+    SolidStudy st;
+    st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
+    st.orders = t.has("orders") ? read_choices(t, "orders", order_names()) : std::vector<RKOrder>{s.order};
+    if (t.has("probe")) {
+      const auto p = t.numbers("probe", 3, -1e300, 1e300);
+      st.probe = Point<3>(p[0], p[1], p[2]);
+      if (!out.solid.contains(*st.probe)) t.error("probe", "the probe lies outside the solid");
+    }
+    st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
+    t.finish();
+    out.study = st;
   }
   root.finish();
   return out;

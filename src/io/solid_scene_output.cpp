@@ -49,22 +49,25 @@ Cells3 box_tetrahedra(const AlignedBox<3>& box, double spacing) {
   return c;
 }
 
-/// The surface triangles with their corners merged (equal coordinates, one point).
-std::pair<std::vector<Point<3>>, std::vector<std::array<Index, 3>>> surface_triangles(const Solid& solid) {
-  std::map<std::array<double, 3>, Index> index;
-  std::vector<Point<3>> points;
-  std::vector<std::array<Index, 3>> triangles;
-  for (const SurfaceTriangle& t : solid.surface()) {
-    std::array<Index, 3> tri{};
-    for (std::size_t v = 0; v < 3; ++v) {
-      const Point<3>& x = t.vertices[v];
-      const auto [it, added] = index.try_emplace({x.x(), x.y(), x.z()}, static_cast<Index>(points.size()));
-      if (added) points.push_back(x);
-      tri[v] = it->second;
+/// The faces of the tetrahedra that belong to one of them: the surface of the volume mesh.
+std::vector<std::array<Index, 3>> boundary_faces(const std::vector<std::array<Index, 4>>& tetrahedra) {
+  std::map<std::array<Index, 3>, std::pair<int, std::array<Index, 3>>>
+      faces;  // sorted corners -> count, face
+  for (const std::array<Index, 4>& t : tetrahedra)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 3> face{};
+      for (int v = 0, k = 0; v < 4; ++v)
+        if (v != skip) face[static_cast<std::size_t>(k++)] = t[static_cast<std::size_t>(v)];
+      std::array<Index, 3> key = face;
+      std::sort(key.begin(), key.end());
+      auto& [count, kept] = faces[key];
+      ++count;
+      kept = face;
     }
-    triangles.push_back(tri);
-  }
-  return {std::move(points), std::move(triangles)};
+  std::vector<std::array<Index, 3>> out;
+  for (const auto& [key, entry] : faces)
+    if (entry.first == 1) out.push_back(entry.second);
+  return out;
 }
 
 void append_tensor(std::vector<double>& out, const Tensor2<3>& s) {
@@ -113,12 +116,11 @@ std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, c
   const Cells3 volume = scene.solid.mesh()
                             ? Cells3{scene.solid.mesh()->nodes(), scene.solid.mesh()->tetrahedra()}
                             : box_tetrahedra(scene.solid.bounding_box(), scene.settings.nodes.spacing);
-  if (std::vector<PointField> fields = fields_at(scene, disc, d, volume.points); !fields.empty()) {
+  if (const std::vector<PointField> fields = fields_at(scene, disc, d, volume.points); !fields.empty()) {
     files.push_back(folder / "volume.vtu");
     write_tetrahedra_vtu(files.back(), volume.points, volume.tetrahedra, fields);
-    const auto [points, triangles] = surface_triangles(scene.solid);
     files.push_back(folder / "surface.vtu");
-    write_triangles_vtu(files.back(), points, triangles, fields_at(scene, disc, d, points));
+    write_triangles_vtu(files.back(), volume.points, boundary_faces(volume.tetrahedra), fields);
   }
 
   const SolidOutput& o = scene.output;

@@ -137,8 +137,8 @@ TEST_CASE("solid scenes: a linear field on a box is reproduced to round-off, in 
     CHECK(volume.arrays.at("stress")[0] == Approx(lambda * 0.025 + 2 * mu * 0.02).epsilon(1e-9));
     CHECK(volume.components.at("stress") == 6);
     const VtuContents surface = read_vtu(out / "surface.vtu");
-    CHECK(surface.cells == 2 * 6);
-    CHECK(surface.points.size() == 8);
+    CHECK(surface.cells == 2 * 2 * (5 * 3 + 5 * 4 + 3 * 4));  // two triangles per square of each face
+    CHECK(surface.points.size() == volume.points.size());
   }
 }
 
@@ -158,6 +158,13 @@ TEST_CASE(
              Catch::Contains("overlaps boundary"));
   CHECK_THAT(refusal(replace(ok, "part = \"y_min\"", "part = \"bottom\"")),
              Catch::Contains("y_min") && Catch::Contains("bottom"));
+  // A box round x_min a little too deep clips strips off the four faces round it.
+  const std::string deep =
+      replace(ok, "region = \\[\\[-1, -1, -1\\], \\[0, 1, 1\\]\\]", "region = [[-1, -1, -1], [0.02, 1, 1]]");
+  CHECK_THAT(refusal(deep), Catch::Contains("thin across x") && Catch::Contains("allow_small_selection"));
+  CHECK_THAT(refusal(replace(deep, "region = \\[\\[-1, -1, -1\\], \\[0.02, 1, 1\\]\\]",
+                             "region = [[-1, -1, -1], [0.02, 1, 1]]\nallow_small_selection = true")),
+             Catch::Contains("overlaps boundary"));  // the strips then meet the other conditions
   CHECK_THAT(refusal(ok + "\n[dynamics]\nscheme = \"newmark\"\n"), Catch::Contains("plane only so far"));
   CHECK_THAT(refusal(replace(ok, "probe = \\[0.5, 0.3, 0.4\\]", "probe = [0.5, 0.3, 1.4]")),
              Catch::Contains("outside the solid"));

@@ -12,7 +12,8 @@ usage (from the repository root; `bash verification/report/run.sh` builds mfree 
                                                                DIR/REPORT.md, DIR/figures/, DIR/runs/
     --mfree PATH                                               the program (default build/mfree)
 
-Sections: the convergence studies (studies.py), cracks and interfaces (cracks.py), then stability (stability.py) and performance
+Sections: the convergence studies (studies.py), cracks and interfaces (cracks.py), plasticity
+(plasticity.py), solids (solids.py), then stability (stability.py) and performance
 (performance.py); each module's sections(ctx) returns a list of common.Section.
 
 Exits with status 1 when an mfree call that should have succeeded failed, a study could not be
@@ -40,6 +41,7 @@ sys.path.insert(0, str(HERE))
 import cracks  # noqa: E402
 import performance  # noqa: E402
 import plasticity  # noqa: E402
+import solids  # noqa: E402
 import stability  # noqa: E402
 import studies  # noqa: E402
 from common import Context, Section, nonfinite_fields, table  # noqa: E402
@@ -56,6 +58,7 @@ def main() -> int:
     sections = studies.sections(ctx)
     sections += module_sections(ctx, "Cracks and interfaces", cracks)
     sections += module_sections(ctx, "Plasticity", plasticity)
+    sections += module_sections(ctx, "Solids", solids)
     sections += module_sections(ctx, "Stability", stability)
     sections += module_sections(ctx, "Performance", performance)
 

@@ -20,9 +20,11 @@ struct ProbeLevel {
   std::string rate = "-";
   std::string extrapolated_x = "-";
   std::string extrapolated_y = "-";
+  std::string extrapolated_z = "-";  ///< in 3D
 };
 
-/// levels: (h, u at the probe), coarse to fine; the columns of the last one.
-ProbeLevel probe_level(const std::vector<std::pair<double, Vec2>>& levels);
+/// levels: (h, u at the probe), coarse to fine; the columns of the last one (dim 2 or 3).
+template <int dim>
+ProbeLevel probe_level(const std::vector<std::pair<double, Point<dim>>>& levels);
 
 }  // namespace mfree

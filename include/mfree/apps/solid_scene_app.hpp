@@ -1,8 +1,10 @@
 #pragma once
-// `mfree run` for solid scenes (io/solid_scene.hpp): the discretisation of the solid, the
-// check that no rigid-body motion is free, Newton with load steps (a linear law: one step),
-// the errors against [exact], the probe, summary.json and the fields for ParaView
-// (io/solid_scene_output.hpp).
+// `mfree run` and `mfree converge` for solid scenes (io/solid_scene.hpp). A run: the
+// discretisation of the solid, the check that no rigid-body motion is free, Newton with load
+// steps (a linear law: one step), the errors against [exact], the probe, summary.json and the
+// fields for ParaView (io/solid_scene_output.hpp). A study ([study]): the same solve at every
+// spacing and RK order, the errors and their rates (or the probe's change between levels
+// without [exact]), convergence.csv and its plots.
 
 #include <filesystem>
 #include <string>
@@ -10,6 +12,8 @@
 
 namespace mfree {
 
-int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+/// `study`: mfree converge (needs [study]); else mfree run.
+int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                    bool study = false);
 
 }  // namespace mfree

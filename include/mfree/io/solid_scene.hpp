@@ -22,9 +22,15 @@
 //                 "name" or region = [[x0, y0, z0], [x1, y1, z1]] (the surface triangles' parts
 //                 inside the box); value = "exact", [vx, vy, vz] (numbers or formulas), or for
 //                 pressure p (positive into the body). A selector that selects no area, and two
-//                 conditions on one part of the surface, are errors.
+//                 conditions on one part of the surface, are errors; so is a region thin across
+//                 one axis (below 5 % of its largest side in the solid's box) that clips
+//                 pieces off faces turned from that axis (strips of the faces round the one
+//                 meant), unless allow_small_selection = true.
 //   [output]      folder, fields (displacement, stress, von_mises, plastic_strain, error), vtk,
 //                 probe = [x, y, z] (u^h there after every load step)
+//   [study]       for `mfree converge`: spacings, orders (default the scene's), probe = [x, y,
+//                 z] (default [output]'s; needed without [exact]), quadratic_factor (the
+//                 support factor of an order the scene does not run, default 3)
 //
 // Statics by Newton with load steps (a linear law: one step, one iteration). Formulas take
 // no t: a static run scales its loads by the load factor. Every key is type- and
@@ -51,6 +57,13 @@ struct SolidExact {
   [[nodiscard]] Tensor2<3> gradient_at(const Point<3>& x) const;
 };
 
+struct SolidStudy {
+  std::vector<double> spacings;
+  std::vector<RKOrder> orders;
+  std::optional<Point<3>> probe;
+  double quadratic_factor = 3.0;
+};
+
 struct SolidOutput {
   std::filesystem::path folder;
   std::set<std::string> fields;  ///< empty: nothing computed or written
@@ -75,6 +88,7 @@ struct SolidScene {
   std::optional<SolidExact> exact;
   SolidOutput output;
   std::vector<SelectedSurface> selected;  ///< per [[boundary]], in order
+  std::optional<SolidStudy> study;
 
   /// A line per [[boundary]]: name, type, what it selects and the area selected.
   [[nodiscard]] std::string describe_conditions() const;
@@ -83,8 +97,9 @@ struct SolidScene {
 /// True when the scene's [domain] gives `box` or `solid`.
 bool is_solid_scene(const std::filesystem::path& file);
 
-/// Parses and checks a solid scene (reading and meshing its part); `overrides` as Scene::load.
-SolidScene read_solid_scene(const std::filesystem::path& file,
+/// Parses and checks a solid scene (reading and meshing its part); `want_study` makes [study]
+/// required (mfree converge); `overrides` as Scene::load.
+SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study = false,
                             const std::vector<std::string>& overrides = {});
 
 }  // namespace mfree

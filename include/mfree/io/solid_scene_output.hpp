@@ -3,7 +3,8 @@
 //
 //   volume.vtu   a tetrahedral mesh of the solid (gmsh's tetrahedra; a box split into six
 //                tetrahedra per cube of the node spacing) with, at its vertices,
-//   surface.vtu  the solid's surface triangles with the same fields at theirs:
+//   surface.vtu  the faces of those tetrahedra on the surface (the same points, so the
+//                same values), for a look at the outside:
 //       displacement  u^h = sum phi_I d_I (never the coefficients)
 //       stress        Cauchy stress of F^h = I + grad u^h (xx, yy, zz, yz, xz, xy)
 //       von_mises     of that stress
