@@ -146,45 +146,35 @@ void check_scheme_keys(const SceneTable& t, QuadratureScheme scheme, const std::
   refuse("gauss_points", QuadratureScheme::gauss_cells);
 }
 
-}  // namespace
-
-ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study,
-                                      const std::vector<std::string>& overrides) {
-  const Scene scene = Scene::load(file, overrides);
-  const SceneTable root = scene.root();
-  ElasticityScene out{file, {}, {}, {}, {}, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {},
-                      {},   {}, {}, {}, {}};
-  ElasticitySettings& s = out.settings;
-
-  {
-    const SceneTable t = root.table("domain");
-    if (t.has("rectangle") == t.has("mesh")) t.error("rectangle", "give exactly one of 'rectangle' and 'mesh'");
-    if (t.has("rectangle")) {
-      const Box b = read_box(t, "rectangle");
-      if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
-      out.domain = Domain::rectangle(b.lo, b.hi);
-      for (const char* key : {"regions", "interfaces"})
-        if (t.has(key))
-          t.error(key, "regions are polygons of a mesh file (WKT or gmsh): a rectangle is one region");
-    } else {
-      RegionOptions regions;
-      if (t.has("regions")) regions.names = t.names("regions");
-      regions.interfaces = read_choice_or(t, "interfaces", interface_names, true);
-      try {
-        out.domain = Domain::from_file(root.folder() / t.string("mesh"), regions);
-      } catch (const InputError& e) {
-        t.error("mesh", e.what());
-      }
-      if (t.has("interfaces") && out.domain.regions().empty())
-        t.error("interfaces",
-                "the domain has one region (the file holds one polygon or one physical surface)");
+/// [domain]: a rectangle, or a WKT or gmsh file (its regions and interfaces).
+void read_plane_domain(const SceneTable& root, ElasticityScene& out) {
+  const SceneTable t = root.table("domain");
+  if (t.has("rectangle") == t.has("mesh")) t.error("rectangle", "give exactly one of 'rectangle' and 'mesh'");
+  if (t.has("rectangle")) {
+    const Box b = read_box(t, "rectangle");
+    if (!(b.hi.array() > b.lo.array()).all()) t.error("rectangle", "the corners must differ in x and y");
+    out.domain = Domain::rectangle(b.lo, b.hi);
+    for (const char* key : {"regions", "interfaces"})
+      if (t.has(key))
+        t.error(key, "regions are polygons of a mesh file (WKT or gmsh): a rectangle is one region");
+  } else {
+    RegionOptions regions;
+    if (t.has("regions")) regions.names = t.names("regions");
+    regions.interfaces = read_choice_or(t, "interfaces", interface_names, true);
+    try {
+      out.domain = Domain::from_file(root.folder() / t.string("mesh"), regions);
+    } catch (const InputError& e) {
+      t.error("mesh", e.what());
     }
-    t.finish();
+    if (t.has("interfaces") && out.domain.regions().empty())
+      t.error("interfaces", "the domain has one region (the file holds one polygon or one physical surface)");
   }
-  read_nodes_section(root.table("nodes"), s);
-  read_kernel_section(root.table("kernel"), s, 2);
-  const SceneTable quadrature = root.optional_table("quadrature");
-  read_quadrature_section(quadrature, s, 2);
+  t.finish();
+}
+
+/// [material], or [[material]] tables giving the regions their laws.
+void read_plane_materials(const SceneTable& root, ElasticityScene& out) {
+  ElasticitySettings& s = out.settings;
   if (root.is_array_of_tables("material")) {
     // One law per region, each [[material]] naming the regions it fills.
     const std::vector<Region>& regions = out.domain.regions();
@@ -246,7 +236,10 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     out.material = m.material;
     out.density = m.density;
   }
-  out.constants = read_constants(root);
+}
+
+/// [loads]: body_force (formulas in x, y), gravity (times the density).
+void read_loads(const SceneTable& root, ElasticityScene& out) {
   const bool dynamics = root.has("dynamics");
   if (root.has("loads")) {
     const SceneTable t = root.table("loads");
@@ -265,6 +258,12 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     if (!t.has("body_force") && !t.has("gravity")) t.error("body_force", "give body_force or gravity (or both)");
     t.finish();
   }
+}
+
+/// [exact]: a built-in solution, or u with sigma or grad u as formulas.
+void read_exact(const SceneTable& root, ElasticityScene& out) {
+  const ElasticitySettings& s = out.settings;
+  const bool dynamics = root.has("dynamics");
   if (root.has("exact")) {
     const SceneTable t = root.table("exact");
     ExactSpec e;
@@ -309,9 +308,14 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.exact_spec = std::move(e);
   }
+}
+
+/// [[boundary]] tables: each condition, its selection checked against slivers and overlaps.
+void read_boundaries(const SceneTable& root, ElasticityScene& out) {
+  ElasticitySettings& s = out.settings;
+  const bool dynamics = root.has("dynamics");
   const std::optional<ExactElasticity> exact = out.exact();
   const std::vector<SceneTable> boundaries = root.tables("boundary");
-  std::vector<std::string> selector_keys;
   for (const SceneTable& t : boundaries) {
     BoundaryCondition<2> c;
     c.name = t.string("name");
@@ -354,11 +358,11 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     s.problem.conditions.push_back(c);
   }
-  s.problem.body_force = out.static_body_force();
-  if (root.has("nitsche"))
-    s.problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), s.problem.nitsche_beta);
-  if (root.has("solver")) read_solver_section(root.table("solver"), s);
-  if (root.has("newton")) out.newton = read_newton_section(root.table("newton"), s.solver);
+}
+
+/// [dynamics]: the time scheme, its steps, frames, error times and initial fields.
+void read_dynamics(const SceneTable& root, ElasticityScene& out) {
+  const ElasticitySettings& s = out.settings;
   if (root.has("dynamics")) {
     const SceneTable t = root.table("dynamics");
     DynamicsScene dyn;
@@ -386,36 +390,48 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.dynamics = dyn;
   }
-  {
-    const SceneTable t = root.table("output");
-    out.output.folder = read_output_folder(t);
-    // An empty list asks for nothing: no stress recovery, no files.
-    if (t.has("fields") && !(t.is_array_empty("fields")))
-      for (const auto& f :
-           t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error", "weights"}))
-        out.output.fields.insert(f);
-    if (out.output.wants("plastic_strain") && !out.law_with(has_history))
-      t.error("fields",
-              fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not the {}",
-                          out.law_names()));
-    out.output.vtk = t.boolean_or("vtk", true);
-    if (out.output.wants("velocity") && !out.dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
-    if (t.has("probe")) {
-      const auto p = t.numbers("probe", 2, -1e300, 1e300);
-      out.output.probe = Vec2(p[0], p[1]);
-      if (!out.domain.contains(*out.output.probe)) t.error("probe", "the probe lies outside the domain");
-    }
-    if (out.output.wants("error") && !exact && !out.motion()) t.error("fields", "'error' needs an [exact] section");
-    out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
-    if (out.output.eigenvalues > 0 && out.nonlinear())
-      t.error("eigenvalues", "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
-    out.output.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));
-    if (out.output.checkpoint_every > 0 && !out.dynamics)
-      t.error("checkpoint_every", "checkpoints are for [dynamics] runs (and MPM runs)");
-    if (out.output.checkpoint_every > 0 && want_study)
-      t.error("checkpoint_every", "a study is not checkpointed: checkpoints are for one long `mfree run`");
-    t.finish();
+}
+
+/// [output]: the folder, the fields, the probe, eigenvalues and checkpoints.
+void read_output(const SceneTable& root, ElasticityScene& out, bool want_study) {
+  const std::optional<ExactElasticity> exact = out.exact();
+  const SceneTable t = root.table("output");
+  out.output.folder = read_output_folder(t);
+  // An empty list asks for nothing: no stress recovery, no files.
+  if (t.has("fields") && !(t.is_array_empty("fields")))
+    for (const auto& f : t.choices("fields", {"displacement", "velocity", "stress", "von_mises",
+                                              "plastic_strain", "error", "weights"}))
+      out.output.fields.insert(f);
+  if (out.output.wants("plastic_strain") && !out.law_with(has_history))
+    t.error("fields",
+            fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not the {}",
+                        out.law_names()));
+  out.output.vtk = t.boolean_or("vtk", true);
+  if (out.output.wants("velocity") && !out.dynamics)
+    t.error("fields", "'velocity' needs a [dynamics] section");
+  if (t.has("probe")) {
+    const auto p = t.numbers("probe", 2, -1e300, 1e300);
+    out.output.probe = Vec2(p[0], p[1]);
+    if (!out.domain.contains(*out.output.probe)) t.error("probe", "the probe lies outside the domain");
   }
+  if (out.output.wants("error") && !exact && !out.motion())
+    t.error("fields", "'error' needs an [exact] section");
+  out.output.eigenvalues = static_cast<int>(t.integer_or("eigenvalues", 0, 0, 100));
+  if (out.output.eigenvalues > 0 && out.nonlinear())
+    t.error(
+        "eigenvalues",
+        "stiffness eigenvalues are for linear statics (no [dynamics] or [newton], a small-strain material)");
+  out.output.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));
+  if (out.output.checkpoint_every > 0 && !out.dynamics)
+    t.error("checkpoint_every", "checkpoints are for [dynamics] runs (and MPM runs)");
+  if (out.output.checkpoint_every > 0 && want_study)
+    t.error("checkpoint_every", "a study is not checkpointed: checkpoints are for one long `mfree run`");
+  t.finish();
+}
+
+/// [study] (mfree converge; required when `want_study`).
+void read_study(const SceneTable& root, ElasticityScene& out, bool want_study) {
+  const ElasticitySettings& s = out.settings;
   if (want_study && !out.dynamics && out.nonlinear())
     root.error("study", "mfree converge runs linear statics and dynamics; this scene is solved by Newton (a "
                         "finite-strain material or [newton]): run it with mfree run");
@@ -460,6 +476,36 @@ ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool wa
     t.finish();
     out.study = st;
   }
+}
+
+}  // namespace
+
+ElasticityScene read_elasticity_scene(const std::filesystem::path& file, bool want_study,
+                                      const std::vector<std::string>& overrides) {
+  const Scene scene = Scene::load(file, overrides);
+  const SceneTable root = scene.root();
+  ElasticityScene out{file, {}, {}, {}, {}, Domain::rectangle(Vec2(0, 0), Vec2(1, 1)), {}, {}, 0.0, {}, {},
+                      {},   {}, {}, {}, {}};
+  ElasticitySettings& s = out.settings;
+
+  read_plane_domain(root, out);
+  read_nodes_section(root.table("nodes"), s);
+  read_kernel_section(root.table("kernel"), s, 2);
+  const SceneTable quadrature = root.optional_table("quadrature");
+  read_quadrature_section(quadrature, s, 2);
+  read_plane_materials(root, out);
+  out.constants = read_constants(root);
+  read_loads(root, out);
+  read_exact(root, out);
+  read_boundaries(root, out);
+  s.problem.body_force = out.static_body_force();
+  if (root.has("nitsche"))
+    s.problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), s.problem.nitsche_beta);
+  if (root.has("solver")) read_solver_section(root.table("solver"), s);
+  if (root.has("newton")) out.newton = read_newton_section(root.table("newton"), s.solver);
+  read_dynamics(root, out);
+  read_output(root, out, want_study);
+  read_study(root, out, want_study);
   check_scheme_keys(quadrature, s.scheme, out.study);
   root.finish();
   return out;
