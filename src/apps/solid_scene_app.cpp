@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -20,6 +21,7 @@
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_scene.hpp"
 #include "mfree/io/solid_scene_output.hpp"
+#include "mfree/io/vtk_output.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 
 namespace mfree {
@@ -173,6 +175,102 @@ int run(const SolidScene& scene) {
   return 0;
 }
 
+/// A dynamic run: the discretisation, the initial fields projected onto the RK functions,
+/// central differences or Newmark to end_time, frames of the fields (volume.pvd and
+/// surface.pvd), energy.csv and the balance at the end.
+int run_dynamics(const SolidScene& scene) {
+  const SolidDynamics& dyn = *scene.dynamics;
+  const SolidOutput& o = scene.output;
+  const ElasticitySettings& s = scene.settings;
+  StageTimer timer;
+  timer.report_to(&std::cout);
+  const Discretisation<3> disc = discretise(scene.solid, s, condition_parts(scene.problem.conditions), timer);
+  TotalLagrangian<3> model(scene.problem, scene.solid, disc.node_count(), disc.quadrature, disc.test(),
+                           disc.boundary, disc.at_boundary);
+  timer.report_to(nullptr);
+  std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points, {} RK, spacing {}, {}\n",
+                           disc.nodes.size(), model.dofs(), disc.quadrature.size(), to_string(s.order),
+                           s.nodes.spacing, to_string(dyn.settings.scheme));
+  const auto project = [&](const std::optional<SpaceVectorFormula>& f) -> Eigen::VectorXd {
+    if (!f) return Eigen::VectorXd::Zero(model.dofs());
+    return timer.time("initial fields", [&] {
+      return project_velocity(
+          model, disc.nodes, [&](const Point<3>& x) { return (*f)(x); }, s.solver);
+    });
+  };
+  const Eigen::VectorXd d0 = project(dyn.initial_displacement), v0 = project(dyn.initial_velocity);
+  std::optional<GalerkinQuadrature<3>> probe_at;
+  if (o.probe) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
+  std::vector<std::pair<double, std::string>> volume_frames, surface_frames;
+  int frame = 0;
+  const auto write_frame = [&](const DynamicState& state) {
+    if (probe_at) {
+      const Point<3> u = displacement_at(*probe_at, 0, state.d);
+      std::cout << fmt::format("  t = {:.6g}: probe u^h = ({:.9e}, {:.9e}, {:.9e})\n", state.time, u.x(),
+                               u.y(), u.z());
+    }
+    if (!o.vtk || o.fields.empty()) return;
+    const std::string suffix = fmt::format("_{:04d}", frame++);
+    const auto files = timer.time(
+        "output", [&] { return write_solid_fields(scene, disc, model, state.d, &state.v, suffix); });
+    for (const auto& f : files) {
+      const std::string name = f.filename().string();
+      if (name.starts_with("volume")) volume_frames.emplace_back(state.time, name);
+      if (name.starts_with("surface")) surface_frames.emplace_back(state.time, name);
+    }
+    write_pvd(o.folder / "volume.pvd", volume_frames);
+    write_pvd(o.folder / "surface.pvd", surface_frames);
+  };
+  DynamicsSettings ds = dyn.settings;
+  ds.newton.solver = s.solver;
+  ds.progress = &std::cout;
+  const double end = ds.end_time;
+  const DynamicsResult r =
+      integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, [&](const DynamicState& state) {
+        // Frames at k end / frames (and t = 0): the first step at or past each.
+        const int wanted =
+            dyn.frames > 0 ? static_cast<int>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
+        if (state.step == 0 || (dyn.frames > 0 && wanted >= frame)) write_frame(state);
+      });
+  std::cout << fmt::format(
+      "  {} steps of dt = {:.6g}{}\n", r.steps, r.time_step,
+      r.stability_limit ? fmt::format(" (stability limit {:.6g})", *r.stability_limit) : "");
+  RunSummary summary("solid_dynamics", scene.file);
+  summary.number("nodes", static_cast<double>(disc.nodes.size()));
+  summary.number("dofs", static_cast<double>(model.dofs()));
+  summary.number("time_step", r.time_step);
+  summary.number("steps", r.steps);
+  if (r.stability_limit) summary.number("stability_limit", *r.stability_limit);
+  if (r.solver) summary.text("solver", r.solver->text());
+  if (!r.energy.empty()) {
+    std::string csv = "time,kinetic,strain,external_work,dissipated,balance\n";
+    const EnergyRecord& first = r.energy.front();
+    const double e0 = first.kinetic + first.strain;
+    double scale = 0.0, worst = 0.0;
+    for (const EnergyRecord& e : r.energy)
+      scale = std::max({scale, e.kinetic, e.strain, std::abs(e.external_work)});
+    for (const EnergyRecord& e : r.energy) {
+      const double balance = e.kinetic + e.strain + e.dissipated - e.external_work - e0;
+      worst = std::max(worst, std::abs(balance));
+      csv += fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", e.time, e.kinetic, e.strain,
+                         e.external_work, e.dissipated, balance);
+    }
+    write_file_atomically(o.folder / "energy.csv", csv);
+    std::cout << fmt::format(
+        "  energy balance: largest |E_kin + E_strain + dissipated - work - E_0| {:.3e} of the "
+        "largest energy {:.3e}; wrote energy.csv\n",
+        worst, scale);
+    summary.number("energy_balance_relative", scale > 0.0 ? worst / scale : 0.0);
+  }
+  if (frame > 0)
+    std::cout << fmt::format("  wrote {} frames: open volume.pvd (or surface.pvd) in ParaView\n", frame);
+  std::cout << "stages:\n";
+  print_stages(timer);
+  summary.stages(timer);
+  summary.write(o.folder);
+  return 0;
+}
+
 /// The refinement study: every order at every spacing; errors and their rates with [exact],
 /// else the probe's change (SPEC section 8); convergence.csv and its plots.
 int converge(const SolidScene& scene) {
@@ -276,7 +374,9 @@ int run_solid_scene(const std::filesystem::path& file, const std::vector<std::st
     std::cout << fmt::format("mfree run: {} (solid, {}, {} thread(s))\n", file.string(), scene.model,
                              thread_count());
   std::cout << describe_solid(scene.solid) << scene.describe_conditions();
-  return in_staged_folder(scene.output.folder, [&] { return study ? converge(scene) : run(scene); });
+  return in_staged_folder(scene.output.folder, [&] {
+    return study ? converge(scene) : scene.dynamics ? run_dynamics(scene) : run(scene);
+  });
 }
 
 }  // namespace mfree

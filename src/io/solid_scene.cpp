@@ -24,14 +24,15 @@ const NameTable<ConditionType> condition_table{{"displacement", ConditionType::d
                                                {"pressure", ConditionType::pressure}};
 
 /// No formula of a static run may use t: it would be evaluated at t = 0 only.
-void check_static(const SceneTable& t, const std::string& key, const Formula& f) {
-  if (f.depends_on_time())
-    t.error(key, fmt::format("formula '{}' uses t, but a solid scene is static (loads are scaled by the load "
-                             "factor, not by time)",
+void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics = false) {
+  if (f.depends_on_time() && !dynamics)
+    t.error(key, fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales "
+                             "loads by its load factor)",
                              f.expression()));
 }
-void check_static(const SceneTable& t, const std::string& key, const SpaceVectorFormula& f) {
-  for (const Formula* c : {&f.x, &f.y, &f.z}) check_static(t, key, *c);
+void check_static(const SceneTable& t, const std::string& key, const SpaceVectorFormula& f,
+                  bool dynamics = false) {
+  for (const Formula* c : {&f.x, &f.y, &f.z}) check_static(t, key, *c, dynamics);
 }
 
 std::string box_text(const AlignedBox<3>& b) {
@@ -148,11 +149,8 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
                             const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
-  if (root.has("dynamics"))
-    root.error("dynamics",
-               "[dynamics] is plane only so far: a solid scene is solved by statics (Newton with load "
-               "steps)");
-  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}};
+  const bool dynamics = root.has("dynamics");
+  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
   SolidProblem<3>& problem = out.problem;
   read_nodes_section(root.table("nodes"), s);
@@ -173,7 +171,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     Point<3> gravity = Point<3>::Zero();
     if (t.has("body_force")) {
       force = read_space_vector_formula(t, "body_force", constants);
-      check_static(t, "body_force", *force);
+      check_static(t, "body_force", *force, dynamics);
     }
     if (t.has("gravity")) {
       const auto g = t.numbers("gravity", 3, -1e300, 1e300);
@@ -183,11 +181,17 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     if (!t.has("body_force") && !t.has("gravity"))
       t.error("body_force", "give body_force or gravity (or both)");
     t.finish();
-    problem.body_force = [force, gravity](const Point<3>& x, double) {
-      return force ? Point<3>((*force)(x) + gravity) : gravity;
+    problem.body_force = [force, gravity](const Point<3>& x, double time) {
+      return force ? Point<3>((*force)(x, time) + gravity) : gravity;
     };
   }
-  if (root.has("exact")) out.exact = read_exact(root.table("exact"), constants, m.material);
+  if (root.has("exact")) {
+    if (dynamics)
+      root.table("exact").error("displacement",
+                                "a solid's [exact] is static so far: errors of a [dynamics] run "
+                                "against a motion are plane only");
+    out.exact = read_exact(root.table("exact"), constants, m.material);
+  }
 
   for (const SceneTable& t : root.tables("boundary")) {
     BoundaryCondition<3> c;
@@ -212,8 +216,8 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     out.selected.push_back({c.name, condition_table.name(c.type), what, area});
     if (c.type == ConditionType::pressure) {
       const Formula p = read_formula(t, "value", constants, 3);
-      check_static(t, "value", p);
-      c.pressure = [p](const Point<3>& x, double) { return p(x); };
+      check_static(t, "value", p, dynamics);
+      c.pressure = [p](const Point<3>& x, double time) { return p(x, time); };
     } else if (t.is_string("value")) {
       (void)t.choice("value", {"exact"});
       if (!out.exact) t.error("value", "'exact' needs an [exact] section");
@@ -230,8 +234,8 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
       }
     } else {
       const SpaceVectorFormula v = read_space_vector_formula(t, "value", constants);
-      check_static(t, "value", v);
-      c.value = [v](const Point<3>& x, const Point<3>&, double) { return v(x); };
+      check_static(t, "value", v, dynamics);
+      c.value = [v](const Point<3>& x, const Point<3>&, double time) { return v(x, time); };
     }
     t.finish();
     problem.conditions.push_back(std::move(c));
@@ -245,17 +249,40 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     out.newton.load_steps = 1;
     out.newton.solver = s.solver;
   }
+  if (dynamics) {
+    const SceneTable t = root.table("dynamics");
+    SolidDynamics dyn;
+    DynamicsSettings& d = dyn.settings;
+    d.scheme = read_choice(t, "scheme", time_scheme_names());
+    d.end_time = t.number("end_time", 1e-300, 1e300);
+    if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
+    if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
+    d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
+    d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
+    dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
+    for (const char* key : {"initial_displacement", "initial_velocity"}) {
+      if (!t.has(key)) continue;
+      const SpaceVectorFormula f = read_space_vector_formula(t, key, constants);
+      if (f.depends_on_time()) t.error(key, "an initial field is a function of x, y and z, not of t");
+      (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
+    }
+    if (!(m.density > 0.0)) t.error("scheme", "dynamics needs the material's density ([material] density)");
+    d.newton = out.newton;
+    t.finish();
+    out.dynamics = dyn;
+  }
   {
     const SceneTable t = root.table("output");
     out.output.folder = read_output_folder(t);
     if (t.has("fields") && !t.is_array_empty("fields"))
-      for (const auto& f :
-           t.choices("fields", {"displacement", "stress", "von_mises", "plastic_strain", "error"}))
+      for (const auto& f : t.choices(
+               "fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error"}))
         out.output.fields.insert(f);
     if (out.output.wants("plastic_strain") && !has_history(problem.material))
       t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
                                     name(problem.material)));
     if (out.output.wants("error") && !out.exact) t.error("fields", "'error' needs an [exact] section");
+    if (out.output.wants("velocity") && !dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
     out.output.vtk = t.boolean_or("vtk", true);
     if (t.has("probe")) {
       const auto p = t.numbers("probe", 3, -1e300, 1e300);
@@ -266,6 +293,9 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   }
   if (want_study || root.has("study")) {
     const SceneTable t = root.table("study");
+    if (dynamics)
+      t.error("spacings",
+              "a study of a solid's [dynamics] run is not done yet: mfree converge runs solid statics");
     SolidStudy st;
     st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
     st.orders = t.has("orders") ? read_choices(t, "orders", order_names()) : std::vector<RKOrder>{s.order};

@@ -76,16 +76,21 @@ void append_tensor(std::vector<double>& out, const Tensor2<3>& s) {
 
 /// The fields at `points` (the header's), those a law with history has elsewhere left out.
 std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<3>& disc,
-                                  const Eigen::VectorXd& d, const std::vector<Point<3>>& points) {
+                                  const Eigen::VectorXd& d, const Eigen::VectorXd* v,
+                                  const std::vector<Point<3>>& points) {
   const SolidOutput& o = scene.output;
   const Material& law = scene.problem.material;
   const bool stresses = !has_history(law) && (o.wants("stress") || o.wants("von_mises"));
   const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, points, stresses);
-  PointField u{"displacement", 3, {}}, stress{"stress", 6, {}}, mises{"von_mises", 1, {}},
-      error{"error", 3, {}};
+  PointField u{"displacement", 3, {}}, velocity{"velocity", 3, {}}, stress{"stress", 6, {}},
+      mises{"von_mises", 1, {}}, error{"error", 3, {}};
   for (Index k = 0; k < at.size(); ++k) {
     const Point<3> uh = displacement_at(at, k, d);
     u.values.insert(u.values.end(), uh.data(), uh.data() + 3);
+    if (v && o.wants("velocity")) {
+      const Point<3> vh = displacement_at(at, k, *v);
+      velocity.values.insert(velocity.values.end(), vh.data(), vh.data() + 3);
+    }
     if (o.wants("error")) {
       const Point<3> e = uh - scene.exact->displacement(points[static_cast<std::size_t>(k)]);
       error.values.insert(error.values.end(), e.data(), e.data() + 3);
@@ -100,6 +105,7 @@ std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<
   }
   std::vector<PointField> fields;
   if (o.wants("displacement")) fields.push_back(std::move(u));
+  if (v && o.wants("velocity")) fields.push_back(std::move(velocity));
   if (stresses && o.wants("stress")) fields.push_back(std::move(stress));
   if (stresses && o.wants("von_mises")) fields.push_back(std::move(mises));
   if (o.wants("error")) fields.push_back(std::move(error));
@@ -110,16 +116,17 @@ std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<
 
 std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, const Discretisation<3>& disc,
                                                       const TotalLagrangian<3>& model,
-                                                      const Eigen::VectorXd& d) {
+                                                      const Eigen::VectorXd& d, const Eigen::VectorXd* v,
+                                                      const std::string& suffix) {
   const std::filesystem::path& folder = scene.output.folder;
   std::vector<std::filesystem::path> files;
   const Cells3 volume = scene.solid.mesh()
                             ? Cells3{scene.solid.mesh()->nodes(), scene.solid.mesh()->tetrahedra()}
                             : box_tetrahedra(scene.solid.bounding_box(), scene.settings.nodes.spacing);
-  if (const std::vector<PointField> fields = fields_at(scene, disc, d, volume.points); !fields.empty()) {
-    files.push_back(folder / "volume.vtu");
+  if (const std::vector<PointField> fields = fields_at(scene, disc, d, v, volume.points); !fields.empty()) {
+    files.push_back(folder / ("volume" + suffix + ".vtu"));
     write_tetrahedra_vtu(files.back(), volume.points, volume.tetrahedra, fields);
-    files.push_back(folder / "surface.vtu");
+    files.push_back(folder / ("surface" + suffix + ".vtu"));
     write_triangles_vtu(files.back(), volume.points, boundary_faces(volume.tetrahedra), fields);
   }
 
@@ -141,7 +148,7 @@ std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, c
     if (o.wants("stress")) fields.push_back(std::move(stress));
     if (o.wants("von_mises")) fields.push_back(std::move(mises));
     if (o.wants("plastic_strain")) fields.push_back(std::move(alpha));
-    files.push_back(folder / "points.vtu");
+    files.push_back(folder / ("points" + suffix + ".vtu"));
     write_point_cloud_vtu(files.back(), q.points, fields);
   }
   return files;

@@ -26,14 +26,20 @@
 //                 one axis (below 5 % of its largest side in the solid's box) that clips
 //                 pieces off faces turned from that axis (strips of the faces round the one
 //                 meant), unless allow_small_selection = true.
-//   [output]      folder, fields (displacement, stress, von_mises, plastic_strain, error), vtk,
-//                 probe = [x, y, z] (u^h there after every load step)
+//   [dynamics]    scheme (central_difference | newmark), end_time, time_step (newmark's, or the
+//                 explicit one's instead of stability_factor times the limit), energy_every,
+//                 frames (field frames over the run), initial_displacement, initial_velocity =
+//                 [fx, fy, fz] (formulas in x, y, z); needs [material] density. Loads and
+//                 boundary values may then use t.
+//   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain,
+//                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame)
 //   [study]       for `mfree converge`: spacings, orders (default the scene's), probe = [x, y,
 //                 z] (default [output]'s; needed without [exact]), quadratic_factor (the
 //                 support factor of an order the scene does not run, default 3)
 //
-// Statics by Newton with load steps (a linear law: one step, one iteration). Formulas take
-// no t: a static run scales its loads by the load factor. Every key is type- and
+// Statics by Newton with load steps (a linear law: one step, one iteration): its formulas take
+// no t (it scales its loads by the load factor); dynamics by central differences or Newmark.
+// Every key is type- and
 // range-checked; unknown keys are errors (scene_reader.hpp).
 
 #include <filesystem>
@@ -43,6 +49,7 @@
 #include <vector>
 
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/geometry/solid.hpp"
@@ -55,6 +62,14 @@ struct SolidExact {
   SpaceVectorFormula displacement;
   std::vector<Formula> gradient;  ///< 9 formulas, row by row
   [[nodiscard]] Tensor2<3> gradient_at(const Point<3>& x) const;
+};
+
+/// [dynamics] of a solid scene.
+struct SolidDynamics {
+  DynamicsSettings settings;
+  std::optional<SpaceVectorFormula> initial_displacement;  ///< u(X, 0), L2-projected onto the RK functions
+  std::optional<SpaceVectorFormula> initial_velocity;      ///< v(X, 0), likewise
+  int frames = 0;  ///< field frames written, evenly over the run (plus t = 0)
 };
 
 struct SolidStudy {
@@ -84,7 +99,8 @@ struct SolidScene {
   std::string model;            ///< [material] model, as the scene names it
   ElasticitySettings settings;  ///< nodes, kernel, quadrature, solver (settings.problem unused)
   SolidProblem<3> problem;      ///< the law, the loads, the conditions, Nitsche's beta, the spacing
-  NewtonSettings newton;        ///< [newton], or one load step
+  NewtonSettings newton;        ///< [newton], or one load step (and Newmark's iterations)
+  std::optional<SolidDynamics> dynamics;
   std::optional<SolidExact> exact;
   SolidOutput output;
   std::vector<SelectedSurface> selected;  ///< per [[boundary]], in order

@@ -6,6 +6,7 @@
 //   surface.vtu  the faces of those tetrahedra on the surface (the same points, so the
 //                same values), for a look at the outside:
 //       displacement  u^h = sum phi_I d_I (never the coefficients)
+//       velocity      v^h = sum phi_I v_I (dynamics)
 //       stress        Cauchy stress of F^h = I + grad u^h (xx, yy, zz, yz, xz, xy)
 //       von_mises     of that stress
 //       error         u^h - u against [exact]
@@ -17,6 +18,7 @@
 // Files are written atomically (io/vtk_output.hpp).
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "mfree/galerkin/elasticity_solver.hpp"
@@ -25,9 +27,12 @@
 
 namespace mfree {
 
-/// Writes the files above into scene.output.folder; returns their paths.
+/// Writes the files above into scene.output.folder, each name followed by `suffix` (a
+/// frame's "_0003"); v: the velocity coefficients (dynamics) or null. Returns their paths.
 std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, const Discretisation<3>& disc,
                                                       const TotalLagrangian<3>& model,
-                                                      const Eigen::VectorXd& d);
+                                                      const Eigen::VectorXd& d,
+                                                      const Eigen::VectorXd* v = nullptr,
+                                                      const std::string& suffix = "");
 
 }  // namespace mfree
