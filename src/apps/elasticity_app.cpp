@@ -46,7 +46,7 @@ int run_linear_statics(const ElasticityScene& scene) {
         "  relative errors: L2 displacement {:.4e}, energy {:.4e}, L2 stress {:.4e}; strain energy {:.7g}\n",
         r.errors->l2_displacement, r.errors->energy, r.errors->l2_stress, r.errors->strain_energy);
 
-  const Reactions reactions =
+  const Reactions<2> reactions =
       r.timer.time("reactions", [&] { return elastic_reactions(scene.domain, s, r); });
   std::cout << reaction_lines(reactions);
   for (const TipIntensity& t : r.tips)

@@ -97,7 +97,7 @@ int run_static(const ElasticityScene& scene) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
   // The reactions of every converged step (reactions.csv), the last one reported.
   ReactionTable reaction_table("load_factor", essential_parts(model.problem()), false);
-  std::optional<Reactions> last_reactions;
+  std::optional<Reactions<2>> last_reactions;
   const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
     last_reactions = timer.time("reactions", [&] { return reactions(model, d, {step.factor, 0.0}); });
     reaction_table.add(static_cast<int>(reaction_table.size()) + 1, step.factor, *last_reactions);
@@ -342,8 +342,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
     const bool last = s.time >= end * (1 - 1e-12);
     if (run.reactions &&
         (s.step == 0 || last || (settings.energy_every > 0 && s.step % settings.energy_every == 0))) {
-      Reactions re = timer.time("reactions", [&] {
-        Reactions r = reactions(model, s.d, {1.0, s.time});
+      Reactions<2> re = timer.time("reactions", [&] {
+        Reactions<2> r = reactions(model, s.d, {1.0, s.time});
         r.inertia = nodal_resultant(s.inertia(), disc.nodes, s.d, r.current_arm);
         return r;
       });

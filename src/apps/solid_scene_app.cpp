@@ -12,6 +12,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/galerkin/reactions.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
 #include "mfree/galerkin/small_strain_errors.hpp"
@@ -142,8 +143,10 @@ int run(const SolidScene& scene) {
     steps.push_back(std::move(r));
   };
   std::vector<std::filesystem::path> files;
+  std::optional<Reactions<3>> support;
   const auto finish = [&](const Discretisation<3>& disc, const TotalLagrangian<3>& model,
                           const Eigen::VectorXd& d) {
+    support = timer.time("reactions", [&] { return reactions(model, d, {}); });
     if (o.vtk && !o.fields.empty())
       files = timer.time("output", [&] { return write_solid_fields(scene, disc, model, d); });
   };
@@ -162,6 +165,31 @@ int run(const SolidScene& scene) {
                              level.errors->energy);
     summary.number("l2_displacement", level.errors->l2);
     summary.number("energy", level.errors->energy);
+  }
+  if (support) {
+    const auto vector = [](const Point<3>& v) {
+      return fmt::format("({:.6e}, {:.6e}, {:.6e})", v.x(), v.y(), v.z());
+    };
+    std::vector<std::pair<std::string, RunSummary::Record>> parts;
+    const auto record = [](const Resultant<3>& r) {
+      return RunSummary::Record{{"fx", r.force.x()},  {"fy", r.force.y()},  {"fz", r.force.z()},
+                                {"mx", r.moment.x()}, {"my", r.moment.y()}, {"mz", r.moment.z()}};
+    };
+    for (const PartReaction<3>& p : support->parts) {
+      std::cout << fmt::format("  reaction of '{}': force {}, moment {}\n", p.name, vector(p.reaction.force),
+                               vector(p.reaction.moment));
+      parts.emplace_back(p.name, record(p.reaction));
+    }
+    std::cout << fmt::format("  applied loads: force {}, moment {}\n", vector(support->applied.force),
+                             vector(support->applied.moment));
+    std::cout << fmt::format(
+        "  balance (reactions + loads): force {:.2e}, moment {:.2e} of their scale ({} arm)\n",
+        support->force_imbalance(), support->moment_imbalance(),
+        support->current_arm ? "current" : "reference");
+    summary.objects("reactions", parts);
+    summary.object("applied", record(support->applied));
+    summary.number("force_imbalance", support->force_imbalance());
+    summary.number("moment_imbalance", support->moment_imbalance());
   }
   for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.filename().string());
   if (!files.empty())

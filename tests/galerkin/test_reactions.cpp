@@ -52,13 +52,13 @@ TEST_CASE(
       CAPTURE(to_string(q), to_string(cloud));
       const UniformPlate plate(q, cloud);
       const ElasticityResult r = solve_elasticity(plate.domain, plate.s, nullptr);
-      const Reactions re = elastic_reactions(plate.domain, plate.s, r);
+      const Reactions<2> re = elastic_reactions(plate.domain, plate.s, r);
       REQUIRE(re.parts.size() == 1);
       CHECK(re.parts[0].name == "left");
       CHECK_FALSE(re.current_arm);
       // sigma (-e_x) over y in [0, 1]; moment int (0, y) × f dy = -f_x / 2.
       const Vec2 f = plate.exact.traction(Vec2(0.0, 0.5), Vec2(-1.0, 0.0));
-      const Resultant& left = re.parts[0].reaction;
+      const Resultant<2>& left = re.parts[0].reaction;
       INFO("left R = " << left.force.transpose() << ", M = " << left.moment
                        << "; applied F = " << re.applied.force.transpose() << ", M = " << re.applied.moment
                        << "; imbalance " << re.force_imbalance() << ", moment " << re.moment_imbalance());
@@ -87,14 +87,14 @@ TEST_CASE("reactions: with VCI the imbalance is the sum of the internal forces, 
   };
   const ElasticityResult r = solve_elasticity(plate.domain, plate.s, nullptr);
   REQUIRE(!r.test_gradients.empty());
-  const Reactions re = elastic_reactions(plate.domain, plate.s, r);
+  const Reactions<2> re = elastic_reactions(plate.domain, plate.s, r);
   ElasticityProblem p = plate.s.problem;
   p.spacing = plate.s.nodes.spacing;
   const TotalLagrangian<2> model(solid_problem(p), plate.domain, r.node_count(), r.quadrature, r.test(),
                                  r.boundary, r.at_boundary);
-  const Resultant internal =
+  const Resultant<2> internal =
       nodal_resultant(model.internal_force(r.coefficients), r.nodes, r.coefficients, false);
-  const Resultant b = re.balance();
+  const Resultant<2> b = re.balance();
   INFO("balance " << b.force.transpose() << ", " << b.moment << "; internal " << internal.force.transpose()
                   << ", " << internal.moment << "; imbalance " << re.force_imbalance());
   CHECK(re.force_imbalance() > 1e-8);  // there is one to explain
@@ -116,14 +116,14 @@ TEST_CASE(
       s.scheme = q;
       s.nodes.spacing = h;
       const ElasticityResult r = solve_elasticity(scene.domain, s, nullptr);
-      const Reactions re = elastic_reactions(scene.domain, s, r);
+      const Reactions<2> re = elastic_reactions(scene.domain, s, r);
       REQUIRE(re.parts.size() == 1);
       CHECK(re.parts[0].name == "clamped end");
       // The applied shear: resultant P on x = L, moment L F_y about the origin.
       CHECK(std::abs(re.applied.force.norm() - load) <= 1e-9 * load);
       CHECK(std::abs(re.applied.force.x()) <= 1e-9 * load);
       CHECK(std::abs(re.applied.moment - length * re.applied.force.y()) <= 1e-9 * load * length);
-      const Resultant& clamp = re.parts[0].reaction;
+      const Resultant<2>& clamp = re.parts[0].reaction;
       const double force_error = (clamp.force + re.applied.force).norm() / load;
       const double moment_error = std::abs(clamp.moment + re.applied.moment) / (load * length);
       CAPTURE(to_string(q), h, clamp.force.transpose(), clamp.moment, force_error, moment_error);
@@ -187,14 +187,14 @@ namespace {
 
 /// The reactions after every converged load step of the block with penalty beta, and the
 /// nodal sums of the residuals those steps left.
-std::pair<std::vector<Reactions>, std::vector<Vec2>> load_steps(double beta) {
+std::pair<std::vector<Reactions<2>>, std::vector<Vec2>> load_steps(double beta) {
   LoadedBlock block;
   block.problem.nitsche_beta = beta;
   TotalLagrangian<2> model = block.model();
   NewtonSettings ns;
   ns.load_steps = 4;
   StageTimer timer;
-  std::vector<Reactions> steps;
+  std::vector<Reactions<2>> steps;
   std::vector<Vec2> residual_sums;
   const StaticSolution sol = solve_static(
       model, block.disc.nodes, ns, timer, [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
@@ -215,7 +215,7 @@ TEST_CASE("reactions, total Lagrangian load steps: each step balances to the New
   const auto [steps, residual_sums] = load_steps(100.0);
   REQUIRE(steps.size() >= 4);  // every converged step (the last one is cut back once)
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    const Reactions& re = steps[k];
+    const Reactions<2>& re = steps[k];
     REQUIRE(re.parts.size() == 2);
     CAPTURE(k, re.applied.force.transpose(), re.parts[0].reaction.force.transpose(),
             re.parts[1].reaction.force.transpose(), re.force_imbalance(), re.moment_imbalance(),
@@ -233,7 +233,7 @@ TEST_CASE("reactions, total Lagrangian load steps: each step balances to the New
   }
   CHECK(steps.back().applied.force.y() < steps.front().applied.force.y());
   // The moment imbalance is the symmetrising term's: a tenfold penalty, a smaller gap.
-  const Reactions stiffer = load_steps(1000.0).first.front();
+  const Reactions<2> stiffer = load_steps(1000.0).first.front();
   CAPTURE(steps.front().moment_imbalance(), stiffer.moment_imbalance());
   CHECK(stiffer.moment_imbalance() < 0.3 * steps.front().moment_imbalance());
   CHECK(stiffer.force_imbalance() <= 1e-10);
@@ -254,9 +254,9 @@ TEST_CASE("reactions, dynamics: finite at every step, and sum R + F equals the r
     double worst = 0.0, largest_reaction = 0.0;
     (void)integrate_dynamics(model, block.disc.nodes, Eigen::VectorXd::Zero(model.dofs()),
                              Eigen::VectorXd::Zero(model.dofs()), ds, timer, [&](const DynamicState& st) {
-                               Reactions re = reactions(model, st.d, {1.0, st.time});
+                               Reactions<2> re = reactions(model, st.d, {1.0, st.time});
                                re.inertia = nodal_resultant(st.inertia(), block.disc.nodes, st.d, true);
-                               for (const PartReaction& p : re.parts) {
+                               for (const PartReaction<2>& p : re.parts) {
                                  REQUIRE(std::isfinite(p.reaction.force.norm()));
                                  REQUIRE(std::isfinite(p.reaction.moment));
                                  largest_reaction = std::max(largest_reaction, p.reaction.force.norm());
@@ -280,7 +280,7 @@ TEST_CASE("reactions, a crack from a notch's root: quadratic RK on a perturbed c
   const ElasticityScene scene =
       read_elasticity_scene(mfree::testing::source_dir() + "/tests/galerkin/notched_plate.toml", false);
   const ElasticityResult r = solve_elasticity(scene.domain, scene.settings, nullptr);
-  const Reactions re = elastic_reactions(scene.domain, scene.settings, r);
+  const Reactions<2> re = elastic_reactions(scene.domain, scene.settings, r);
   CAPTURE(re.force_imbalance(), re.moment_imbalance());
   CHECK(re.force_imbalance() < 1e-4);
   CHECK(re.moment_imbalance() < 1e-4);

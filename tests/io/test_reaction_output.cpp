@@ -11,11 +11,11 @@ using namespace mfree;
 namespace {
 
 /// Two parts in balance with the load and the inertia, scaled by s.
-Reactions sample(double s, bool inertia) {
-  Reactions r;
+Reactions<2> sample(double s, bool inertia) {
+  Reactions<2> r;
   r.parts = {{"clamp, left", {Vec2(-1.5 * s, 2.0 * s), 3.0 * s}}, {"wall", {Vec2(0.0, -1.0 * s), -1.0 * s}}};
   r.applied = {Vec2(2.0 * s, -0.5 * s), -1.5 * s};
-  if (inertia) r.inertia = Resultant{Vec2(0.5 * s, 0.5 * s), 0.5 * s};
+  if (inertia) r.inertia = Resultant<2>{Vec2(0.5 * s, 0.5 * s), 0.5 * s};
   r.arm = 2.0;
   return r;
 }
@@ -24,7 +24,7 @@ Reactions sample(double s, bool inertia) {
 
 TEST_CASE("reaction output: console lines, summary and CSV rows per part, the loads and the balance",
           "[io]") {
-  const Reactions r = sample(1.0, true);
+  const Reactions<2> r = sample(1.0, true);
   CHECK(r.balance().force.norm() == 0.0);
   CHECK(r.balance().moment == 0.0);
   const std::string lines = reaction_lines(r);

@@ -1,5 +1,6 @@
 // Solid scenes: a box or a gmsh part, formulas in x, y, z, conditions by part and by box,
-// errors against [exact], the fields written as tetrahedra and surface triangles; and the
+// errors against [exact], reactions, the fields written as tetrahedra and surface triangles,
+// dynamics; and the
 // refusals of what a solid does not take or a scene gets wrong.
 #include <fmt/format.h>
 
@@ -121,6 +122,13 @@ TEST_CASE("solid scenes: a linear field on a box is reproduced to round-off, in 
     }();
     WARN(fmt::format("{} RK: relative L2 error {}", order, l2[1].str()));
     CHECK(std::stod(l2[1].str()) < 1e-10);
+    // Uniform stress: the reactions of the clamp and the floor balance the tractions to
+    // round-off, forces and moments (galerkin/reactions.hpp: VCI's imbalance vanishes then).
+    for (const char* key : {"force_imbalance", "moment_imbalance"}) {
+      std::smatch m;
+      REQUIRE(std::regex_search(summary, m, std::regex(fmt::format("\"{}\": ([0-9.e+-]+)", key))));
+      CHECK(std::stod(m[1].str()) < 1e-10);
+    }
     const VtuContents volume = read_vtu(out / "volume.vtu");
     CHECK(volume.cells == 6 * 5 * 3 * 4);  // six tetrahedra in each cube of the spacing
     REQUIRE(volume.z.size() == volume.points.size());

@@ -6,7 +6,7 @@
 //
 // Reaction of part Gamma_p (per unit thickness) on the reference boundary:
 //
-//   R_p = int_Gp lambda^h dS,   M_p = int_Gp x × lambda^h dS,   a × b = a_x b_y - a_y b_x,
+//   R_p = int_Gp lambda^h dS,   M_p = int_Gp x × lambda^h dS   (in the plane a × b = a_x b_y - a_y b_x),
 //   lambda^h = Pi P(F^h) N - (beta M / h) Pi (u^h - ubar)
 //
 // the flux of Nitsche's form (total_lagrangian.hpp) at the boundary Gauss points: the first
@@ -56,7 +56,8 @@
 // rate of momentum d/dt int rho0 u_t^h (both masses: sum_I of a row is the row-sum mass), and
 // the moments balance with sum_I x_I × (M a)_I. Reported as `inertia`.
 //
-// Units: forces per unit thickness [N/m], moments [N m / m], as the material's E is given.
+// Units: in the plane forces per unit thickness [N/m], moments [N m / m]; in space [N], [N m];
+// as the material's E is given.
 
 #include <optional>
 #include <span>
@@ -68,10 +69,22 @@
 
 namespace mfree {
 
-/// A force and its moment about the origin (counter-clockwise positive).
+/// A moment: in the plane its z component (counter-clockwise positive), in space the vector.
+template <int dim>
+using Moment = std::conditional_t<dim == 2, double, Point<3>>;
+template <int dim>
+Moment<dim> zero_moment() {
+  if constexpr (dim == 2)
+    return 0.0;
+  else
+    return Point<3>::Zero();
+}
+
+/// A force and its moment about the origin.
+template <int dim>
 struct Resultant {
-  Vec2 force = Vec2::Zero();
-  double moment = 0.0;
+  Point<dim> force = Point<dim>::Zero();
+  Moment<dim> moment = zero_moment<dim>();
   Resultant& operator+=(const Resultant& o) {
     force += o.force;
     moment += o.moment;
@@ -79,33 +92,40 @@ struct Resultant {
   }
 };
 
-/// a × b, the z component of the cross product.
+/// a × b: the z component of the cross product in the plane, the vector in space.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Point<3> cross(const Point<3>& a, const Point<3>& b) { return a.cross(b); }
+/// |moment|.
+inline double magnitude(double m) { return std::abs(m); }
+inline double magnitude(const Point<3>& m) { return m.norm(); }
 
 /// Nitsche's flux at one point: lambda = Pi P N - (beta M / h) Pi (u - ubar), from the two
-/// parts the model gives (TotalLagrangian<2>::NitscheValues) and the penalty beta M / h.
-inline Vec2 nitsche_flux(const Vec2& traction, const Vec2& gap, double penalty) {
+/// parts the model gives (TotalLagrangian<dim>::NitscheValues) and the penalty beta M / h.
+template <int dim>
+Point<dim> nitsche_flux(const Point<dim>& traction, const Point<dim>& gap, double penalty) {
   return traction - penalty * gap;
 }
 
+template <int dim>
 struct PartReaction {
-  std::string name;    ///< the condition's name
-  Resultant reaction;  ///< what the support exerts on the body
+  std::string name;         ///< the condition's name
+  Resultant<dim> reaction;  ///< what the support exerts on the body
   /// sum of |w lambda| over its points: the reaction's size where it balances itself (a
   /// support that pulls a ring outward all round exerts no net force)
   double magnitude = 0.0;
 };
 
+template <int dim>
 struct Reactions {
-  std::vector<PartReaction> parts;   ///< one per essential condition, in the conditions' order
-  Resultant applied;                 ///< body force, tractions and pressures
-  double applied_magnitude = 0.0;    ///< sum of |w t| and |w b|: the loads' size when they balance
-  std::optional<Resultant> inertia;  ///< dynamics: sum_I (M a)_I and its moment
+  std::vector<PartReaction<dim>> parts;   ///< one per essential condition, in the conditions' order
+  Resultant<dim> applied;                 ///< body force, tractions and pressures
+  double applied_magnitude = 0.0;         ///< sum of |w t| and |w b|: the loads' size when they balance
+  std::optional<Resultant<dim>> inertia;  ///< dynamics: sum_I (M a)_I and its moment
   bool current_arm = false;          ///< moments about x = X + u^h (finite strain), else X
   double arm = 0.0;                  ///< the largest |x| of a boundary point: the moments' scale
 
   /// sum_p R_p + F - inertia: zero for the exact discrete balance.
-  [[nodiscard]] Resultant balance() const;
+  [[nodiscard]] Resultant<dim> balance() const;
   /// |balance force| / the largest of |F|, the applied magnitude, |R_p| and the parts'
   /// magnitudes, |inertia| (0 when all vanish).
   [[nodiscard]] double force_imbalance() const;
@@ -114,19 +134,22 @@ struct Reactions {
 };
 
 /// The names of the essential conditions of `problem`, in order: the parts of reactions().
-std::vector<std::string> essential_parts(const SolidProblem<2>& problem);
+template <int dim>
+std::vector<std::string> essential_parts(const SolidProblem<dim>& problem);
 
-/// The reactions and applied loads of `model` at coefficients d and load `load`.
-Reactions reactions(const TotalLagrangian<2>& model, const Eigen::VectorXd& d, const LoadState& load);
+/// The reactions and applied loads of `model` at coefficients d and load `load` (dim 2, 3).
+template <int dim>
+Reactions<dim> reactions(const TotalLagrangian<dim>& model, const Eigen::VectorXd& d, const LoadState& load);
 
-/// sum_I f_I and sum_I x_I × f_I of nodal forces f (2N), x_I = X_I (+ d_I when current_arm):
+/// sum_I f_I and sum_I x_I × f_I of nodal forces f (dim N), x_I = X_I (+ d_I when current_arm):
 /// the resultant of the forces the coefficients' equations hold, e.g. the inertia M a.
-Resultant nodal_resultant(const Eigen::VectorXd& f, std::span<const Vec2> nodes, const Eigen::VectorXd& d,
-                          bool current_arm);
+template <int dim>
+Resultant<dim> nodal_resultant(const Eigen::VectorXd& f, const std::vector<Point<dim>>& nodes,
+                               const Eigen::VectorXd& d, bool current_arm);
 
 /// The reactions of a linear solve (solve_elasticity with these settings on `domain`): the
 /// model rebuilt on its discretisation.
-Reactions elastic_reactions(const Domain& domain, const ElasticitySettings& settings,
-                            const ElasticityResult& result);
+Reactions<2> elastic_reactions(const Domain& domain, const ElasticitySettings& settings,
+                               const ElasticityResult& result);
 
 }  // namespace mfree

@@ -23,10 +23,10 @@ namespace mfree {
 
 /// The console block: a heading and one line per part, the loads and the balance, each
 /// line indented by `indent`.
-std::string reaction_lines(const Reactions& r, const std::string& indent = "  ");
+std::string reaction_lines(const Reactions<2>& r, const std::string& indent = "  ");
 
 /// The last reactions of a run into its summary.
-void summarise_reactions(RunSummary& summary, const Reactions& r);
+void summarise_reactions(RunSummary& summary, const Reactions<2>& r);
 
 /// The reactions of a run's steps, for reactions.csv.
 class ReactionTable {
@@ -36,7 +36,7 @@ class ReactionTable {
   ReactionTable(std::string column, std::vector<std::string> parts, bool inertia);
 
   /// Adds the record of step `step` at load factor or time `at`; r of the table's parts.
-  void add(int step, double at, const Reactions& r);
+  void add(int step, double at, const Reactions<2>& r);
   [[nodiscard]] std::size_t size() const { return records_.size(); }
   [[nodiscard]] std::string csv() const;
 
@@ -50,8 +50,8 @@ class ReactionTable {
   struct Record {
     int step = 0;
     double at = 0.0;
-    std::vector<Resultant> parts;
-    Resultant applied, inertia;
+    std::vector<Resultant<2>> parts;
+    Resultant<2> applied, inertia;
   };
   [[nodiscard]] std::size_t width() const { return 2 + 3 * (parts_.size() + (inertia_ ? 2 : 1)); }
 
