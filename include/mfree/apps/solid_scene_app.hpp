@@ -1,10 +1,11 @@
 #pragma once
 // `mfree run` and `mfree converge` for solid scenes (io/solid_scene.hpp). A run: the
 // discretisation of the solid, the check that no rigid-body motion is free, Newton with load
-// steps (a linear law: one step), the errors against [exact], the probe, summary.json and the
-// fields for ParaView (io/solid_scene_output.hpp). A study ([study]): the same solve at every
-// spacing and RK order, the errors and their rates (or the probe's change between levels
-// without [exact]), convergence.csv and its plots.
+// steps (a linear law: one step), the errors against [exact], the probe, the reactions and
+// their balance, summary.json and the fields for ParaView (io/solid_scene_output.hpp). A
+// dynamic run ([dynamics]): central differences or Newmark, frames, energy.csv. A study
+// ([study]): the same solve at every spacing and RK order, the errors and their rates (or the
+// probe's change between levels without [exact]), convergence.csv and its plots.
 
 #include <filesystem>
 #include <string>
