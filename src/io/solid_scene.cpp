@@ -128,6 +128,144 @@ SolidExact read_exact(const SceneTable& t, const Constants& constants, const Mat
   return e;
 }
 
+/// [loads]: body_force (formulas in x, y, z), gravity (times the density).
+BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, double density, bool dynamics) {
+  std::optional<SpaceVectorFormula> force;
+  Point<3> gravity = Point<3>::Zero();
+  if (t.has("body_force")) {
+    force = read_space_vector_formula(t, "body_force", constants);
+    check_static(t, "body_force", *force, dynamics);
+  }
+  if (t.has("gravity")) {
+    const auto g = t.numbers("gravity", 3, -1e300, 1e300);
+    if (!(density > 0.0)) t.error("gravity", "gravity needs the material's density ([material] density)");
+    gravity = density * Point<3>(g[0], g[1], g[2]);
+  }
+  if (!t.has("body_force") && !t.has("gravity"))
+    t.error("body_force", "give body_force or gravity (or both)");
+  t.finish();
+  return [force, gravity](const Point<3>& x, double time) {
+    return force ? Point<3>((*force)(x, time) + gravity) : gravity;
+  };
+}
+
+/// One [[boundary]] table: the condition, its selection checked (no area, slivers, overlaps
+/// with the conditions before it), recorded in out.selected.
+BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const Constants& constants,
+                                    const LinearElastic& law, bool dynamics) {
+  BoundaryCondition<3> c;
+  c.name = t.string("name");
+  c.type = read_choice(t, "type", condition_table);
+  std::string key, what;
+  c.where = read_selection(t, out.solid, key, what);
+  check_slivers(t, what, c.where,
+                key == "region" ? read_space_box(t, "region") : std::optional<AlignedBox<3>>(), out.solid);
+  const double area = selection_area(out.solid, c.where);
+  if (c.where.empty() || !(area > 0.0))
+    t.error(key, fmt::format("{} selects no part of the surface (the solid's bounding box is {})", what,
+                             box_text(out.solid.bounding_box())));
+  for (const BoundaryCondition<3>& other : out.problem.conditions) {
+    const double shared = overlap_area(out.solid, c.where, other.where);
+    if (shared > 1e-12 * area)
+      t.error(key,
+              fmt::format("{} overlaps boundary '{}' over an area of {:.6g}: each part of the surface takes "
+                          "one condition",
+                          what, other.name, shared));
+  }
+  out.selected.push_back({c.name, condition_table.name(c.type), what, area});
+  if (c.type == ConditionType::pressure) {
+    const Formula p = read_formula(t, "value", constants, 3);
+    check_static(t, "value", p, dynamics);
+    c.pressure = [p](const Point<3>& x, double time) { return p(x, time); };
+  } else if (t.is_string("value")) {
+    (void)t.choice("value", {"exact"});
+    if (!out.exact) t.error("value", "'exact' needs an [exact] section");
+    const SolidExact ex = *out.exact;
+    if (c.type != ConditionType::traction) {
+      c.value = [ex](const Point<3>& x, const Point<3>&, double) { return ex.displacement(x); };
+    } else {
+      const Lame lame = lame_constants(law.youngs_modulus, law.poisson_ratio);
+      c.value = [ex, lame](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
+        const Tensor2<3> g = ex.gradient_at(x), eps = 0.5 * (g + g.transpose());
+        const Tensor2<3> sigma = lame.lambda * eps.trace() * Tensor2<3>::Identity() + 2.0 * lame.mu * eps;
+        return sigma * n;
+      };
+    }
+  } else {
+    const SpaceVectorFormula v = read_space_vector_formula(t, "value", constants);
+    check_static(t, "value", v, dynamics);
+    c.value = [v](const Point<3>& x, const Point<3>&, double time) { return v(x, time); };
+  }
+  t.finish();
+  return c;
+}
+
+/// [dynamics]: the time scheme, its step, frames and the initial fields.
+SolidDynamics read_dynamics(const SceneTable& t, const Constants& constants, double density,
+                            const NewtonSettings& newton) {
+  SolidDynamics dyn;
+  DynamicsSettings& d = dyn.settings;
+  d.scheme = read_choice(t, "scheme", time_scheme_names());
+  d.end_time = t.number("end_time", 1e-300, 1e300);
+  if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
+  if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
+  d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
+  d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
+  dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
+  for (const char* key : {"initial_displacement", "initial_velocity"}) {
+    if (!t.has(key)) continue;
+    const SpaceVectorFormula f = read_space_vector_formula(t, key, constants);
+    if (f.depends_on_time()) t.error(key, "an initial field is a function of x, y and z, not of t");
+    (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
+  }
+  if (!(density > 0.0)) t.error("scheme", "dynamics needs the material's density ([material] density)");
+  d.newton = newton;
+  t.finish();
+  return dyn;
+}
+
+/// [output]: the folder, the fields, the probe.
+SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamics) {
+  SolidOutput o;
+  o.folder = read_output_folder(t);
+  if (t.has("fields") && !t.is_array_empty("fields"))
+    for (const auto& f :
+         t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error"}))
+      o.fields.insert(f);
+  if (o.wants("plastic_strain") && !has_history(out.problem.material))
+    t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
+                                  name(out.problem.material)));
+  if (o.wants("error") && !out.exact) t.error("fields", "'error' needs an [exact] section");
+  if (o.wants("velocity") && !dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
+  o.vtk = t.boolean_or("vtk", true);
+  if (t.has("probe")) {
+    const auto p = t.numbers("probe", 3, -1e300, 1e300);
+    o.probe = Point<3>(p[0], p[1], p[2]);
+    if (!out.solid.contains(*o.probe)) t.error("probe", "the probe lies outside the solid");
+  }
+  t.finish();
+  return o;
+}
+
+/// [study] (mfree converge).
+SolidStudy read_study(const SceneTable& t, const SolidScene& out, bool dynamics) {
+  if (dynamics)
+    t.error("spacings",
+            "a study of a solid's [dynamics] run is not done yet: mfree converge runs solid statics");
+  SolidStudy st;
+  st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
+  st.orders =
+      t.has("orders") ? read_choices(t, "orders", order_names()) : std::vector<RKOrder>{out.settings.order};
+  if (t.has("probe")) {
+    const auto p = t.numbers("probe", 3, -1e300, 1e300);
+    st.probe = Point<3>(p[0], p[1], p[2]);
+    if (!out.solid.contains(*st.probe)) t.error("probe", "the probe lies outside the solid");
+  }
+  st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
+  t.finish();
+  return st;
+}
+
 }  // namespace
 
 Tensor2<3> SolidExact::gradient_at(const Point<3>& x) const {
@@ -165,26 +303,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   problem.density = m.density;
   const Constants constants = read_constants(root);
 
-  if (root.has("loads")) {
-    const SceneTable t = root.table("loads");
-    std::optional<SpaceVectorFormula> force;
-    Point<3> gravity = Point<3>::Zero();
-    if (t.has("body_force")) {
-      force = read_space_vector_formula(t, "body_force", constants);
-      check_static(t, "body_force", *force, dynamics);
-    }
-    if (t.has("gravity")) {
-      const auto g = t.numbers("gravity", 3, -1e300, 1e300);
-      if (!(m.density > 0.0)) t.error("gravity", "gravity needs the material's density ([material] density)");
-      gravity = m.density * Point<3>(g[0], g[1], g[2]);
-    }
-    if (!t.has("body_force") && !t.has("gravity"))
-      t.error("body_force", "give body_force or gravity (or both)");
-    t.finish();
-    problem.body_force = [force, gravity](const Point<3>& x, double time) {
-      return force ? Point<3>((*force)(x, time) + gravity) : gravity;
-    };
-  }
+  if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, m.density, dynamics);
   if (root.has("exact")) {
     if (dynamics)
       root.table("exact").error("displacement",
@@ -193,53 +312,8 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     out.exact = read_exact(root.table("exact"), constants, m.material);
   }
 
-  for (const SceneTable& t : root.tables("boundary")) {
-    BoundaryCondition<3> c;
-    c.name = t.string("name");
-    c.type = read_choice(t, "type", condition_table);
-    std::string key, what;
-    c.where = read_selection(t, out.solid, key, what);
-    check_slivers(t, what, c.where,
-                  key == "region" ? read_space_box(t, "region") : std::optional<AlignedBox<3>>(), out.solid);
-    const double area = selection_area(out.solid, c.where);
-    if (c.where.empty() || !(area > 0.0))
-      t.error(key, fmt::format("{} selects no part of the surface (the solid's bounding box is {})", what,
-                               box_text(out.solid.bounding_box())));
-    for (const BoundaryCondition<3>& other : problem.conditions) {
-      const double shared = overlap_area(out.solid, c.where, other.where);
-      if (shared > 1e-12 * area)
-        t.error(key, fmt::format(
-                         "{} overlaps boundary '{}' over an area of {:.6g}: each part of the surface takes "
-                         "one condition",
-                         what, other.name, shared));
-    }
-    out.selected.push_back({c.name, condition_table.name(c.type), what, area});
-    if (c.type == ConditionType::pressure) {
-      const Formula p = read_formula(t, "value", constants, 3);
-      check_static(t, "value", p, dynamics);
-      c.pressure = [p](const Point<3>& x, double time) { return p(x, time); };
-    } else if (t.is_string("value")) {
-      (void)t.choice("value", {"exact"});
-      if (!out.exact) t.error("value", "'exact' needs an [exact] section");
-      const SolidExact ex = *out.exact;
-      if (c.type != ConditionType::traction) {
-        c.value = [ex](const Point<3>& x, const Point<3>&, double) { return ex.displacement(x); };
-      } else {
-        const Lame lame = lame_constants(m.linear.youngs_modulus, m.linear.poisson_ratio);
-        c.value = [ex, lame](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
-          const Tensor2<3> g = ex.gradient_at(x), eps = 0.5 * (g + g.transpose());
-          const Tensor2<3> sigma = lame.lambda * eps.trace() * Tensor2<3>::Identity() + 2.0 * lame.mu * eps;
-          return sigma * n;
-        };
-      }
-    } else {
-      const SpaceVectorFormula v = read_space_vector_formula(t, "value", constants);
-      check_static(t, "value", v, dynamics);
-      c.value = [v](const Point<3>& x, const Point<3>&, double time) { return v(x, time); };
-    }
-    t.finish();
-    problem.conditions.push_back(std::move(c));
-  }
+  for (const SceneTable& t : root.tables("boundary"))
+    problem.conditions.push_back(read_condition(t, out, constants, m.linear, dynamics));
   if (root.has("nitsche"))
     problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), problem.nitsche_beta);
   if (root.has("solver")) read_solver_section(root.table("solver"), s);
@@ -249,65 +323,9 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     out.newton.load_steps = 1;
     out.newton.solver = s.solver;
   }
-  if (dynamics) {
-    const SceneTable t = root.table("dynamics");
-    SolidDynamics dyn;
-    DynamicsSettings& d = dyn.settings;
-    d.scheme = read_choice(t, "scheme", time_scheme_names());
-    d.end_time = t.number("end_time", 1e-300, 1e300);
-    if (t.has("time_step")) d.time_step = t.number("time_step", 1e-300, 1e300);
-    if (d.scheme == TimeScheme::newmark && !d.time_step) t.error("scheme", "newmark needs a time_step");
-    d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
-    d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
-    dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
-    for (const char* key : {"initial_displacement", "initial_velocity"}) {
-      if (!t.has(key)) continue;
-      const SpaceVectorFormula f = read_space_vector_formula(t, key, constants);
-      if (f.depends_on_time()) t.error(key, "an initial field is a function of x, y and z, not of t");
-      (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
-    }
-    if (!(m.density > 0.0)) t.error("scheme", "dynamics needs the material's density ([material] density)");
-    d.newton = out.newton;
-    t.finish();
-    out.dynamics = dyn;
-  }
-  {
-    const SceneTable t = root.table("output");
-    out.output.folder = read_output_folder(t);
-    if (t.has("fields") && !t.is_array_empty("fields"))
-      for (const auto& f : t.choices(
-               "fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error"}))
-        out.output.fields.insert(f);
-    if (out.output.wants("plastic_strain") && !has_history(problem.material))
-      t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
-                                    name(problem.material)));
-    if (out.output.wants("error") && !out.exact) t.error("fields", "'error' needs an [exact] section");
-    if (out.output.wants("velocity") && !dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
-    out.output.vtk = t.boolean_or("vtk", true);
-    if (t.has("probe")) {
-      const auto p = t.numbers("probe", 3, -1e300, 1e300);
-      out.output.probe = Point<3>(p[0], p[1], p[2]);
-      if (!out.solid.contains(*out.output.probe)) t.error("probe", "the probe lies outside the solid");
-    }
-    t.finish();
-  }
-  if (want_study || root.has("study")) {
-    const SceneTable t = root.table("study");
-    if (dynamics)
-      t.error("spacings",
-              "a study of a solid's [dynamics] run is not done yet: mfree converge runs solid statics");
-    SolidStudy st;
-    st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
-    st.orders = t.has("orders") ? read_choices(t, "orders", order_names()) : std::vector<RKOrder>{s.order};
-    if (t.has("probe")) {
-      const auto p = t.numbers("probe", 3, -1e300, 1e300);
-      st.probe = Point<3>(p[0], p[1], p[2]);
-      if (!out.solid.contains(*st.probe)) t.error("probe", "the probe lies outside the solid");
-    }
-    st.quadratic_factor = t.number_or("quadratic_factor", 3.0, 0.5, 10.0);
-    t.finish();
-    out.study = st;
-  }
+  if (dynamics) out.dynamics = read_dynamics(root.table("dynamics"), constants, m.density, out.newton);
+  out.output = read_output(root.table("output"), out, dynamics);
+  if (want_study || root.has("study")) out.study = read_study(root.table("study"), out, dynamics);
   root.finish();
   return out;
 }
