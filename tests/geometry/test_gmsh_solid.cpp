@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <numbers>
 
 #include "../test_support.hpp"
 #include "mfree/core/error.hpp"
@@ -106,4 +107,26 @@ TEST_CASE("gmsh solid: files that are not solids of tetrahedra are refused, nami
   CHECK(box.measure() == Approx(6.0).epsilon(1e-12));
   CHECK(box.parts().empty());
   for (const SurfaceTriangle& t : box.surface()) CHECK(t.part == -1);
+}
+
+TEST_CASE(
+    "gmsh solid: a STEP part (the notched block exported by OpenCASCADE) is meshed and closed, its faces in "
+    "no part",
+    "[geometry][gmsh]") {
+  const Solid solid = read_gmsh_solid(testing::source_dir() + "/meshes/notched_block.step");
+  // 1 x 0.8 x 0.6 less the notch 0.4 x 0.35 x 0.6 and the hole pi 0.15^2 0.6; the facets of the
+  // hole (inscribed) remove less of it.
+  const double exact = 0.48 - 0.084 - std::numbers::pi * 0.15 * 0.15 * 0.6;
+  CHECK(solid.measure() > exact);
+  CHECK(solid.measure() < exact * 1.02);  // measured: 0.357544, 1.1 % above
+  Point<3> closure = Point<3>::Zero();
+  for (const SurfaceTriangle& t : solid.surface()) {
+    closure += t.area_normal();
+    CHECK(t.part == -1);  // a STEP file names no physical surfaces
+  }
+  CHECK(closure.norm() < 1e-12);
+  CHECK(solid.parts().empty());
+  // The faces are reached by boxes: x = 0 has area 0.48.
+  CHECK(selection_area(solid, select_box(solid, AlignedBox<3>(Point<3>(-1, -1, -1), Point<3>(0, 2, 2)))) ==
+        Approx(0.48).epsilon(1e-12));
 }
