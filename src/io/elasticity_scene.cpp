@@ -15,10 +15,7 @@ namespace mfree {
 namespace {
 
 using ConditionType = BoundaryCondition<2>::Type;
-const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
-                                                 {"slip", ConditionType::slip},
-                                                 {"traction", ConditionType::traction},
-                                                 {"pressure", ConditionType::pressure}};
+const NameTable<ConditionType>& condition_table = condition_types<2>();
 
 /// The selector keys of a [[boundary]] table: exactly one of part, ring (alone or with
 /// edges), edges (of the outer ring) and region.
@@ -119,13 +116,6 @@ MaterialSection read_plane_material(const SceneTable& t) {
 }
 
 const NameTable<bool> interface_names{{"tied", true}, {"smooth", false}};
-
-void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics) {
-  if (f.depends_on_time() && !dynamics)
-    t.error(key, fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales loads by "
-                             "its load factor)",
-                             f.expression()));
-}
 
 /// A [quadrature] key that no scheme of the scene (its own, or its study's) reads is an
 /// error, not a setting silently ignored.

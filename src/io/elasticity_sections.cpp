@@ -22,6 +22,27 @@ const NameTable<std::optional<SolverKind>>& solver_choices() {
 
 }  // namespace
 
+template <int dim>
+const NameTable<typename BoundaryCondition<dim>::Type>& condition_types() {
+  using Type = typename BoundaryCondition<dim>::Type;
+  static const NameTable<Type> table{{"displacement", Type::displacement},
+                                     {"slip", Type::slip},
+                                     {"traction", Type::traction},
+                                     {"pressure", Type::pressure}};
+  return table;
+}
+template const NameTable<BoundaryCondition<2>::Type>& condition_types<2>();
+template const NameTable<BoundaryCondition<3>::Type>& condition_types<3>();
+
+void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics) {
+  if (f.depends_on_time() && !dynamics)
+    t.error(
+        key,
+        fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales loads by "
+                    "its load factor)",
+                    f.expression()));
+}
+
 void read_nodes_section(const SceneTable& t, ElasticitySettings& s) {
   s.nodes.kind = read_choice(t, "cloud", cloud_kind_names());
   s.nodes.spacing = t.number("spacing", 1e-12, 1e12);

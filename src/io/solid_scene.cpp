@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "mfree/core/error.hpp"
+#include "mfree/galerkin/small_strain_errors.hpp"
 #include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/geometry/gmsh_solid.hpp"
 #include "mfree/io/elasticity_sections.hpp"
@@ -18,20 +19,10 @@ namespace mfree {
 namespace {
 
 using ConditionType = BoundaryCondition<3>::Type;
-const NameTable<ConditionType> condition_table{{"displacement", ConditionType::displacement},
-                                               {"slip", ConditionType::slip},
-                                               {"traction", ConditionType::traction},
-                                               {"pressure", ConditionType::pressure}};
+const NameTable<ConditionType>& condition_table = condition_types<3>();
 
-/// No formula of a static run may use t: it would be evaluated at t = 0 only.
-void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics = false) {
-  if (f.depends_on_time() && !dynamics)
-    t.error(key, fmt::format("formula '{}' uses t, but only [dynamics] runs have a time (a static run scales "
-                             "loads by its load factor)",
-                             f.expression()));
-}
-void check_static(const SceneTable& t, const std::string& key, const SpaceVectorFormula& f,
-                  bool dynamics = false) {
+/// check_static of each component.
+void check_static(const SceneTable& t, const std::string& key, const SpaceVectorFormula& f, bool dynamics) {
   for (const Formula* c : {&f.x, &f.y, &f.z}) check_static(t, key, *c, dynamics);
 }
 
@@ -118,11 +109,11 @@ SolidExact read_exact(const SceneTable& t, const Constants& constants, const Mat
                         "[material] model = \"linear_elastic\", not \"{}\"",
                         name(law)));
   SolidExact e{read_space_vector_formula(t, "displacement", constants), {}};
-  check_static(t, "displacement", e.displacement);
+  check_static(t, "displacement", e.displacement, false);
   const std::vector<std::string> texts = t.expressions("gradient", 9);
   for (std::size_t i = 0; i < texts.size(); ++i) {
     e.gradient.emplace_back(texts[i], constants, t.where("gradient", static_cast<int>(i)), 3);
-    check_static(t, "gradient", e.gradient.back());
+    check_static(t, "gradient", e.gradient.back(), false);
   }
   t.finish();
   return e;
@@ -186,9 +177,7 @@ BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const 
     } else {
       const Lame lame = lame_constants(law.youngs_modulus, law.poisson_ratio);
       c.value = [ex, lame](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
-        const Tensor2<3> g = ex.gradient_at(x), eps = 0.5 * (g + g.transpose());
-        const Tensor2<3> sigma = lame.lambda * eps.trace() * Tensor2<3>::Identity() + 2.0 * lame.mu * eps;
-        return sigma * n;
+        return Point<3>(linear_stress(lame, ex.gradient_at(x)) * n);
       };
     }
   } else {

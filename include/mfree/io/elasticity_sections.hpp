@@ -20,9 +20,20 @@
 
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
+#include "mfree/galerkin/total_lagrangian.hpp"
+#include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_reader.hpp"
+#include "mfree/problems/formula.hpp"
 
 namespace mfree {
+
+/// The condition types of a [[boundary]] table by name: displacement, slip, traction, pressure.
+template <int dim>
+const NameTable<typename BoundaryCondition<dim>::Type>& condition_types();
+
+/// No formula of a static run may use t (it would be evaluated at t = 0 only): an error at
+/// `key` unless the run is `dynamics`.
+void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics);
 
 /// [nodes] into s.nodes.
 void read_nodes_section(const SceneTable& t, ElasticitySettings& s);
