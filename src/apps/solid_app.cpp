@@ -89,6 +89,7 @@ int run_static(const ElasticityScene& scene) {
   const std::optional<GalerkinQuadrature<2>> probe_at = probe_functions(scene, disc);
   NewtonSettings ns = scene.newton.value_or(NewtonSettings{});
   ns.solver = scene.settings.solver;
+  ns.nearly_symmetric = disc.nearly_symmetric;
   ns.log = &std::cout;
   // Laws with history add the plastic work and the area of the plastic zone.
   const bool plastic = model.has_history();
@@ -352,6 +353,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
     }
   };
   DynamicsSettings ds = settings;
+  ds.newton.nearly_symmetric = disc.nearly_symmetric;
   if (verbose) ds.progress = &std::cout;
   DynamicsCheckpoints<2> dc;
   std::optional<DynamicsProgress<2>> resume;

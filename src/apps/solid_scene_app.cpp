@@ -98,6 +98,7 @@ SolidLevel solve_level(const SolidScene& scene, const ElasticitySettings& s,
   if (probe) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*probe}, false);
   NewtonSettings newton = scene.newton;
   newton.solver = s.solver;
+  newton.nearly_symmetric = disc.nearly_symmetric;
   const StaticSolution sol = solve_static(model, disc.nodes, newton, timer,
                                           [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
                                             if (probe_at) level.probe = displacement_at(*probe_at, 0, d);
@@ -251,6 +252,7 @@ int run_dynamics(const SolidScene& scene) {
   };
   DynamicsSettings ds = dyn.settings;
   ds.newton.solver = s.solver;
+  ds.newton.nearly_symmetric = disc.nearly_symmetric;
   ds.progress = &std::cout;
   const double end = ds.end_time;
   const DynamicsResult r =

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -9,6 +11,8 @@
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/memory.hpp"
+#include "mfree/core/parallel.hpp"
+#include "mfree/search/cell_list.hpp"
 
 namespace mfree {
 
@@ -169,6 +173,61 @@ std::vector<Vec2> make_quadrature_cloud(const Domain& domain, const CloudSetting
 }
 std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSettings& nodes, double ratio) {
   return quadrature_cloud_in<3>(solid, nodes, ratio);
+}
+
+std::vector<double> surface_support_radii(const Solid& solid, const std::vector<Point<3>>& nodes, double h,
+                                          double factor, int order) {
+  const double reach = factor * h, wide = (factor + 0.5) * h;
+  // Samples of the surface: each triangle's barycentric grid of n steps a side, n such that
+  // a step is at most h / 4.
+  std::vector<Point<3>> samples;
+  for (const SurfaceTriangle& t : solid.surface()) {
+    const auto& v = t.vertices;
+    const double longest = std::max({(v[1] - v[0]).norm(), (v[2] - v[1]).norm(), (v[0] - v[2]).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(longest / (0.25 * h))));
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j)
+        samples.push_back(v[0] + (static_cast<double>(i) / n) * (v[1] - v[0]) +
+                          (static_cast<double>(j) / n) * (v[2] - v[0]));
+  }
+  const CellList<3> cells(nodes, wide);
+  std::vector<char> flat(samples.size(), 0);
+  parallel_blocks(static_cast<Index>(samples.size()), 1024, [&](Index b, Index e) {
+    std::vector<Point<3>> near;
+    for (Index k = b; k < e; ++k) {
+      const Point<3>& x = samples[static_cast<std::size_t>(k)];
+      near.clear();
+      cells.for_each_in_box(x, reach, [&](Index, const Point<3>& p) {
+        if ((p - x).squaredNorm() < reach * reach) near.push_back(p);
+      });
+      if (near.size() >= 2) {
+        Point<3> mean = Point<3>::Zero();
+        for (const Point<3>& p : near) mean += p;
+        mean /= static_cast<double>(near.size());
+        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+        for (const Point<3>& p : near) covariance += (p - mean) * (p - mean).transpose();
+        const Point<3> thin =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const Point<3>& p : near) {
+          lo = std::min(lo, p.dot(thin));
+          hi = std::max(hi, p.dot(thin));
+        }
+        if (hi - lo >= 0.75 * order * h) continue;
+      }
+      flat[static_cast<std::size_t>(k)] = 1;  // or nearly empty
+    }
+  });
+  // Every node within the wider radius of a flat sample reaches it.
+  std::vector<double> radii;
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    if (flat[k]) {
+      if (radii.empty()) radii.assign(nodes.size(), reach);
+      cells.for_each_in_box(samples[k], wide, [&](Index i, const Point<3>& p) {
+        if ((p - samples[k]).squaredNorm() < wide * wide) radii[static_cast<std::size_t>(i)] = wide;
+      });
+    }
+  return radii;
 }
 
 }  // namespace mfree

@@ -75,6 +75,18 @@ RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, Cl
   r.obstacles = std::make_shared<const SupportObstacles>(support_obstacles(domain, reach));
   return r;
 }
+/// In a solid the nodes of a lattice next to a surface point whose neighbours lie flat reach
+/// further (clouds/point_cloud.hpp: surface_support_radii). For the trial functions, which
+/// are evaluated on the surface; the quadrature cloud's functions are evaluated at the
+/// lattice points inside, and widening them near the surface made a weight negative (Lamé's
+/// sphere, h = 0.4).
+RKSettings rk_settings(const Solid& solid, const std::vector<Point<3>>& points, CloudKind kind, double h,
+                       RKOrder order, const ElasticitySettings& s, double factor) {
+  RKSettings r = rk_settings<3>(points, kind, h, order, s, factor);
+  if (kind == CloudKind::lattice)
+    r.node_radii = surface_support_radii(solid, points, h, factor, order == RKOrder::linear ? 1 : 2);
+  return r;
+}
 
 /// A lower bound of the bytes a discretisation takes in dim dimensions, from the node count
 /// N = |Omega| / h^dim and the supports (radius f h holds about |B_f| nodes, the ball's volume:
@@ -144,6 +156,7 @@ void add_boundary_and_consistency(const DomainOf<dim>& domain, const ElasticityS
       }
     } else if (res.consistency == Consistency::vci) {
       res.test_gradients = conditions.vci_test_gradients();
+      res.nearly_symmetric = s.order == RKOrder::linear;
       res.consistency_after = conditions.defect(res.test_gradients);
     } else {
       res.consistency_after = res.consistency_before;
@@ -231,7 +244,7 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
   res.nodes = timer.time("clouds", [&] { return make_cloud(solid, s.nodes); });
   res.trial = timer.time("shape functions", [&] {
     return std::make_unique<RKShapeFunctions<3>>(
-        res.nodes, rk_settings(res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
+        res.nodes, rk_settings(solid, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
   res.quadrature = timer.time("weights and projection", [&] {
     CloudSettings qc = s.nodes;
@@ -265,11 +278,8 @@ ElasticityResult solve_elasticity(const Domain& domain, const ElasticitySettings
   });
   check_rigid_body_modes(sys.stiffness, res.nodes);
   res.stiffness_nonzeros = sys.stiffness.nonZeros();
-  const std::unique_ptr<LinearSolver> solver =
-      make_linear_solver(s.solver,
-                         {"stiffness", sys.symmetric, 2, res.nodes,
-                          res.consistency == Consistency::vci && s.order == RKOrder::linear},
-                         sys.stiffness.rows());
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver(
+      s.solver, {"stiffness", sys.symmetric, 2, res.nodes, res.nearly_symmetric}, sys.stiffness.rows());
   timer.time("factorisation", [&] {
     solver->analyze(sys.stiffness);
     solver->factorize(sys.stiffness);

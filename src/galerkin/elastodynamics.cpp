@@ -246,8 +246,10 @@ DynamicsResult integrate_dynamics(TotalLagrangian<dim>& model, const std::vector
   if (!explicit_scheme) {
     k = model.zero_matrix();
     timer.time("assembly", [&] { effective_tangent(d, 0.0, k); });
-    solver = make_linear_solver(s.newton.solver,
-                                {"effective tangent", model.symmetric(), dim, node_positions}, model.dofs());
+    solver = make_linear_solver(
+        s.newton.solver,
+        {"effective tangent", model.symmetric(), dim, node_positions, s.newton.nearly_symmetric},
+        model.dofs());
     timer.time("factorisation", [&] { solver->analyze(k); });
   }
 

@@ -147,8 +147,8 @@ StaticSolution solve_static(
                                    i ? targets[i - 1] : 0.0));
 
   StaticSolution out;
-  const std::unique_ptr<LinearSolver> solver =
-      make_linear_solver(s.solver, {"tangent stiffness", model.symmetric(), dim, nodes}, model.dofs());
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver(
+      s.solver, {"tangent stiffness", model.symmetric(), dim, nodes, s.nearly_symmetric}, model.dofs());
   SparseMatrix k = model.zero_matrix();
 
   const Eigen::VectorXd f_unit = model.external_force({});

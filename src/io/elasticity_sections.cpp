@@ -129,7 +129,7 @@ void read_solver_section(const SceneTable& t, ElasticitySettings& s) {
   if (t.has("preconditioner")) v.preconditioner = read_choice(t, "preconditioner", preconditioner_names());
   v.tolerance = t.number_or("tolerance", v.tolerance, 1e-15, 0.1);
   v.max_iterations = static_cast<int>(t.integer_or("max_iterations", v.max_iterations, 1, 1000000));
-  v.direct_limit = static_cast<Index>(t.integer_or("direct_limit", v.direct_limit, 0, 2000000000));
+  if (t.has("direct_limit")) v.direct_limit = static_cast<Index>(t.integer("direct_limit", 0, 2000000000));
   t.finish();
 }
 

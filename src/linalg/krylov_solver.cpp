@@ -9,7 +9,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -20,11 +23,16 @@ namespace mfree {
 
 namespace {
 
-/// Throws NumericalError with PETSc's own message when a PETSc call failed.
+/// Throws NumericalError with PETSc's own message when a PETSc call failed; InputError when
+/// it failed on a name no PETSc type has, which only PETSC_OPTIONS can give (a numerical
+/// error would make Newton cut its load step back, in vain).
 void check(PetscErrorCode code, const char* call) {
   if (!code) return;
   const char* text = nullptr;
   PetscErrorMessage(code, &text, nullptr);
+  if (code == PETSC_ERR_ARG_UNKNOWN_TYPE)
+    throw InputError(fmt::format("PETSc: {} failed: {} (a type named in PETSC_OPTIONS?)", call,
+                                 text ? text : "unknown type"));
   throw NumericalError(fmt::format("PETSc: {} failed: {}", call, text ? text : "unknown error"));
 }
 
@@ -54,6 +62,32 @@ void orthonormalise(std::vector<Eigen::VectorXd>& v) {
   }
 }
 
+/// Entries of PETSc's options database for the span of one object: each (key, value) that
+/// PETSC_OPTIONS does not give is entered, and taken out again at the end, so that no other
+/// solver reads it and the user's own options always win.
+class ScopedOptionDefaults {
+ public:
+  ScopedOptionDefaults(const std::string& prefix,
+                       const std::vector<std::pair<std::string, std::string>>& entries) {
+    for (const auto& [key, value] : entries) {
+      const std::string name = "-" + prefix + key;
+      PetscBool given = PETSC_FALSE;
+      check(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given), "PetscOptionsHasName");
+      if (given) continue;
+      check(PetscOptionsSetValue(nullptr, name.c_str(), value.c_str()), "PetscOptionsSetValue");
+      entered_.push_back(name);
+    }
+  }
+  ~ScopedOptionDefaults() {
+    for (const std::string& name : entered_) PetscOptionsClearValue(nullptr, name.c_str());
+  }
+  ScopedOptionDefaults(const ScopedOptionDefaults&) = delete;
+  ScopedOptionDefaults& operator=(const ScopedOptionDefaults&) = delete;
+
+ private:
+  std::vector<std::string> entered_;
+};
+
 }  // namespace
 
 struct KrylovSolver::Impl {
@@ -66,6 +100,9 @@ struct KrylovSolver::Impl {
   /// The values go straight into PETSc's array: no copy of the matrix is kept here.
   std::vector<PetscInt> gather;
   std::string overridden;  ///< "KSP + PC" when PETSC_OPTIONS changed the scene's method
+  std::string prefix;      ///< of the KSP's options: the system's name, "tangent_stiffness_"
+  /// Options PCGAMG reads when it makes its levels' smoothers (factorize()), unless given.
+  std::vector<std::pair<std::string, std::string>> smoother_defaults;
 
   ~Impl() {
     KSPDestroy(&ksp);
@@ -188,9 +225,10 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
   check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
   // PETSC_OPTIONS reach one kind of system by its name: -stiffness_ksp_monitor,
   // -consistency_node_pc_gamg_threshold 0.05, ...
-  std::string prefix;
-  for (char c : system_.name) prefix += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  check(KSPSetOptionsPrefix(p.ksp, (prefix + "_").c_str()), "KSPSetOptionsPrefix");
+  p.prefix.clear();
+  for (char c : system_.name) p.prefix += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  p.prefix += '_';
+  check(KSPSetOptionsPrefix(p.ksp, p.prefix.c_str()), "KSPSetOptionsPrefix");
   check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
   if (kind_ == SolverKind::cg) {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
@@ -233,6 +271,17 @@ void KrylovSolver::analyze(const SparseMatrix& m) {
       // iterations per node-system solve at 10^5 DOFs: 44 with PETSc's default of 50, 30
       // with 1000, 21 with 5000; the stiffness's stayed at 38.
       check(PCGAMGSetCoarseEqLim(pc, 5000), "PCGAMGSetCoarseEqLim");
+      // In space a node couples with about 410 others (1237 nonzeros a row of the Lamé
+      // sphere's stiffness), smoothing the prolongators makes the coarse operators nearly
+      // dense, and Jacobi-Chebyshev smoothing stalls: GMRES on that stiffness (12 051
+      // unknowns, one thread) took 220 iterations, 4.5 s set-up + 15 s. Plain aggregation and
+      // two SOR-Chebyshev sweeps a level: 40 iterations, 1.6 s + 5.2 s (four sweeps: 26
+      // iterations, 1.7 s + 6.7 s; SOR with smoothed aggregation: 31, 4.9 s + 6.3 s).
+      p.smoother_defaults.clear();
+      if (std::holds_alternative<std::span<const Point<3>>>(system_.nodes)) {
+        check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
+        p.smoother_defaults = {{"mg_levels_pc_type", "sor"}, {"mg_levels_ksp_max_it", "2"}};
+      }
       break;
     case Preconditioner::boomeramg:
       check(PCSetType(pc, PCHYPRE), "PCSetType");
@@ -263,6 +312,7 @@ void KrylovSolver::factorize(const SparseMatrix& m) {
     throw Error(fmt::format("{}: factorize() needs analyze() of a matrix of the same pattern first", description()));
   p.set_values(m);
   check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
+  const ScopedOptionDefaults smoothers(p.prefix, p.smoother_defaults);
   check(KSPSetUp(p.ksp), "KSPSetUp (the preconditioner's setup)");
   factorized_ = true;
 }

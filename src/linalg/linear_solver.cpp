@@ -27,9 +27,15 @@ const NameTable<Preconditioner>& preconditioner_names() {
 
 std::string_view to_string(Preconditioner p) { return preconditioner_names().name(p); }
 
+Index default_direct_limit(const SystemDescription& system) {
+  if (!std::holds_alternative<std::span<const Point<3>>>(system.nodes)) return 200000;
+  return system.symmetric || system.nearly_symmetric ? 3000 : 20000;
+}
+
 SolverKind choose_solver(const SolverSettings& settings, const SystemDescription& system, Index size) {
   if (!settings.kind) {
-    if (size <= settings.direct_limit) return system.symmetric ? SolverKind::cholmod : SolverKind::umfpack;
+    if (size <= settings.direct_limit.value_or(default_direct_limit(system)))
+      return system.symmetric ? SolverKind::cholmod : SolverKind::umfpack;
     return system.symmetric ? SolverKind::cg : SolverKind::gmres;
   }
   const SolverKind k = *settings.kind;

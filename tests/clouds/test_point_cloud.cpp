@@ -4,6 +4,7 @@
 #include "../test_support.hpp"
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
+#include "mfree/kernels/rk_shape_functions.hpp"
 
 using namespace mfree;
 
@@ -57,4 +58,56 @@ TEST_CASE("lattice clouds: vertex lattice reaches the boundary, quadrature cloud
   s.perturbation = 0.0;
   s.spacing = -1.0;
   CHECK_THROWS_AS(make_cloud(d, s), InputError);
+}
+
+TEST_CASE(
+    "surface support radii: a lattice in a sphere's octant reaches every surface point; a box keeps its "
+    "radii",
+    "[clouds]") {
+  // At h = 0.05 the outer sphere's poles leave caps above the last plane of nodes whose points
+  // see one plane only within 2h: uniform radii make a singular moment matrix there.
+  const Solid solid = testing::thick_sphere_octant(0.1);
+  const double h = 0.05, factor = 2.0;
+  const std::vector<Point<3>> nodes = make_cloud(solid, {CloudKind::lattice, h});
+  std::vector<Point<3>> surface;
+  for (const SurfaceTriangle& t : solid.surface()) {
+    surface.push_back(t.vertices[0]);
+    surface.push_back((t.vertices[0] + t.vertices[1] + t.vertices[2]) / 3.0);
+  }
+  RKSettings plain;
+  plain.radius = factor * h;
+  const RKShapeFunctions<3> uniform(nodes, plain);
+  ShapeValues<3> v;
+  std::size_t singular = 0;
+  for (const Point<3>& x : surface) try {
+      uniform.evaluate(x, v, true);
+    } catch (const NumericalError&) {
+      ++singular;
+    }
+  CHECK(singular > 0);
+
+  RKSettings wide = plain;
+  wide.node_radii = surface_support_radii(solid, nodes, h, factor, 1);
+  REQUIRE(wide.node_radii.size() == nodes.size());
+  const auto widened = std::count(wide.node_radii.begin(), wide.node_radii.end(), (factor + 0.5) * h);
+  CHECK(widened > 0);
+  CHECK(widened < static_cast<long>(nodes.size()) / 20);  // the caps only
+  const RKShapeFunctions<3> reaching(nodes, wide);
+  for (const Point<3>& x : surface) {
+    reaching.evaluate(x, v, true);
+    double sum = 0.0;
+    Point<3> first = Point<3>::Zero();
+    for (std::size_t a = 0; a < v.size(); ++a) {
+      sum += v.phi[a];
+      first += v.phi[a] * nodes[static_cast<std::size_t>(v.nodes[a])];
+    }
+    REQUIRE(sum == Approx(1.0).margin(1e-10));
+    REQUIRE((first - x).norm() < 1e-10);
+  }
+
+  // A box on its own lattice: every face is a lattice plane, nothing is flat.
+  const Solid box = Solid::box({0, 0, 0}, {1, 0.6, 0.8});
+  const std::vector<Point<3>> box_nodes = make_cloud(box, {CloudKind::lattice, 0.1});
+  CHECK(surface_support_radii(box, box_nodes, 0.1, 2.0, 1).empty());
+  CHECK(surface_support_radii(box, box_nodes, 0.1, 3.0, 2).empty());
 }

@@ -1,10 +1,12 @@
+#include <array>
 #include <catch2/catch.hpp>
+#include <vector>
 
+#include "../test_support.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/linalg/krylov_solver.hpp"
 #include "mfree/linalg/sparse_solver.hpp"
 #include "model_matrices.hpp"
-#include "../test_support.hpp"
 
 using namespace mfree;
 
@@ -150,4 +152,55 @@ TEST_CASE("The solver factory (PETSc above the limit): auto is direct up to dire
   CHECK_THAT(make_linear_solver(s, nearly, 10)->description(), Catch::StartsWith("gmres + gamg"));
   s.preconditioner = Preconditioner::boomeramg;
   CHECK_THAT(make_linear_solver(s, nearly, 10)->description(), Catch::StartsWith("gmres + boomeramg"));
+}
+
+TEST_CASE(
+    "In space auto turns iterative above 3000 unknowns (20 000 far from symmetric), and GAMG with its SOR "
+    "smoothers solves a vector Laplacian",
+    "[linalg]") {
+  // Nodes of a 12^3 grid, three unknowns each: -Laplace u = 1 per component, u = 0 outside.
+  const int n = 12;
+  std::vector<Point<3>> nodes;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) nodes.emplace_back(i, j, k);
+  const Index size = 3 * static_cast<Index>(nodes.size());
+  std::vector<Eigen::Triplet<double>> t;
+  const auto id = [&](int i, int j, int k) { return (k * n + j) * n + i; };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const Index row = 3 * id(i, j, k) + c;
+          t.emplace_back(row, row, 6.0);
+          for (const auto& [di, dj, dk] :
+               {std::array{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}})
+            if (i + di >= 0 && i + di < n && j + dj >= 0 && j + dj < n && k + dk >= 0 && k + dk < n)
+              t.emplace_back(row, 3 * id(i + di, j + dj, k + dk) + c, -1.0);
+        }
+  SparseMatrix a(size, size);
+  a.setFromTriplets(t.begin(), t.end());
+  a.makeCompressed();
+  const SystemDescription space{"vector laplacian", true, 3, std::span<const Point<3>>(nodes)};
+  const SystemDescription plane{"vector laplacian", true, 3, std::span<const Point<2>>{}};
+  SolverSettings s;
+  CHECK(choose_solver(s, space, 3000) == SolverKind::cholmod);
+  CHECK(choose_solver(s, space, 3001) == SolverKind::cg);
+  CHECK(choose_solver(s, plane, 200000) == SolverKind::cholmod);
+  CHECK(choose_solver(s, plane, 200001) == SolverKind::cg);
+  // Far from symmetric in space: direct to 20 000.
+  SystemDescription skew = space;
+  skew.symmetric = false;
+  CHECK(choose_solver(s, skew, 20000) == SolverKind::umfpack);
+  CHECK(choose_solver(s, skew, 20001) == SolverKind::gmres);
+  skew.nearly_symmetric = true;
+  CHECK(choose_solver(s, skew, 3001) == SolverKind::gmres);
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver(s, space, size);
+  REQUIRE(solver->kind() == SolverKind::cg);
+  solver->analyze(a);
+  solver->factorize(a);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(size);
+  const Eigen::VectorXd x = solver->solve(b);
+  CHECK((b - a * x).norm() <= 1e-10 * b.norm());
+  CHECK(solver->statistics().most_iterations < 30);
 }

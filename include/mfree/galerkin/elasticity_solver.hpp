@@ -99,6 +99,9 @@ struct Discretisation {
   BoundaryQuadrature<dim> boundary;
   GalerkinQuadrature<dim> at_boundary;          ///< trial functions and gradients at boundary's points
   Consistency consistency = Consistency::none;  ///< the correction applied
+  /// VCI's test gradients of linear order: the stiffness a small skew correction of a
+  /// symmetric one (SystemDescription::nearly_symmetric: GAMG preconditions it).
+  bool nearly_symmetric = false;
   double consistency_before = 0.0;      ///< defect of (IC_p), p the RK order (consistency.hpp)
   double consistency_after = 0.0;       ///< the same for the (test) gradients used
   double correction_residual = 0.0;     ///< symmetric correction: |A lambda - r| / |r|

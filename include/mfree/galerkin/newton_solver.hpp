@@ -50,6 +50,7 @@ struct NewtonSettings {
   int load_steps = 10;                 ///< static: uniform steps when load_factors is empty
   int max_cutbacks = 8;                ///< static: consecutive halvings of a failed increment
   SolverSettings solver;               ///< the linear solver of every iteration ([solver])
+  bool nearly_symmetric = false;       ///< the tangent's (Discretisation::nearly_symmetric)
   std::ostream* log = nullptr;         ///< one line per iteration, if set
 };
 

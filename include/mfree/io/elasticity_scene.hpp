@@ -43,9 +43,11 @@
 //                 of the law at the point)
 //   [solver]      every linear solve (linalg/linear_solver.hpp): kind (auto | cholmod |
 //                 umfpack | cg | gmres; auto: direct up to direct_limit unknowns, default
-//                 200000, Krylov above), and for the Krylov methods preconditioner (gamg |
-//                 boomeramg | jacobi; default gamg, boomeramg for VCI's non-symmetric
-//                 stiffness), tolerance (on |b - A x| / |b|, default 1e-10),
+//                 200000 in the plane, 3000 in space (20000 for quadratic VCI's stiffness),
+//                 Krylov above), and for the Krylov
+//                 methods preconditioner (gamg | boomeramg | jacobi; default gamg, boomeramg
+//                 for a non-symmetric stiffness other than linear VCI's), tolerance (on
+//                 |b - A x| / |b|, default 1e-10),
 //                 max_iterations (default 2000)
 //   [newton]      total-Lagrangian statics (default for the finite-strain models): tolerance
 //                 (on |R| / |R_0|), absolute_tolerance (on |R|; default tolerance times the

@@ -24,7 +24,12 @@
 // UMFPACK otherwise) and a Krylov method above it (CG, GMRES): a factorisation's fill grows
 // faster than the matrix, an AMG cycle does not. On the cantilever (2 threads; PETSc runs on
 // one) CHOLMOD is ahead at 10^5 DOFs and CG + GAMG at 5 * 10^5, in time and memory
-// (verification/benchmarks/README.md): the default limit, 2 * 10^5, is where they cross.
+// (verification/benchmarks/README.md): the default limit in the plane, 2 * 10^5, is where they
+// cross. In space a node couples with about 410 others (the projected gradients of linear RK
+// reach about 4.6 h; 1237 nonzeros a row against 110 or so in the plane), and the fill of a
+// factorisation grows much faster: on the Lamé sphere (one thread) UMFPACK took 26 s and 2.8 GB
+// at 12 051 unknowns where GMRES + GAMG took 6.8 s and 1.1 GB; the default limit in space is
+// 3000 unknowns for the systems GAMG serves (default_direct_limit).
 //
 // The life of a solver follows Newton's: analyze() once per sparsity pattern (orderings,
 // symbolic factorisation; for Krylov methods the matrix structure), factorize() whenever
@@ -64,7 +69,8 @@ struct SolverSettings {
   std::optional<Preconditioner> preconditioner;  ///< nullopt: gamg if (nearly) symmetric, else boomeramg
   double tolerance = 1e-10;               ///< |b - A x| / |b| of the Krylov methods
   int max_iterations = 2000;              ///< per Krylov solve
-  Index direct_limit = 200000;            ///< auto: direct up to this many unknowns
+  std::optional<Index>
+      direct_limit;  ///< auto: direct up to this many unknowns (nullopt: default_direct_limit)
 };
 
 /// What a solve knows of its system beyond the matrix.
@@ -114,6 +120,12 @@ class LinearSolver {
   bool analyzed_ = false, factorized_ = false;
   SolveStatistics statistics_;
 };
+
+/// auto's limit unless [solver] gives one: 2 * 10^5 unknowns in the plane; in space 3000 for a
+/// symmetric or nearly symmetric system (above) and 20 000 for another, where neither multigrid
+/// does well: quadratic VCI's stiffness of the Lamé sphere (3414 unknowns, 2 threads) took
+/// UMFPACK 1.2 s, GMRES + GAMG 137 iterations and 7.3 s, GMRES + BoomerAMG 261 and about 50 s.
+[[nodiscard]] Index default_direct_limit(const SystemDescription& system);
 
 /// The method `settings` choose for a system of `size` unknowns: its kind, or by the auto
 /// rule. Throws InputError when CHOLMOD or CG is asked for a non-symmetric system.
