@@ -59,6 +59,25 @@ void fill_rows(const RKShapeFunctions<dim>& trial, GalerkinQuadrature<dim>& q, b
   });
 }
 
+/// Puts v's entries in increasing node order (insertion sort: a support holds tens of nodes).
+template <int dim>
+void sort_by_node(ShapeValues<dim>& v) {
+  for (std::size_t a = 1; a < v.size(); ++a) {
+    const Index node = v.nodes[a];
+    const double phi = v.phi[a];
+    const Point<dim> grad = v.grad[a];
+    std::size_t b = a;
+    for (; b > 0 && v.nodes[b - 1] > node; --b) {
+      v.nodes[b] = v.nodes[b - 1];
+      v.phi[b] = v.phi[b - 1];
+      v.grad[b] = v.grad[b - 1];
+    }
+    v.nodes[b] = node;
+    v.phi[b] = phi;
+    v.grad[b] = grad;
+  }
+}
+
 }  // namespace
 
 template <int dim>
@@ -152,15 +171,22 @@ GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
   const auto& lp = lattice.points();
   std::vector<ShapeValues<dim>> phii(
       static_cast<std::size_t>(std::min(lattice_chunk, static_cast<Index>(lp.size()))));
+  // The trial functions at v in increasing node order, as the rows are: each term merges the
+  // two lists (a slot of row K receives one term per v, so the sums keep their order).
   for_lattice_terms(
-      quadrature_functions, lattice, [&](Index local, Index v) { trial.evaluate(lp[v], phii[local], true); },
+      quadrature_functions, lattice,
+      [&](Index local, Index v) {
+        trial.evaluate(lp[v], phii[local], true);
+        sort_by_node(phii[local]);
+      },
       [&](Index k, Index v, Index local, double c) {
         w[k] += c;
         moment[k] += c * lp[v];
-        const auto row_first = q.nodes.begin() + q.offsets[k], row_last = q.nodes.begin() + q.offsets[k + 1];
+        auto it = q.nodes.begin() + q.offsets[k];
+        const auto row_last = q.nodes.begin() + q.offsets[k + 1];
         const ShapeValues<dim>& gi = phii[local];
         for (std::size_t i = 0; i < gi.size(); ++i) {
-          const auto it = std::lower_bound(row_first, row_last, gi.nodes[i]);
+          while (it != row_last && *it < gi.nodes[i]) ++it;
           if (it == row_last || *it != gi.nodes[i]) {  // supports that meet off the row: see below
             ++missing[k];
             continue;

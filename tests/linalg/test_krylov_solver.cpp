@@ -155,7 +155,8 @@ TEST_CASE("The solver factory (PETSc above the limit): auto is direct up to dire
 }
 
 TEST_CASE(
-    "In space auto turns iterative above 3000 unknowns (20 000 far from symmetric), and GAMG with its SOR "
+    "In space auto turns iterative above 3000 unknowns (20 000 far from symmetric), and PETSc's GAMG with "
+    "its SOR "
     "smoothers solves a vector Laplacian",
     "[linalg]") {
   // Nodes of a 12^3 grid, three unknowns each: -Laplace u = 1 per component, u = 0 outside.
