@@ -27,18 +27,18 @@ namespace {
 
 /// The static exact solution scaled by the load factor (small-strain theory), as a motion
 /// whose "time" is the load factor.
-std::optional<ExactMotion> scaled_static(const ElasticityScene& scene) {
+std::optional<ExactMotion<2>> scaled_static(const ElasticityScene& scene) {
   const std::optional<ExactElasticity> e = scene.exact();
   if (!e) return std::nullopt;
-  return ExactMotion{[e = *e](const Vec2& x, double f) { return Vec2(f * e.displacement(x)); },
-                     [](const Vec2&, double) { return Vec2(0.0, 0.0); },
-                     [e = *e](const Vec2& x, double f) {
-                       const Eigen::Vector3d s = f * e.stress(x);
-                       Mat2 m;
-                       m << s[0], s[2], s[2], s[1];
-                       return m;
-                     },
-                     {}};  // the loads are the scene's
+  return ExactMotion<2>{[e = *e](const Vec2& x, double f) { return Vec2(f * e.displacement(x)); },
+                        [](const Vec2&, double) { return Vec2(0.0, 0.0); },
+                        [e = *e](const Vec2& x, double f) {
+                          const Eigen::Vector3d s = f * e.stress(x);
+                          Mat2 m;
+                          m << s[0], s[2], s[2], s[1];
+                          return m;
+                        },
+                        {}};  // the loads are the scene's
 }
 
 /// The trial functions at the scene's probe, sampled once for the whole run.
@@ -49,7 +49,7 @@ std::optional<GalerkinQuadrature<2>> probe_functions(const ElasticityScene& scen
 }
 
 /// The law at X of the model's problem (its region's).
-MaterialAt law_at(const TotalLagrangian<2>& model, const Domain& domain) {
+MaterialAt<2> law_at(const TotalLagrangian<2>& model, const Domain& domain) {
   return [&model, &domain](const Vec2& x) -> const Material& { return model.problem().law_at(domain, x); };
 }
 
@@ -79,8 +79,8 @@ int run_static(const ElasticityScene& scene) {
                            disc.nodes.size(), model.dofs(), disc.quadrature.size(), disc.consistency_before,
                            disc.consistency_after, model.symmetric() ? "symmetric" : "non-symmetric");
 
-  const std::optional<ExactMotion> exact = scaled_static(scene);
-  std::optional<MotionErrorSampler> sampler;
+  const std::optional<ExactMotion<2>> exact = scaled_static(scene);
+  std::optional<MotionErrorSampler<2>> sampler;
   if (exact) sampler.emplace(*disc.trial, error_rule(scene), law_at(model, scene.domain));
   const OutputSettings& o = scene.output;
   std::optional<SolidFrames> frames;
@@ -297,8 +297,8 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   run.nodes = disc.node_count();
   run.spacing = scene.settings.nodes.spacing;
 
-  const std::optional<ExactMotion> exact = scene.motion();
-  std::optional<MotionErrorSampler> sampler;
+  const std::optional<ExactMotion<2>> exact = scene.motion();
+  std::optional<MotionErrorSampler<2>> sampler;
   if (exact) sampler.emplace(*disc.trial, error_rule(scene), law_at(model, scene.domain));
   const DynamicsScene& dyn = *scene.dynamics;
   // Initial fields: of the exact motion, or the scene's formulas, L2-projected (the
@@ -408,16 +408,6 @@ std::string energy_csv(const std::vector<EnergyRecord>& energy) {
 
 }  // namespace
 
-double energy_drift(const std::vector<EnergyRecord>& energy) {
-  if (energy.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double scale = 0.0, drift = 0.0;
-  for (const EnergyRecord& e : energy) {
-    scale = std::max(scale, e.kinetic + e.strain);
-    drift = std::max(drift, std::abs(e.total() - energy.front().total()));
-  }
-  return scale > 0.0 ? drift / scale : drift;
-}
-
 int run_dynamics(const ElasticityScene& scene, const Checkpoints* checkpoints) {
   const DynamicsSettings& s = scene.dynamics->settings;
   std::cout << fmt::format("mfree run: {} (total-Lagrangian dynamics, {}, {}, {} thread(s))\n",
@@ -484,78 +474,19 @@ int converge_dynamics(const ElasticityScene& scene) {
   const StudySettings& st = *scene.study;
   if (!scene.motion())
     throw InputError(fmt::format("{}: a dynamics study needs an [exact] solution that is a motion", scene.file.string()));
-  const std::size_t runs = st.time_schemes.size() * st.spacings.size();
+  const std::size_t runs = st.time.schemes.size() * st.spacings.size();
   std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(), runs, thread_count());
   std::cout << scene.describe_conditions();
-  std::string csv = "time_scheme,spacing,nodes,dofs,time_step,steps,seconds,time,displacement,velocity,stress,energy_drift\n";
-  std::string table;
-  std::size_t done = 0;
-  std::string checks;
-  for (std::size_t m = 0; m < st.time_schemes.size(); ++m) {
-    const TimeScheme scheme = st.time_schemes[m];
-    DynamicsSettings ds = scene.dynamics->settings;
-    ds.scheme = scheme;
-    ds.time_step = st.time_steps[m] > 0.0 ? std::optional<double>(st.time_steps[m]) : std::nullopt;
-    const auto level = [&](double h) {
-      ElasticityScene l = scene;
-      l.settings.nodes.spacing = h;
-      return l;
-    };
-    std::vector<DynamicRun> series;
-    for (double h : st.spacings) {
-      DynamicRun run = simulate(level(h), ds, false);
-      double seconds = run.timer.total();  // the solve; measuring errors is not part of it
-      for (const auto& [name, t] : run.timer.stages())
-        if (name == "errors") seconds -= t;
-      const double drift = energy_drift(run.result.energy);
-      for (std::size_t k = 0; k < run.errors.size(); ++k) {
-        const MotionErrors& e = run.errors[k];
-        std::string rates;
-        if (!series.empty()) {
-          const MotionErrors& p = series.back().errors[k];
-          const double lr = std::log(series.back().spacing / h);
-          rates = fmt::format("{:5.2f} {:5.2f} {:5.2f}", std::log(p.displacement / e.displacement) / lr,
-                              std::log(p.velocity / e.velocity) / lr, std::log(p.stress / e.stress) / lr);
-        }
-        const std::string line =
-            fmt::format("{:<18} {:8.5f} {:7d} {:10.3e} {:8.5f} {:10.3e} {:10.3e} {:10.3e} {:17} {:8.2f} {:>9}",
-                        to_string(scheme), h, 2 * run.nodes, run.result.time_step, e.time, e.displacement, e.velocity,
-                        e.stress, rates, seconds, std::isnan(drift) ? "off" : fmt::format("{:9.2e}", drift));
-        table += line + "\n";
-        if (k + 1 == run.errors.size()) std::cout << fmt::format("  [{}/{}] {}\n", ++done, runs, line) << std::flush;
-        // No energy record (energy_every = 0): an empty cell, not a NaN.
-        csv += fmt::format("{},{},{},{},{:.6e},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{}\n", to_string(scheme), h,
-                           run.nodes, 2 * run.nodes, run.result.time_step, run.result.steps, seconds, e.time,
-                           e.displacement, e.velocity, e.stress, std::isnan(drift) ? "" : fmt::format("{:.3e}", drift));
-      }
-      series.push_back(std::move(run));
-    }
-    if (st.time_step_check) {
-      // Space dominates when halving dt at the finest level leaves the errors nearly as they are.
-      const DynamicRun& fine = series.back();
-      DynamicsSettings half = ds;
-      half.time_step = 0.5 * fine.result.time_step;
-      const DynamicRun again = simulate(level(st.spacings.back()), half, false);
-      double change = 0.0;
-      for (std::size_t k = 0; k < fine.errors.size(); ++k) {
-        const MotionErrors &a = fine.errors[k], &b = again.errors[k];
-        change = std::max({change, std::abs(a.displacement - b.displacement) / a.displacement,
-                           std::abs(a.velocity - b.velocity) / a.velocity, std::abs(a.stress - b.stress) / a.stress});
-      }
-      const std::string line = fmt::format("time-step check, {} at h = {}: dt {:.3e} -> {:.3e} changes the errors by at most {:.2f} %\n",
-                            to_string(scheme), st.spacings.back(), fine.result.time_step, again.result.time_step,
-                            100.0 * change);
-      checks += line;
-      std::cout << "  " << line << std::flush;
-    }
-  }
-  const std::filesystem::path csv_path = scene.output.folder / "convergence.csv";
-  write_file_atomically(csv_path, csv);
-  std::cout << fmt::format("\n{:<18} {:>8} {:>7} {:>10} {:>8} {:>10} {:>10} {:>10} {:>17} {:>8} {:>9}\n", "scheme", "h",
-                           "DOFs", "dt", "t", "RMS u", "RMS v", "RMS stress", "rates (u v s)", "time [s]", "drift")
-            << table << checks;
-  std::cout << fmt::format("wrote {}\n", csv_path.filename().string());
-  plot("plot_dynamics.py", csv_path, scene.output.folder);
+  const auto simulate_level = [&](double h, const DynamicsSettings& ds) {
+    ElasticityScene level = scene;
+    level.settings.nodes.spacing = h;
+    DynamicRun run = simulate(level, ds, false);
+    double seconds = run.timer.total();  // the solve; measuring errors is not part of it
+    for (const auto& [name, t] : run.timer.stages())
+      if (name == "errors") seconds -= t;
+    return DynamicsLevel{h, run.nodes, 2 * run.nodes, std::move(run.result), std::move(run.errors), seconds};
+  };
+  dynamics_study(st.spacings, st.time, scene.dynamics->settings, simulate_level, scene.output.folder);
   return 0;
 }
 

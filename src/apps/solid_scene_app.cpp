@@ -7,11 +7,13 @@
 #include <functional>
 #include <iostream>
 
+#include "mfree/apps/dynamics_study.hpp"
 #include "mfree/apps/probe_study.hpp"
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/reactions.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
@@ -40,6 +42,13 @@ std::string describe_solid(const Solid& solid) {
       b.max().y(), b.max().z());
 }
 
+/// The independent rule of the error measures: the solid's cells of the node spacing
+/// (tetrahedra clipped to them where it is meshed), n^3 Gauss points on each piece, n = 3 for
+/// linear RK and 4 for quadratic.
+QuadratureRule<3> error_rule(const Solid& solid, const ElasticitySettings& s) {
+  return gauss_cell_rule(solid, s.nodes.spacing, s.order == RKOrder::linear ? 3 : 4);
+}
+
 /// What one solve of a solid scene gives.
 struct SolidLevel {
   Index nodes = 0, dofs = 0, quadrature_points = 0;
@@ -57,8 +66,7 @@ using Finish =
 
 /// One solve of the scene with settings s: the discretisation, the well-posedness check,
 /// Newton with the scene's load steps (on_step after each), the errors against [exact] over
-/// an independent rule (the solid's cells of the node spacing, tetrahedra clipped to them
-/// where it is meshed, n^3 Gauss points on each piece), then `finish` with the solution.
+/// the error rule, then `finish` with the solution.
 SolidLevel solve_level(const SolidScene& scene, const ElasticitySettings& s,
                        const std::optional<Point<3>>& probe, StageTimer& timer, bool verbose,
                        const StepReport& on_step, const Finish& finish) {
@@ -109,10 +117,9 @@ SolidLevel solve_level(const SolidScene& scene, const ElasticitySettings& s,
   if (scene.exact) {
     const auto* law = std::get_if<LinearElastic>(&problem.material);
     const SolidExact& ex = *scene.exact;
-    const int n = s.order == RKOrder::linear ? 3 : 4;
     level.errors = timer.time("errors", [&] {
       return small_strain_errors(
-          *disc.trial, sol.coefficients, gauss_cell_rule(solid, s.nodes.spacing, n),
+          *disc.trial, sol.coefficients, error_rule(solid, s),
           lame_constants(law->youngs_modulus, law->poisson_ratio),
           [&](const Point<3>& x) { return ex.displacement(x); },
           [&](const Point<3>& x) { return ex.gradient_at(x); });
@@ -204,41 +211,100 @@ int run(const SolidScene& scene) {
   return 0;
 }
 
-/// A dynamic run: the discretisation, the initial fields projected onto the RK functions,
-/// central differences or Newmark to end_time, frames of the fields (volume.pvd and
-/// surface.pvd), energy.csv and the balance at the end.
+/// What one dynamic run of a solid scene gives.
+struct SolidDynamicRun {
+  Index nodes = 0, dofs = 0;
+  DynamicsResult result;
+  std::vector<MotionErrors> errors;  ///< with an [exact] motion, at the error times
+  StageTimer timer;
+};
+
+using OnState = std::function<void(const Discretisation<3>&, const TotalLagrangian<3>&, const DynamicState&,
+                                   StageTimer&)>;
+
+/// One dynamic run of the scene with node settings s and time settings ds: the
+/// discretisation, the initial fields L2-projected onto the RK functions (of the exact motion,
+/// or the scene's formulas), central differences or Newmark to end_time, the errors against
+/// the exact motion at the first step at or past each error time, on_state after every step.
+SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, DynamicsSettings ds,
+                         bool verbose, const OnState& on_state) {
+  const SolidDynamics& dyn = *scene.dynamics;
+  SolidDynamicRun run;
+  StageTimer& timer = run.timer;
+  SolidProblem<3> problem = scene.problem;
+  problem.spacing = s.nodes.spacing;
+  if (verbose) timer.report_to(&std::cout);
+  const Discretisation<3> disc = discretise(scene.solid, s, condition_parts(problem.conditions), timer);
+  TotalLagrangian<3> model(problem, scene.solid, disc.node_count(), disc.quadrature, disc.test(),
+                           disc.boundary, disc.at_boundary);
+  timer.report_to(nullptr);
+  run.nodes = static_cast<Index>(disc.nodes.size());
+  run.dofs = static_cast<Index>(model.dofs());
+  if (verbose)
+    std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points, {} RK, spacing {}, {}\n",
+                             disc.nodes.size(), model.dofs(), disc.quadrature.size(), to_string(s.order),
+                             s.nodes.spacing, to_string(ds.scheme));
+  const ExactMotion<3>* motion = scene.motion ? &*scene.motion : nullptr;
+  const auto project = [&](const std::function<Point<3>(const Point<3>&)>& f) -> Eigen::VectorXd {
+    if (!f) return Eigen::VectorXd::Zero(model.dofs());
+    return timer.time("initial fields", [&] { return project_velocity(model, disc.nodes, f, s.solver); });
+  };
+  const auto formula =
+      [](const std::optional<SpaceVectorFormula>& f) -> std::function<Point<3>(const Point<3>&)> {
+    if (!f) return {};
+    return [f = *f](const Point<3>& x) { return f(x); };
+  };
+  const Eigen::VectorXd d0 = project(formula(dyn.initial_displacement));
+  const Eigen::VectorXd v0 = motion
+                                 ? project([motion](const Point<3>& x) { return motion->velocity(x, 0.0); })
+                                 : project(formula(dyn.initial_velocity));
+  std::optional<MotionErrorSampler<3>> sampler;
+  if (motion)
+    sampler.emplace(*disc.trial, error_rule(scene.solid, s),
+                    [&problem](const Point<3>&) -> const Material& { return problem.material; });
+  ds.newton.solver = s.solver;
+  ds.newton.nearly_symmetric = disc.nearly_symmetric;
+  if (verbose) ds.progress = &std::cout;
+  const double end = ds.end_time;
+  std::size_t next_error = 0;
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, [&](const DynamicState& state) {
+    // The first step at or past each error time; the exact motion at the step's own time.
+    while (sampler && next_error < dyn.error_times.size() &&
+           state.time >= dyn.error_times[next_error] * end * (1 - 1e-12)) {
+      run.errors.push_back(
+          timer.time("errors", [&] { return (*sampler)(state.d, state.v, state.time, *motion); }));
+      ++next_error;
+    }
+    if (on_state) on_state(disc, model, state, timer);
+  });
+  return run;
+}
+
+/// A dynamic run: progress, frames of the fields (volume.pvd and surface.pvd), the probe at
+/// every frame, the errors against an exact motion, energy.csv and the balance at the end.
 int run_dynamics(const SolidScene& scene) {
   const SolidDynamics& dyn = *scene.dynamics;
   const SolidOutput& o = scene.output;
-  const ElasticitySettings& s = scene.settings;
-  StageTimer timer;
-  timer.report_to(&std::cout);
-  const Discretisation<3> disc = discretise(scene.solid, s, condition_parts(scene.problem.conditions), timer);
-  TotalLagrangian<3> model(scene.problem, scene.solid, disc.node_count(), disc.quadrature, disc.test(),
-                           disc.boundary, disc.at_boundary);
-  timer.report_to(nullptr);
-  std::cout << fmt::format("  {} nodes ({} DOFs), {} quadrature points, {} RK, spacing {}, {}\n",
-                           disc.nodes.size(), model.dofs(), disc.quadrature.size(), to_string(s.order),
-                           s.nodes.spacing, to_string(dyn.settings.scheme));
-  const auto project = [&](const std::optional<SpaceVectorFormula>& f) -> Eigen::VectorXd {
-    if (!f) return Eigen::VectorXd::Zero(model.dofs());
-    return timer.time("initial fields", [&] {
-      return project_velocity(
-          model, disc.nodes, [&](const Point<3>& x) { return (*f)(x); }, s.solver);
-    });
-  };
-  const Eigen::VectorXd d0 = project(dyn.initial_displacement), v0 = project(dyn.initial_velocity);
-  std::optional<GalerkinQuadrature<3>> probe_at;
-  if (o.probe) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
   std::vector<std::pair<double, std::string>> volume_frames, surface_frames;
+  std::optional<GalerkinQuadrature<3>> probe_at;
   int frame = 0;
-  const auto write_frame = [&](const DynamicState& state) {
-    if (probe_at) {
+  const double end = dyn.settings.end_time;
+  const auto on_state = [&](const Discretisation<3>& disc, const TotalLagrangian<3>& model,
+                            const DynamicState& state, StageTimer& timer) {
+    // Frames at k end / frames (and t = 0): the first step at or past each.
+    const int wanted =
+        dyn.frames > 0 ? static_cast<int>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
+    if (!(state.step == 0 || (dyn.frames > 0 && wanted >= frame))) return;
+    if (o.probe) {
+      if (!probe_at) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
       const Point<3> u = displacement_at(*probe_at, 0, state.d);
       std::cout << fmt::format("  t = {:.6g}: probe u^h = ({:.9e}, {:.9e}, {:.9e})\n", state.time, u.x(),
                                u.y(), u.z());
     }
-    if (!o.vtk || o.fields.empty()) return;
+    if (!o.vtk || o.fields.empty()) {
+      ++frame;
+      return;
+    }
     const std::string suffix = fmt::format("_{:04d}", frame++);
     const auto files = timer.time(
         "output", [&] { return write_solid_fields(scene, disc, model, state.d, &state.v, suffix); });
@@ -250,24 +316,16 @@ int run_dynamics(const SolidScene& scene) {
     write_pvd(o.folder / "volume.pvd", volume_frames);
     write_pvd(o.folder / "surface.pvd", surface_frames);
   };
-  DynamicsSettings ds = dyn.settings;
-  ds.newton.solver = s.solver;
-  ds.newton.nearly_symmetric = disc.nearly_symmetric;
-  ds.progress = &std::cout;
-  const double end = ds.end_time;
-  const DynamicsResult r =
-      integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, [&](const DynamicState& state) {
-        // Frames at k end / frames (and t = 0): the first step at or past each.
-        const int wanted =
-            dyn.frames > 0 ? static_cast<int>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
-        if (state.step == 0 || (dyn.frames > 0 && wanted >= frame)) write_frame(state);
-      });
+  SolidDynamicRun run = simulate(scene, scene.settings, dyn.settings, true, on_state);
+  StageTimer& timer = run.timer;
+  const DynamicsResult& r = run.result;
   std::cout << fmt::format(
       "  {} steps of dt = {:.6g}{}\n", r.steps, r.time_step,
       r.stability_limit ? fmt::format(" (stability limit {:.6g})", *r.stability_limit) : "");
   RunSummary summary("solid_dynamics", scene.file);
-  summary.number("nodes", static_cast<double>(disc.nodes.size()));
-  summary.number("dofs", static_cast<double>(model.dofs()));
+  summary.text("time_scheme", std::string(to_string(dyn.settings.scheme)));
+  summary.number("nodes", static_cast<double>(run.nodes));
+  summary.number("dofs", static_cast<double>(run.dofs));
   summary.number("time_step", r.time_step);
   summary.number("steps", r.steps);
   if (r.stability_limit) summary.number("stability_limit", *r.stability_limit);
@@ -292,7 +350,22 @@ int run_dynamics(const SolidScene& scene) {
         worst, scale);
     summary.number("energy_balance_relative", scale > 0.0 ? worst / scale : 0.0);
   }
-  if (frame > 0)
+  if (!run.errors.empty()) {
+    std::cout << fmt::format(
+        "  {:>10} {:>12} {:>12} {:>12}   (RMS over the solid, independent Gauss cells)\n", "t",
+        "displacement", "velocity", "stress");
+    std::vector<RunSummary::Record> errors;
+    for (const MotionErrors& e : run.errors) {
+      std::cout << fmt::format("  {:10.6f} {:12.4e} {:12.4e} {:12.4e}\n", e.time, e.displacement, e.velocity,
+                               e.stress);
+      errors.push_back({{"time", e.time},
+                        {"displacement", e.displacement},
+                        {"velocity", e.velocity},
+                        {"stress", e.stress}});
+    }
+    summary.records("errors", errors);
+  }
+  if (frame > 0 && o.vtk && !o.fields.empty())
     std::cout << fmt::format("  wrote {} frames: open volume.pvd (or surface.pvd) in ParaView\n", frame);
   std::cout << "stages:\n";
   print_stages(timer);
@@ -305,6 +378,21 @@ int run_dynamics(const SolidScene& scene) {
 /// else the probe's change (SPEC section 8); convergence.csv and its plots.
 int converge(const SolidScene& scene) {
   const SolidStudy& st = *scene.study;
+  if (scene.dynamics) {
+    std::cout << fmt::format("mfree converge: {} ({} runs, {} thread(s))\n", scene.file.string(),
+                             st.time.schemes.size() * st.spacings.size(), thread_count());
+    const auto simulate_level = [&](double h, const DynamicsSettings& ds) {
+      ElasticitySettings s = scene.settings;
+      s.nodes.spacing = h;
+      SolidDynamicRun run = simulate(scene, s, ds, false, {});
+      double seconds = run.timer.total();  // the solve; measuring errors is not part of it
+      for (const auto& [name, t] : run.timer.stages())
+        if (name == "errors") seconds -= t;
+      return DynamicsLevel{h, run.nodes, run.dofs, std::move(run.result), std::move(run.errors), seconds};
+    };
+    dynamics_study(st.spacings, st.time, scene.dynamics->settings, simulate_level, scene.output.folder);
+    return 0;
+  }
   const std::optional<Point<3>> probe = st.probe ? st.probe : scene.output.probe;
   if (!scene.exact && !probe)
     throw InputError(

@@ -248,7 +248,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian<dim>& model, const std::vector
     timer.time("assembly", [&] { effective_tangent(d, 0.0, k); });
     solver = make_linear_solver(
         s.newton.solver,
-        {"effective tangent", model.symmetric(), dim, node_positions, s.newton.nearly_symmetric},
+        {"effective tangent", model.symmetric(), dim, node_positions, s.newton.nearly_symmetric, true},
         model.dofs());
     timer.time("factorisation", [&] { solver->analyze(k); });
   }

@@ -364,7 +364,7 @@ void read_dynamics(const SceneTable& root, ElasticityScene& out) {
     d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
     d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
     dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
-    dyn.error_times = t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
+    dyn.error_times = read_error_times(t);
     for (const char* key : {"initial_displacement", "initial_velocity"}) {
       if (!t.has(key)) continue;
       if (out.motion()) t.error(key, "the [exact] motion sets the initial state");
@@ -436,22 +436,7 @@ void read_study(const SceneTable& root, ElasticityScene& out, bool want_study) {
     if (t.has("clouds")) st.clouds = read_choices(t, "clouds", cloud_kind_names());
     if (t.has("orders")) st.orders = read_choices(t, "orders", order_names());
     if (t.has("schemes")) st.schemes = read_choices(t, "schemes", scheme_names());
-    if (t.has("time_schemes")) {
-      if (!out.dynamics) t.error("time_schemes", "needs a [dynamics] section");
-      st.time_schemes = read_choices(t, "time_schemes", time_scheme_names());
-    } else if (out.dynamics) {
-      st.time_schemes = {out.dynamics->settings.scheme};
-    }
-    if (t.has("time_steps")) {
-      st.time_steps = t.numbers("time_steps", st.time_schemes.size(), 1e-300, 1e300);
-    } else if (out.dynamics) {
-      if (!out.dynamics->settings.time_step &&
-          std::find(st.time_schemes.begin(), st.time_schemes.end(), TimeScheme::newmark) != st.time_schemes.end())
-        t.error("time_schemes", "newmark needs a time step: give [dynamics] time_step or [study] time_steps");
-      // 0: the explicit scheme's step from its stability limit.
-      st.time_steps.assign(st.time_schemes.size(), out.dynamics->settings.time_step.value_or(0.0));
-    }
-    st.time_step_check = t.boolean_or("time_step_check", false);
+    st.time = read_time_study(t, out.dynamics ? &out.dynamics->settings : nullptr);
     st.betas = t.has("betas") ? t.numbers("betas", 0, 1e-6, 1e12) : std::vector<double>{s.problem.nitsche_beta};
     if (t.has("probe")) {
       const auto p = t.numbers("probe", 2, -1e300, 1e300);
@@ -505,7 +490,7 @@ SolutionSetting ElasticityScene::solution_setting() const {
   return {domain.bounding_box(), settings.problem.material, std::holds_alternative<NeoHookean>(material), density};
 }
 
-std::optional<ExactMotion> ElasticityScene::motion() const {
+std::optional<ExactMotion<2>> ElasticityScene::motion() const {
   if (!exact_spec || !exact_spec->builtin || !exact_spec->builtin->solution().motion) return std::nullopt;
   return exact_spec->builtin->solution().motion(exact_spec->builtin->values, solution_setting());
 }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "mfree/io/read_choice.hpp"
 
 namespace mfree {
@@ -152,6 +154,32 @@ NewtonSettings read_newton_section(const SceneTable& t, const SolverSettings& so
   n.solver = solver;
   t.finish();
   return n;
+}
+
+TimeStudy read_time_study(const SceneTable& t, const DynamicsSettings* dynamics) {
+  TimeStudy time;
+  if (t.has("time_schemes")) {
+    if (!dynamics) t.error("time_schemes", "needs a [dynamics] section");
+    time.schemes = read_choices(t, "time_schemes", time_scheme_names());
+  } else if (dynamics) {
+    time.schemes = {dynamics->scheme};
+  }
+  if (t.has("time_steps")) {
+    if (!dynamics) t.error("time_steps", "needs a [dynamics] section");
+    time.steps = t.numbers("time_steps", time.schemes.size(), 1e-300, 1e300);
+  } else if (dynamics) {
+    if (!dynamics->time_step &&
+        std::find(time.schemes.begin(), time.schemes.end(), TimeScheme::newmark) != time.schemes.end())
+      t.error("time_schemes", "newmark needs a time step: give [dynamics] time_step or [study] time_steps");
+    time.steps.assign(time.schemes.size(), dynamics->time_step.value_or(0.0));
+  }
+  if (t.has("time_step_check") && !dynamics) t.error("time_step_check", "needs a [dynamics] section");
+  time.step_check = t.boolean_or("time_step_check", false);
+  return time;
+}
+
+std::vector<double> read_error_times(const SceneTable& t) {
+  return t.has("error_times") ? t.numbers("error_times", 0, 0.0, 1.0) : std::vector<double>{1.0};
 }
 
 }  // namespace mfree

@@ -76,7 +76,7 @@ std::string particle_table(const Particles& P, const std::vector<MPMBody>& bodie
   return out;
 }
 
-MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion* exact,
+MPMFrames::MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion<2>* exact,
                      std::vector<MPMMaterial> materials)
     : folder_(std::move(folder)), fields_(fields), exact_(exact), materials_(std::move(materials)) {
   if (fields_.error && exact_ == nullptr)

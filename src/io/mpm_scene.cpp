@@ -178,7 +178,7 @@ MPMScene read_mpm_scene(const std::filesystem::path& file, bool want_study, cons
     const MaterialSection& material = sections[static_cast<std::size_t>(body.material)];
     const SolutionSetting on{d, material.linear, std::holds_alternative<NeoHookean>(material.material), material.density};
     const BuiltinChoice c = read_builtin_solution(t, on, true);
-    const ExactMotion m = c.solution().motion(c.values, on);
+    const ExactMotion<2> m = c.solution().motion(c.values, on);
     out.exact = m;
     pr.body_force = m.body_force;
     pr.body_force_where = t.where("solution");

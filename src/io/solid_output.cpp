@@ -33,7 +33,7 @@ void SolidFrames::restore(const CheckpointState& state, double time, std::size_t
 }
 
 SolidFrames::SolidFrames(const ElasticityScene& scene, const Discretisation<2>& disc,
-                         const ExactMotion* exact, const TotalLagrangian<2>* model)
+                         const ExactMotion<2>* exact, const TotalLagrangian<2>* model)
     : output_(scene.output),
       exact_(exact),
       model_(scene.law_with(has_history) ? model : nullptr),

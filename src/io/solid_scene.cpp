@@ -13,6 +13,7 @@
 #include "mfree/io/read_choice.hpp"
 #include "mfree/io/scene_sections.hpp"
 #include "mfree/materials/finite_strain.hpp"
+#include "mfree/problems/axis_aligned_vibration.hpp"
 
 namespace mfree {
 
@@ -119,6 +120,39 @@ SolidExact read_exact(const SceneTable& t, const Constants& constants, const Mat
   return e;
 }
 
+/// [exact] of a dynamics run: a built-in motion (solution = "vibration", amplitude), posed on
+/// the cube [0, L]^3 of the scene's Neo-Hookean material and density.
+ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const MaterialSection& m) {
+  if (t.has("displacement") || !t.has("solution"))
+    t.error(
+        t.has("displacement") ? "displacement" : "solution",
+        "a [dynamics] run measures its errors against a built-in motion: give solution = \"vibration\" and "
+        "its amplitude (formulas for u are for statics)");
+  (void)t.choice("solution", {"vibration"});
+  const AlignedBox<3>& b = solid.bounding_box();
+  const double length = b.sizes().x();
+  if (solid.mesh() || b.min().norm() > 1e-12 * length ||
+      (b.sizes().array() - length).abs().maxCoeff() > 1e-12 * length)
+    t.error("solution", fmt::format("the vibration solution needs the box [[0, 0, 0], [L, L, L]], not {}",
+                                    solid.mesh() ? std::string("a meshed solid") : box_text(b)));
+  if (!std::holds_alternative<NeoHookean>(m.material))
+    t.error(
+        "solution",
+        fmt::format("the vibration solution needs [material] model = \"neo_hookean\", not \"{}\"", m.model));
+  if (!(m.density > 0.0)) t.error("solution", "the vibration solution needs the material's density");
+  // F_ii = 1 + (2 pi A / L) sin(c pi t / L) cos(2 pi X_i / L) reaches 0 for |A| >= L / (2 pi).
+  const double amplitude = t.number("amplitude", -1e300, 1e300), limit = length / (2.0 * std::numbers::pi);
+  if (!(std::abs(amplitude) < limit))
+    t.error(
+        "amplitude",
+        fmt::format("the vibration solution inverts the material for an amplitude of L / (2 pi) = {:.6g} or "
+                    "more; {:.6g} is not below it",
+                    limit, amplitude));
+  t.finish();
+  return AxisAlignedVibration{amplitude, length, m.linear.youngs_modulus, m.linear.poisson_ratio, m.density}
+      .motion<3>();
+}
+
 /// [loads]: body_force (formulas in x, y, z), gravity (times the density).
 BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, double density, bool dynamics) {
   std::optional<SpaceVectorFormula> force;
@@ -191,7 +225,7 @@ BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const 
 
 /// [dynamics]: the time scheme, its step, frames and the initial fields.
 SolidDynamics read_dynamics(const SceneTable& t, const Constants& constants, double density,
-                            const NewtonSettings& newton) {
+                            const NewtonSettings& newton, bool motion) {
   SolidDynamics dyn;
   DynamicsSettings& d = dyn.settings;
   d.scheme = read_choice(t, "scheme", time_scheme_names());
@@ -201,8 +235,12 @@ SolidDynamics read_dynamics(const SceneTable& t, const Constants& constants, dou
   d.stability_factor = t.number_or("stability_factor", d.stability_factor, 1e-6, 1.0);
   d.energy_every = static_cast<int>(t.integer_or("energy_every", 1, 0, 1 << 30));
   dyn.frames = static_cast<int>(t.integer_or("frames", 0, 0, 100000));
+  if (t.has("error_times") && !motion)
+    t.error("error_times", "errors are measured against an [exact] motion");
+  if (motion) dyn.error_times = read_error_times(t);
   for (const char* key : {"initial_displacement", "initial_velocity"}) {
     if (!t.has(key)) continue;
+    if (motion) t.error(key, "the [exact] motion sets the initial state");
     const SpaceVectorFormula f = read_space_vector_formula(t, key, constants);
     if (f.depends_on_time()) t.error(key, "an initial field is a function of x, y and z, not of t");
     (std::string(key) == "initial_velocity" ? dyn.initial_velocity : dyn.initial_displacement) = f;
@@ -224,7 +262,11 @@ SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamic
   if (o.wants("plastic_strain") && !has_history(out.problem.material))
     t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
                                   name(out.problem.material)));
-  if (o.wants("error") && !out.exact) t.error("fields", "'error' needs an [exact] section");
+  if (o.wants("error") && !out.exact)
+    t.error("fields", out.motion
+                          ? "'error' fields are written in statics; a [dynamics] run prints its errors at "
+                            "error_times"
+                          : "'error' needs an [exact] section");
   if (o.wants("velocity") && !dynamics) t.error("fields", "'velocity' needs a [dynamics] section");
   o.vtk = t.boolean_or("vtk", true);
   if (t.has("probe")) {
@@ -237,12 +279,24 @@ SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamic
 }
 
 /// [study] (mfree converge).
-SolidStudy read_study(const SceneTable& t, const SolidScene& out, bool dynamics) {
-  if (dynamics)
-    t.error("spacings",
-            "a study of a solid's [dynamics] run is not done yet: mfree converge runs solid statics");
+SolidStudy read_study(const SceneTable& t, const SolidScene& out) {
   SolidStudy st;
   st.spacings = t.numbers("spacings", 0, 1e-12, 1e12);
+  if (out.dynamics) {
+    if (!out.motion)
+      t.error("spacings",
+              "a study of a [dynamics] run measures errors against an exact motion: give [exact] solution = "
+              "\"vibration\"");
+    for (const char* key : {"orders", "probe", "quadratic_factor"})
+      if (t.has(key))
+        t.error(key,
+                "a study of a [dynamics] run refines the spacing for each of time_schemes; this key is for "
+                "statics");
+    st.time = read_time_study(t, &out.dynamics->settings);
+    t.finish();
+    return st;
+  }
+  st.time = read_time_study(t, nullptr);
   st.orders =
       t.has("orders") ? read_choices(t, "orders", order_names()) : std::vector<RKOrder>{out.settings.order};
   if (t.has("probe")) {
@@ -277,7 +331,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
   const bool dynamics = root.has("dynamics");
-  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
   SolidProblem<3>& problem = out.problem;
   read_nodes_section(root.table("nodes"), s);
@@ -292,14 +346,18 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   problem.density = m.density;
   const Constants constants = read_constants(root);
 
-  if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, m.density, dynamics);
-  if (root.has("exact")) {
-    if (dynamics)
-      root.table("exact").error("displacement",
-                                "a solid's [exact] is static so far: errors of a [dynamics] run "
-                                "against a motion are plane only");
+  if (root.has("exact") && dynamics) {
+    out.motion = read_motion(root.table("exact"), out.solid, m);
+    if (root.has("loads"))
+      root.table("loads").error("body_force", "the [exact] motion sets the body force: remove [loads]");
+    const ExactMotion<3>& motion = *out.motion;
+    problem.body_force = [b = motion.body_force, rho = m.density](const Point<3>& x, double time) {
+      return Point<3>(rho * b(x, time));
+    };
+  } else if (root.has("exact")) {
     out.exact = read_exact(root.table("exact"), constants, m.material);
   }
+  if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, m.density, dynamics);
 
   for (const SceneTable& t : root.tables("boundary"))
     problem.conditions.push_back(read_condition(t, out, constants, m.linear, dynamics));
@@ -312,9 +370,11 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
     out.newton.load_steps = 1;
     out.newton.solver = s.solver;
   }
-  if (dynamics) out.dynamics = read_dynamics(root.table("dynamics"), constants, m.density, out.newton);
+  if (dynamics)
+    out.dynamics =
+        read_dynamics(root.table("dynamics"), constants, m.density, out.newton, out.motion.has_value());
   out.output = read_output(root.table("output"), out, dynamics);
-  if (want_study || root.has("study")) out.study = read_study(root.table("study"), out, dynamics);
+  if (want_study || root.has("study")) out.study = read_study(root.table("study"), out);
   root.finish();
   return out;
 }

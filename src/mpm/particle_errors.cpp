@@ -4,7 +4,7 @@
 
 namespace mfree {
 
-ParticleErrors particle_errors(const MPMSolver& solver, const ExactMotion& exact) {
+ParticleErrors particle_errors(const MPMSolver& solver, const ExactMotion<2>& exact) {
   const Particles& P = solver.particles();
   const double t = solver.time();
   const std::vector<Vec2> grid_v = solver.interpolated_grid_velocity();

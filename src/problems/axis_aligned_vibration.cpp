@@ -77,11 +77,12 @@ Point<dim> AxisAlignedVibration::body_force(const Point<dim>& x, double t) const
   return scale * s * b;
 }
 
-ExactMotion AxisAlignedVibration::motion() const {
-  return {[v = *this](const Vec2& x, double t) { return v.displacement(x, t); },
-          [v = *this](const Vec2& x, double t) { return v.velocity(x, t); },
-          [v = *this](const Vec2& x, double t) { return v.cauchy_stress(x, t); },
-          [v = *this](const Vec2& x, double t) { return v.body_force(x, t); }};
+template <int dim>
+ExactMotion<dim> AxisAlignedVibration::motion() const {
+  return {[v = *this](const Point<dim>& x, double t) { return v.displacement(x, t); },
+          [v = *this](const Point<dim>& x, double t) { return v.velocity(x, t); },
+          [v = *this](const Point<dim>& x, double t) { return v.cauchy_stress(x, t); },
+          [v = *this](const Point<dim>& x, double t) { return v.body_force(x, t); }};
 }
 
 #define MFREE_VIBRATION_MEMBERS(dim)                                                                 \
@@ -90,7 +91,8 @@ ExactMotion AxisAlignedVibration::motion() const {
   template Point<dim> AxisAlignedVibration::acceleration(const Point<dim>&, double) const;           \
   template Tensor2<dim> AxisAlignedVibration::deformation_gradient(const Point<dim>&, double) const; \
   template Tensor2<dim> AxisAlignedVibration::cauchy_stress(const Point<dim>&, double) const;        \
-  template Point<dim> AxisAlignedVibration::body_force(const Point<dim>&, double) const;
+  template Point<dim> AxisAlignedVibration::body_force(const Point<dim>&, double) const;             \
+  template ExactMotion<dim> AxisAlignedVibration::motion() const;
 MFREE_VIBRATION_MEMBERS(2)
 MFREE_VIBRATION_MEMBERS(3)
 #undef MFREE_VIBRATION_MEMBERS

@@ -31,7 +31,7 @@ ExactElasticity quadratic(const SolutionValues& v, const SolutionSetting& s) {
                          v.matrices.at("hessian_y"), s.material);
 }
 
-ExactMotion vibration(const SolutionValues& v, const SolutionSetting& s) {
+ExactMotion<2> vibration(const SolutionValues& v, const SolutionSetting& s) {
   const Box& b = s.body;
   if (b.lo.norm() > 1e-12 * b.size().norm() || std::abs(b.size().x() - b.size().y()) > 1e-12 * b.size().x())
     throw InputError("the vibration solution needs the square domain [0, L] x [0, L]");
@@ -48,7 +48,7 @@ ExactMotion vibration(const SolutionValues& v, const SolutionSetting& s) {
                     limit, amplitude));
   const AxisAlignedVibration a{amplitude, b.size().x(), s.material.youngs_modulus, s.material.poisson_ratio,
                                s.density};
-  return a.motion();
+  return a.motion<2>();
 }
 
 }  // namespace

@@ -50,12 +50,12 @@ struct VibrationCase {
 
   /// RMS errors at the times given as fractions of the period.
   std::vector<MotionErrors> errors_at(const std::vector<double>& fractions, DynamicsSettings s) const {
-    const MotionErrorSampler sampler(
+    const MotionErrorSampler<2> sampler(
         *disc.trial, gauss_cell_rule(domain, 0.5 * disc.nodes[1].x(), 5),
         [m = Material(exact.material())](const Vec2&) -> const Material& { return m; });
-    const ExactMotion motion{[&](const Vec2& x, double t) { return exact.displacement(x, t); },
-                             [&](const Vec2& x, double t) { return exact.velocity(x, t); },
-                             [&](const Vec2& x, double t) { return exact.cauchy_stress(x, t); }};
+    const ExactMotion<2> motion{[&](const Vec2& x, double t) { return exact.displacement(x, t); },
+                                [&](const Vec2& x, double t) { return exact.velocity(x, t); },
+                                [&](const Vec2& x, double t) { return exact.cauchy_stress(x, t); }};
     std::vector<MotionErrors> out;
     std::size_t next = 0;
     s.end_time = fractions.back() * exact.period();

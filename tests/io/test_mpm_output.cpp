@@ -29,7 +29,7 @@ namespace {
 
 
 const AxisAlignedVibration vibration{0.05, 1.0, 1e7, 0.3, 1000.0};
-const ExactMotion vibration_motion = vibration.motion();
+const ExactMotion<2> vibration_motion = vibration.motion<2>();
 const Walls open_walls{Wall::open, Wall::open, Wall::open, Wall::open};
 
 /// The small vibration run of the unit square: quadratic B-splines, 4 x 4 cells, 2 x 2

@@ -173,8 +173,7 @@ TEST_CASE(
   CHECK_THAT(refusal(replace(deep, "region = \\[\\[-1, -1, -1\\], \\[0.02, 1, 1\\]\\]",
                              "region = [[-1, -1, -1], [0.02, 1, 1]]\nallow_small_selection = true")),
              Catch::Contains("overlaps boundary"));  // the strips then meet the other conditions
-  CHECK_THAT(refusal(ok + "\n[dynamics]\nscheme = \"newmark\"\n"),
-             Catch::Contains("[exact] is static so far"));
+  CHECK_THAT(refusal(ok + "\n[dynamics]\nscheme = \"newmark\"\n"), Catch::Contains("built-in motion"));
   CHECK_THAT(refusal(replace(ok, "probe = \\[0.5, 0.3, 0.4\\]", "probe = [0.5, 0.3, 1.4]")),
              Catch::Contains("outside the solid"));
   CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[quadrature]\nscheme = \"gauss_cells\"\n[kernel]")),
@@ -264,4 +263,48 @@ fields = ["displacement", "velocity"]
     const VtuContents last = read_vtu(out / "volume_0005.vtu");
     CHECK(last.components.at("velocity") == 3);
   }
+}
+
+TEST_CASE("solid scenes: the vibration motion of a cube, and what it does not take", "[io][solid]") {
+  const std::string ok = [] {
+    std::ifstream in(testing::source_dir() + "/verification/vibration-cube/vibration_cube.toml");
+    return std::string{std::istreambuf_iterator<char>(in), {}};
+  }();
+  const testing::ScratchFolder folder("solid_scene_motion");
+  const SolidScene scene = read_solid_scene(write_scene(folder, ok));
+  REQUIRE(scene.motion);
+  REQUIRE(scene.dynamics);
+  CHECK(scene.dynamics->error_times == std::vector<double>{0.25, 0.5, 0.75, 1.0});
+  // The body force is rho0 b of the motion, per unit reference volume.
+  const Point<3> x(0.3, 0.6, 0.8);
+  const Point<3> rho_b = 1000.0 * scene.motion->body_force(x, 0.004);
+  CHECK(rho_b.norm() > 1e3);
+  CHECK((scene.problem.body_force(x, 0.004) - rho_b).norm() <= 1e-15 * rho_b.norm());
+  CHECK(scene.study->time.schemes ==
+        std::vector<TimeScheme>{TimeScheme::central_difference, TimeScheme::newmark});
+  CHECK(scene.study->time.steps == std::vector<double>{2.5e-5, 2.5e-4});
+
+  CHECK_THAT(refusal(replace(ok, "box = \\[\\[0, 0, 0\\], \\[1, 1, 1\\]\\]", "box = [[0, 0, 0], [1, 1, 2]]")),
+             Catch::Contains("[[0, 0, 0], [L, L, L]]"));
+  CHECK_THAT(refusal(replace(ok, "neo_hookean", "st_venant_kirchhoff")), Catch::Contains("neo_hookean"));
+  CHECK_THAT(refusal(replace(ok, "amplitude = 0.05", "amplitude = 0.2")),
+             Catch::Contains("inverts the material"));
+  CHECK_THAT(refusal(replace(ok, "\\[exact\\]", "[loads]\ngravity = [0, 0, -9.81]\n\n[exact]")),
+             Catch::Contains("sets the body force"));
+  CHECK_THAT(refusal(replace(ok, "frames = 8", "frames = 8\ninitial_velocity = [1, 0, 0]")),
+             Catch::Contains("sets the initial state"));
+  CHECK_THAT(
+      refusal(replace(ok, "solution = \"vibration\"", "solution = \"vibration\"\ndisplacement = [0, 0, 0]")),
+      Catch::Contains("built-in motion"));
+  CHECK_THAT(refusal(replace(ok, "\"von_mises\"", "\"error\"")), Catch::Contains("error_times"));
+  CHECK_THAT(refusal(replace(ok, "time_schemes", "orders = [\"linear\"]\ntime_schemes")),
+             Catch::Contains("for statics"));
+  // Without the motion: no error times, no study.
+  const std::string free = replace(ok, "\\[exact\\]\nsolution = \"vibration\"\namplitude = 0.05\n", "");
+  CHECK_THAT(refusal(free), Catch::Contains("errors are measured against an [exact] motion"));
+  CHECK_THAT(refusal(replace(free, "error_times = .*\n", "")), Catch::Contains("exact motion"));
+  // A static scene takes no time keys in its study.
+  CHECK_THAT(
+      refusal(box_scene("out", "linear", "\n[study]\nspacings = [0.2]\ntime_schemes = [\"newmark\"]\n")),
+      Catch::Contains("needs a [dynamics] section"));
 }

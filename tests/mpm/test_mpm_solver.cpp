@@ -247,7 +247,7 @@ ParticleErrors quarter_period_errors(const Method& m, int cells, UpdateScheme up
   s.walls = {Wall::slip, Wall::slip, Wall::slip, Wall::slip};
   MPMSolver solver(problem, s);
   for (int n = 0; n < solver.steps(); ++n) solver.step();
-  return particle_errors(solver, v.motion());
+  return particle_errors(solver, v.motion<2>());
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ TEST_CASE("built-in solutions: each entry is static or a motion, and builds what
   amplitude.numbers["amplitude"] = 0.05;
   const SolutionSetting square{
       {Vec2(0.0, 0.0), Vec2(1.0, 1.0)}, {1e7, 0.3, PlaneModel::strain}, true, 1000.0};
-  const ExactMotion m = builtin_solutions().value("vibration").motion(amplitude, square);
+  const ExactMotion<2> m = builtin_solutions().value("vibration").motion(amplitude, square);
   const AxisAlignedVibration v{0.05, 1.0, 1e7, 0.3, 1000.0};
   const Vec2 x(0.3, 0.8);
   CHECK((m.displacement(x, 0.004) - v.displacement(x, 0.004)).norm() == 0.0);
@@ -52,7 +52,7 @@ TEST_CASE("built-in solutions: each entry is static or a motion, and builds what
                     Catch::Contains("amplitude of L / (2 pi) = 0.159155 m or more") &&
                         Catch::Contains("amplitude -0.16 m is not below it"));
   amplitude.numbers["amplitude"] = 0.159;
-  const ExactMotion near = builtin_solutions().value("vibration").motion(amplitude, square);
+  const ExactMotion<2> near = builtin_solutions().value("vibration").motion(amplitude, square);
   CHECK(near.body_force(Vec2(0.5, 0.5), 0.005).allFinite());
   CHECK(near.body_force(Vec2(0.0, 0.0), 0.005).allFinite());
 }

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "mfree/apps/dynamics_study.hpp"
 #include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
@@ -41,9 +42,5 @@ struct DynamicRun {
 /// The run behind run_dynamics and converge_dynamics (verbose: progress and VTK frames).
 DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settings, bool verbose,
                     const Checkpoints* checkpoints = nullptr);
-
-/// max_t |E(t) - E(0)| / max_t (kinetic + strain): the energy error of a run; NaN when no
-/// energy was recorded (energy_every = 0).
-double energy_drift(const std::vector<EnergyRecord>& energy);
 
 }  // namespace mfree

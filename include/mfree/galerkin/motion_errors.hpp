@@ -9,6 +9,8 @@
 //         F^h = I + sum d_I grad phi_I^T (true gradients), |.|_F the Frobenius norm.
 //
 // The shape functions are sampled at the points once; each evaluation is a pass over them.
+// dim = 2 (plane) or 3; explicitly instantiated for both.
+// dim = 2 (plane) or 3; explicitly instantiated for both.
 
 #include "mfree/core/exact_motion.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
@@ -24,16 +26,17 @@ struct MotionErrors {
   double stress = 0.0;        ///< RMS, stress units
 };
 
+template <int dim>
 class MotionErrorSampler {
  public:
   /// law_at: the law at each of the rule's points (asked once per point).
-  MotionErrorSampler(const RKShapeFunctions<2>& trial, const QuadratureRule<2>& rule,
-                     const MaterialAt& law_at);
+  MotionErrorSampler(const RKShapeFunctions<dim>& trial, const QuadratureRule<dim>& rule,
+                     const MaterialAt<dim>& law_at);
   [[nodiscard]] MotionErrors operator()(const Eigen::VectorXd& d, const Eigen::VectorXd& v, double time,
-                                        const ExactMotion& exact) const;
+                                        const ExactMotion<dim>& exact) const;
 
  private:
-  GalerkinQuadrature<2> at_;
+  GalerkinQuadrature<dim> at_;
   std::vector<Material> law_;  ///< per point
   double volume_ = 0.0;
 };

@@ -76,9 +76,10 @@
 #include <string>
 #include <vector>
 
-#include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/geometry/domain.hpp"
+#include "mfree/io/elasticity_sections.hpp"
 #include "mfree/io/scene_reader.hpp"
 #include "mfree/io/scene_sections.hpp"
 #include "mfree/problems/formula.hpp"
@@ -119,9 +120,7 @@ struct StudySettings {
   std::optional<double> reference;  ///< reference u_y at the probe
   double quadratic_factor = 3.0;
   std::optional<int> quadratic_gauss_points;  ///< default: the scene's gauss_points (or the order's default)
-  std::vector<TimeScheme> time_schemes;  ///< dynamics: default the scene's scheme
-  std::vector<double> time_steps;        ///< dynamics: one per time scheme (default the scene's)
-  bool time_step_check = false;          ///< dynamics: rerun the finest level with dt / 2
+  TimeStudy time;                             ///< dynamics: the time schemes and their steps
 };
 
 struct DynamicsScene {
@@ -160,7 +159,7 @@ struct ElasticityScene {
   /// The exact solution of the scene, if any, for its domain and material (statics).
   [[nodiscard]] std::optional<ExactElasticity> exact() const;
   /// The exact motion of a built-in solution that is one (dynamics).
-  [[nodiscard]] std::optional<ExactMotion> motion() const;
+  [[nodiscard]] std::optional<ExactMotion<2>> motion() const;
   /// What a built-in solution is posed on: the domain's box, the material, the density.
   [[nodiscard]] SolutionSetting solution_setting() const;
   /// The finite-strain (or small-strain) problem of the scene; loads are those of statics

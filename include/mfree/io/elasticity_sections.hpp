@@ -14,11 +14,17 @@
 //   [solver]      kind, preconditioner, tolerance, max_iterations, direct_limit
 //   [newton]      tolerance, absolute_tolerance, max_iterations, line_search, load_steps or
 //                 load_factors, max_cutbacks
+//   [dynamics]    error_times (fractions of end_time at which errors against an exact motion
+//                 are measured; default [1.0])
+//   [study]       of a dynamics run: time_schemes (default the scene's scheme), time_steps (one
+//                 per scheme; default [dynamics] time_step, else the explicit scheme's step from
+//                 its stability limit), time_step_check (rerun the finest level with dt / 2)
 //
 // Every key is type- and range-checked and each table finished (unknown keys refused), as in
 // scene_reader.hpp.
 
 #include "mfree/galerkin/elasticity_solver.hpp"
+#include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/io/read_choice.hpp"
@@ -47,5 +53,17 @@ double read_nitsche_section(const SceneTable& t, double beta);
 void read_solver_section(const SceneTable& t, ElasticitySettings& s);
 /// [newton], its linear solves by `solver`.
 NewtonSettings read_newton_section(const SceneTable& t, const SolverSettings& solver);
+
+/// The time schemes of a dynamics study and their steps.
+struct TimeStudy {
+  std::vector<TimeScheme> schemes;
+  std::vector<double> steps;  ///< one per scheme; 0: the explicit scheme's step from its stability limit
+  bool step_check = false;    ///< rerun the finest level with dt / 2
+};
+/// [study]'s time keys (above) of a scene whose [dynamics] is `dynamics` (none: the keys are
+/// refused).
+TimeStudy read_time_study(const SceneTable& t, const DynamicsSettings* dynamics);
+/// [dynamics] error_times.
+std::vector<double> read_error_times(const SceneTable& t);
 
 }  // namespace mfree

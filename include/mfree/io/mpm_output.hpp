@@ -68,7 +68,7 @@ class MPMFrames {
   /// Frames into `folder`, created if missing (Error when it cannot be). exact: the motion
   /// errors are measured against; may be null, but then fields.error is an InputError.
   /// materials: the problem's (particles index them), for sigma_zz in von_mises.
-  MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion* exact,
+  MPMFrames(std::filesystem::path folder, MPMFrameFields fields, const ExactMotion<2>* exact,
             std::vector<MPMMaterial> materials);
 
   /// Writes frame number frames() at solver.time() and rewrites the series. Errors as the
@@ -92,7 +92,7 @@ class MPMFrames {
 
   std::filesystem::path folder_;
   MPMFrameFields fields_;
-  const ExactMotion* exact_;
+  const ExactMotion<2>* exact_;
   std::vector<MPMMaterial> materials_;
   std::vector<std::pair<double, std::string>> steps_, grid_steps_, domain_steps_;
 };

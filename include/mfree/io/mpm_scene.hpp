@@ -85,7 +85,7 @@ struct MPMScene {
   std::filesystem::path file;
   MPMProblem problem;
   MPMSettings settings;
-  std::optional<ExactMotion> exact;  ///< of [exact]
+  std::optional<ExactMotion<2>> exact;  ///< of [exact]
   int frames = 0;                   ///< VTK frames over the run (plus t = 0)
   std::vector<double> error_times;  ///< fractions of end_time (with [exact])
   int energy_every = -1;            ///< steps between energy records (0: none; -1: not given)

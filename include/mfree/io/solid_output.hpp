@@ -34,7 +34,7 @@ class SolidFrames {
   /// exact: the motion errors are measured against (may be null). model: the solver whose
   /// quadrature points hold the history (needed for a law with history, else unused); it
   /// must outlive the frames.
-  SolidFrames(const ElasticityScene& scene, const Discretisation<2>& disc, const ExactMotion* exact,
+  SolidFrames(const ElasticityScene& scene, const Discretisation<2>& disc, const ExactMotion<2>* exact,
               const TotalLagrangian<2>* model = nullptr);
   /// Writes frame number frames() at `time`; v may be null (statics).
   void write(double time, const Eigen::VectorXd& d, const Eigen::VectorXd* v);
@@ -51,7 +51,7 @@ class SolidFrames {
  private:
   const OutputSettings& output_;
   std::vector<Material> law_;  ///< per sample
-  const ExactMotion* exact_;
+  const ExactMotion<2>* exact_;
   const TotalLagrangian<2>* model_;  ///< set for a law with history
   std::filesystem::path folder_;
   std::vector<Vec2> points_, samples_;  ///< the plot's vertices, where their fields are sampled

@@ -15,9 +15,13 @@
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy, fz] (per unit reference volume; numbers or formulas in
 //                 x, y, z), gravity = [gx, gy, gz] (per unit mass, times density)
-//   [exact]       displacement = [ux, uy, uz] and gradient = [dux/dx, dux/dy, dux/dz, duy/dx,
-//                 ..., duz/dz] (9 formulas, row by row): errors in L2 and in energy (the
-//                 small-strain law's) over an independent rule; needs linear_elastic
+//   [exact]       statics: displacement = [ux, uy, uz] and gradient = [dux/dx, dux/dy, dux/dz,
+//                 duy/dx, ..., duz/dz] (9 formulas, row by row): errors in L2 and in energy
+//                 (the small-strain law's) over an independent rule; needs linear_elastic.
+//                 dynamics: solution = "vibration", amplitude = A: the axis-aligned vibration
+//                 of SPEC section 6 on the cube [0, L]^3 (problems/axis_aligned_vibration.hpp;
+//                 neo_hookean, slip walls), which sets the body force and the initial velocity
+//                 (u = 0 at t = 0); RMS errors of u, v and the Cauchy stress at error_times
 //   [[boundary]]  name, type (displacement | slip | traction | pressure), one selector: part =
 //                 "name" or region = [[x0, y0, z0], [x1, y1, z1]] (the surface triangles' parts
 //                 inside the box); value = "exact", [vx, vy, vz] (numbers or formulas), or for
@@ -29,13 +33,16 @@
 //   [dynamics]    scheme (central_difference | newmark), end_time, time_step (newmark's, or the
 //                 explicit one's instead of stability_factor times the limit), energy_every,
 //                 frames (field frames over the run), initial_displacement, initial_velocity =
-//                 [fx, fy, fz] (formulas in x, y, z); needs [material] density. Loads and
+//                 [fx, fy, fz] (formulas in x, y, z), error_times (with an [exact] motion:
+//                 fractions of end_time, default [1]); needs [material] density. Loads and
 //                 boundary values may then use t.
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain,
 //                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame)
 //   [study]       for `mfree converge`: spacings, orders (default the scene's), probe = [x, y,
 //                 z] (default [output]'s; needed without [exact]), quadratic_factor (the
-//                 support factor of an order the scene does not run, default 3)
+//                 support factor of an order the scene does not run, default 3); of a
+//                 [dynamics] run with an [exact] motion: spacings, time_schemes, time_steps,
+//                 time_step_check (io/elasticity_sections.hpp)
 //
 // Statics by Newton with load steps (a linear law: one step, one iteration): its formulas take
 // no t (it scales its loads by the load factor); dynamics by central differences or Newmark.
@@ -48,11 +55,13 @@
 #include <string>
 #include <vector>
 
+#include "mfree/core/exact_motion.hpp"
 #include "mfree/galerkin/elasticity_solver.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
 #include "mfree/galerkin/total_lagrangian.hpp"
 #include "mfree/geometry/solid.hpp"
+#include "mfree/io/elasticity_sections.hpp"
 #include "mfree/problems/formula.hpp"
 
 namespace mfree {
@@ -69,7 +78,8 @@ struct SolidDynamics {
   DynamicsSettings settings;
   std::optional<SpaceVectorFormula> initial_displacement;  ///< u(X, 0), L2-projected onto the RK functions
   std::optional<SpaceVectorFormula> initial_velocity;      ///< v(X, 0), likewise
-  int frames = 0;  ///< field frames written, evenly over the run (plus t = 0)
+  int frames = 0;                   ///< field frames written, evenly over the run (plus t = 0)
+  std::vector<double> error_times;  ///< fractions of end_time (with an exact motion)
 };
 
 struct SolidStudy {
@@ -77,6 +87,7 @@ struct SolidStudy {
   std::vector<RKOrder> orders;
   std::optional<Point<3>> probe;
   double quadratic_factor = 3.0;
+  TimeStudy time;  ///< dynamics
 };
 
 struct SolidOutput {
@@ -101,7 +112,8 @@ struct SolidScene {
   SolidProblem<3> problem;      ///< the law, the loads, the conditions, Nitsche's beta, the spacing
   NewtonSettings newton;        ///< [newton], or one load step (and Newmark's iterations)
   std::optional<SolidDynamics> dynamics;
-  std::optional<SolidExact> exact;
+  std::optional<SolidExact> exact;       ///< statics
+  std::optional<ExactMotion<3>> motion;  ///< dynamics
   SolidOutput output;
   std::vector<SelectedSurface> selected;  ///< per [[boundary]], in order
   std::optional<SolidStudy> study;

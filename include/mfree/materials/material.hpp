@@ -31,7 +31,8 @@ namespace mfree {
 
 using Material = std::variant<LinearElastic, StVenantKirchhoff, NeoHookean, J2Plasticity, DruckerPrager>;
 /// The law at a reference position X (a body of several materials: its region's).
-using MaterialAt = std::function<const Material&(const Vec2& x)>;
+template <int dim>
+using MaterialAt = std::function<const Material&(const Point<dim>& x)>;
 
 /// The update of any law (above), in dim = 2 (plane) or 3 dimensions. NumericalError for
 /// J <= 0 (finite-strain laws); InputError for a plane-only law in 3D (plane stress, the

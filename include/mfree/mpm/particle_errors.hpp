@@ -24,6 +24,6 @@ struct ParticleErrors {
   double stress = 0.0;         ///< Pa
 };
 
-ParticleErrors particle_errors(const MPMSolver& solver, const ExactMotion& exact);
+ParticleErrors particle_errors(const MPMSolver& solver, const ExactMotion<2>& exact);
 
 }  // namespace mfree

@@ -46,7 +46,8 @@ struct AxisAlignedVibration {
   template <int dim>
   [[nodiscard]] Point<dim> body_force(const Point<dim>& x, double t) const;
   /// The fields above as the solvers' error measures take them.
-  [[nodiscard]] ExactMotion motion() const;
+  template <int dim>
+  [[nodiscard]] ExactMotion<dim> motion() const;
 };
 
 }  // namespace mfree

@@ -48,7 +48,7 @@ struct SolutionSetting {
 struct BuiltinSolution {
   std::vector<SolutionParameter> parameters;
   std::function<ExactElasticity(const SolutionValues&, const SolutionSetting&)> statics;  ///< or empty
-  std::function<ExactMotion(const SolutionValues&, const SolutionSetting&)> motion;       ///< or empty
+  std::function<ExactMotion<2>(const SolutionValues&, const SolutionSetting&)> motion;    ///< or empty
 };
 
 /// timoshenko_beam, linear, quadratic (static); vibration (motion).
