@@ -34,7 +34,7 @@ Eigen::VectorXd project_velocity(
     for (Index s = q.row_begin(k); s < q.row_end(k); ++s) rhs.segment<dim>(dim * q.nodes[s]) += q.phi[s] * f;
   }
   const std::unique_ptr<LinearSolver> solver =
-      make_linear_solver(settings, {"mass", true, dim, nodes}, model.dofs());
+      make_linear_solver(settings, {"mass", true, dim, nodes, false, true}, model.dofs());
   solver->analyze(m);
   solver->factorize(m);
   return solver->solve(rhs);
@@ -211,7 +211,7 @@ DynamicsResult integrate_dynamics(TotalLagrangian<dim>& model, const std::vector
     a = (g - internal(d)).cwiseQuotient(lumped);
   } else {
     const std::unique_ptr<LinearSolver> mass_solver =
-        make_linear_solver(s.newton.solver, {"mass", true, dim, node_positions}, model.dofs());
+        make_linear_solver(s.newton.solver, {"mass", true, dim, node_positions, false, true}, model.dofs());
     mass_solver->analyze(mass);
     mass_solver->factorize(mass);
     a = mass_solver->solve(g - internal(d));

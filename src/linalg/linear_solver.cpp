@@ -29,7 +29,7 @@ std::string_view to_string(Preconditioner p) { return preconditioner_names().nam
 
 Index default_direct_limit(const SystemDescription& system) {
   if (!std::holds_alternative<std::span<const Point<3>>>(system.nodes)) return 200000;
-  return (system.symmetric || system.nearly_symmetric) && !system.reused ? 3000 : 20000;
+  return (system.symmetric || system.nearly_symmetric) && !system.favours_direct ? 3000 : 20000;
 }
 
 SolverKind choose_solver(const SolverSettings& settings, const SystemDescription& system, Index size) {

@@ -101,8 +101,10 @@ TEST_CASE("solid scenes: formulas take z in a solid and refuse it in the plane",
              Catch::Contains("would hide the variable z"));
 }
 
+// [heavy]: 2.4 s in Release, 118 s under the sanitizers; the checked build runs a solid scene
+// through the program in the cli tier, and the 3D patch tests' quadratic RK.
 TEST_CASE("solid scenes: a linear field on a box is reproduced to round-off, in the fields written too",
-          "[io][solid]") {
+          "[io][solid][heavy]") {
   const testing::ScratchFolder folder("solid_scene_patch");
   for (const char* order : {"linear", "quadratic"}) {
     const auto out = folder.path / fmt::format("out_{}", order);
@@ -234,7 +236,7 @@ value = [0, 0, 0]
 [dynamics]
 scheme = "{}"
 time_step = 0.005
-end_time = 0.25
+end_time = 0.1
 frames = 5
 initial_velocity = [0, "0.5 * x", 0]
 
@@ -258,7 +260,8 @@ fields = ["displacement", "velocity"]
     std::smatch m;
     REQUIRE(std::regex_search(summary, m, std::regex("\"energy_balance_relative\": ([0-9.e+-]+)")));
     WARN(fmt::format("{}: energy balance {} of the largest energy", scheme, m[1].str()));
-    CHECK(std::stod(m[1].str()) < 2e-3);  // measured: 6.9e-4 (central differences), 3.1e-4 (Newmark)
+    CHECK(std::stod(m[1].str()) <
+          2e-3);  // measured to t = 0.1: 4.4e-4 (central differences), 1.5e-4 (Newmark)
     for (int k = 0; k <= 5; ++k) CHECK(std::filesystem::exists(out / fmt::format("volume_{:04d}.vtu", k)));
     const VtuContents last = read_vtu(out / "volume_0005.vtu");
     CHECK(last.components.at("velocity") == 3);

@@ -30,9 +30,9 @@
 // factorisation grows much faster: on the Lamé sphere (one thread) UMFPACK took 26 s and 2.8 GB
 // at 12 051 unknowns where GMRES + GAMG took 6.8 s and 1.1 GB; the default limit in space is
 // 3000 unknowns for the systems GAMG serves (default_direct_limit), 20 000 for a matrix that
-// serves many solves: Newmark's effective tangent K + 4 M / dt^2 on the vibrating cube at
-// 14 739 unknowns took 15 s a GMRES + GAMG solve (80 iterations) where one UMFPACK
-// factorisation serves the steps until modified Newton refactorises.
+// serves many solves or a mass: Newmark's effective tangent K + 4 M / dt^2 on the vibrating
+// cube at 14 739 unknowns took 15 s a GMRES + GAMG solve (80 iterations) where one UMFPACK
+// factorisation (19 s) serves the steps until modified Newton refactorises (0.2 s a solve).
 //
 // The life of a solver follows Newton's: analyze() once per sparsity pattern (orderings,
 // symbolic factorisation; for Krylov methods the matrix structure), factorize() whenever
@@ -89,10 +89,12 @@ struct SystemDescription {
   /// A non-symmetric matrix that is a small skew correction of a symmetric positive definite
   /// one (the stiffness with linear-order VCI test gradients): GAMG is its default.
   bool nearly_symmetric = false;
-  /// One matrix for many right-hand sides (Newmark's effective tangent, kept by modified
-  /// Newton over the steps): a factorisation's cost is shared by them, so `auto` stays direct
-  /// longer in space (default_direct_limit).
-  bool reused = false;
+  /// A system a factorisation serves well, so that `auto` stays direct longer in space
+  /// (default_direct_limit): one matrix for many right-hand sides (Newmark's effective
+  /// tangent, kept by modified Newton over the steps), or a consistent mass (on the vibrating
+  /// cube at 14 739 unknowns the projection of the initial velocity took 5.5 s with CHOLMOD,
+  /// 9.1 s with CG + Jacobi, 17.5 s with CG + GAMG).
+  bool favours_direct = false;
 };
 
 /// What the solves of one solver did, for run summaries.
@@ -129,7 +131,7 @@ class LinearSolver {
 };
 
 /// auto's limit unless [solver] gives one: 2 * 10^5 unknowns in the plane; in space 3000 for a
-/// symmetric or nearly symmetric system (above), 20 000 for a reused one (above) and for
+/// symmetric or nearly symmetric system (above), 20 000 for one that favours direct (above) and for
 /// another, where neither multigrid does well: quadratic VCI's stiffness of the Lamé sphere (3414 unknowns, 2
 /// threads) took UMFPACK 1.2 s, GMRES + GAMG 137 iterations and 7.3 s, GMRES + BoomerAMG 261 and about 50 s.
 [[nodiscard]] Index default_direct_limit(const SystemDescription& system);
