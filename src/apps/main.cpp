@@ -122,7 +122,8 @@ int main(int argc, char** argv) {
     if ((*run || *converge) && mfree::is_solid_scene(scene)) {
       if (!restart.empty())
         throw mfree::InputError(fmt::format(
-            "{}: a solid scene is static: there is no checkpoint to restart from", scene.string()));
+            "{}: a solid (3D) run writes no checkpoints yet, so --restart has nothing to continue from",
+            scene.string()));
       return mfree::run_solid_scene(scene, overrides, static_cast<bool>(*converge));
     }
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.

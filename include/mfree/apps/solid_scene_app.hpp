@@ -3,9 +3,11 @@
 // discretisation of the solid, the check that no rigid-body motion is free, Newton with load
 // steps (a linear law: one step), the errors against [exact], the probe, the reactions and
 // their balance, summary.json and the fields for ParaView (io/solid_scene_output.hpp). A
-// dynamic run ([dynamics]): central differences or Newmark, frames, energy.csv. A study
-// ([study]): the same solve at every spacing and RK order, the errors and their rates (or the
-// probe's change between levels without [exact]), convergence.csv and its plots.
+// dynamic run ([dynamics]): central differences or Newmark, frames, energy.csv, the errors
+// against an [exact] motion at the error times. A study ([study]): the same solve at every
+// spacing and RK order, the errors and their rates (or the probe's change between levels
+// without [exact]), convergence.csv and its plots; of a dynamic run with an exact motion, every
+// spacing for each time scheme (apps/dynamics_study.hpp).
 
 #include <filesystem>
 #include <string>
