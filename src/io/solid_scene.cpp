@@ -140,17 +140,15 @@ ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const Materi
         "solution",
         fmt::format("the vibration solution needs [material] model = \"neo_hookean\", not \"{}\"", m.model));
   if (!(m.density > 0.0)) t.error("solution", "the vibration solution needs the material's density");
-  // F_ii = 1 + (2 pi A / L) sin(c pi t / L) cos(2 pi X_i / L) reaches 0 for |A| >= L / (2 pi).
-  const double amplitude = t.number("amplitude", -1e300, 1e300), limit = length / (2.0 * std::numbers::pi);
-  if (!(std::abs(amplitude) < limit))
-    t.error(
-        "amplitude",
-        fmt::format("the vibration solution inverts the material for an amplitude of L / (2 pi) = {:.6g} or "
-                    "more; {:.6g} is not below it",
-                    limit, amplitude));
+  const AxisAlignedVibration a{t.number("amplitude", -1e300, 1e300), length, m.linear.youngs_modulus,
+                               m.linear.poisson_ratio, m.density};
+  try {
+    a.check_amplitude();
+  } catch (const InputError& e) {
+    t.error("amplitude", e.what());
+  }
   t.finish();
-  return AxisAlignedVibration{amplitude, length, m.linear.youngs_modulus, m.linear.poisson_ratio, m.density}
-      .motion<3>();
+  return a.motion<3>();
 }
 
 /// [loads]: body_force (formulas in x, y, z), gravity (times the density).

@@ -1,7 +1,11 @@
 #include "mfree/problems/axis_aligned_vibration.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
+
+#include "mfree/core/error.hpp"
 
 namespace mfree {
 
@@ -19,6 +23,15 @@ Point<dim> mode_shape_of(const Point<dim>& x, double length) {
 }
 
 double AxisAlignedVibration::wave_speed() const { return std::sqrt(youngs_modulus / density); }
+
+void AxisAlignedVibration::check_amplitude() const {
+  const double limit = length / (2.0 * pi);
+  if (!(std::abs(amplitude) < limit))
+    throw InputError(
+        fmt::format("the vibration solution inverts the material for an amplitude of L / (2 pi) = {:.6g} m "
+                    "or more (F_xx = 1 - 2 pi A / L at its extreme); amplitude {:.6g} m is not below it",
+                    limit, amplitude));
+}
 
 template <int dim>
 Point<dim> AxisAlignedVibration::displacement(const Point<dim>& x, double t) const {

@@ -23,7 +23,7 @@ struct DynamicsLevel {
   Index nodes = 0, dofs = 0;
   DynamicsResult result;
   std::vector<MotionErrors> errors;  ///< at the scene's error times
-  double seconds = 0.0;              ///< the run without the error measure
+  double seconds = 0.0;              ///< the run without the error measure (StageTimer::total_without)
 };
 
 /// One run at node spacing h with the time settings given.

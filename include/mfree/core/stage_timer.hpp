@@ -53,6 +53,13 @@ class StageTimer {
     for (const auto& [n, s] : stages_) t += s;
     return t;
   }
+  /// total() without the stage `name` (a measurement that is not part of the run's work).
+  [[nodiscard]] double total_without(const std::string& name) const {
+    double t = 0.0;
+    for (const auto& [n, s] : stages_)
+      if (n != name) t += s;
+    return t;
+  }
 
  private:
   std::vector<std::pair<std::string, double>> stages_;

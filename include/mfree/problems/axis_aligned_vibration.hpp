@@ -30,6 +30,10 @@ struct AxisAlignedVibration {
 
   [[nodiscard]] double wave_speed() const;  ///< c = sqrt(E / rho0)
   [[nodiscard]] double period() const { return 2.0 * length / wave_speed(); }
+  /// InputError for |A| >= L / (2 pi): F_ii = 1 + (2 pi A / L) sin(c pi t / L) cos(2 pi X_i / L)
+  /// then reaches 0, the motion itself inverts the material and its body force (ln J) is not a
+  /// number.
+  void check_amplitude() const;
   [[nodiscard]] NeoHookean material() const { return {lame_constants(youngs_modulus, poisson_ratio)}; }
 
   template <int dim>
