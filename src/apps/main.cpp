@@ -119,13 +119,8 @@ int main(int argc, char** argv) {
       return mfree::run_path_scene(scene, overrides, restart);
     }
     // A scene whose [domain] is a box or a solid part is a solid (3D) run.
-    if ((*run || *converge) && mfree::is_solid_scene(scene)) {
-      if (!restart.empty())
-        throw mfree::InputError(fmt::format(
-            "{}: a solid (3D) run writes no checkpoints yet, so --restart has nothing to continue from",
-            scene.string()));
-      return mfree::run_solid_scene(scene, overrides, static_cast<bool>(*converge));
-    }
+    if ((*run || *converge) && mfree::is_solid_scene(scene))
+      return mfree::run_solid_scene(scene, overrides, static_cast<bool>(*converge), restart);
     // A scene with an [mpm] section is an MPM run; any other is an elasticity run.
     if ((*run || *converge) && mfree::is_mpm_scene(scene)) {
       mfree::MPMScene mpm = mfree::read_mpm_scene(scene, static_cast<bool>(*converge), overrides);

@@ -4,12 +4,10 @@
 
 #include <cmath>
 #include <iostream>
-#include <limits>
 
 #include "mfree/apps/report.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/core/parallel.hpp"
-#include "mfree/core/step_count.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/galerkin/newton_solver.hpp"
@@ -17,6 +15,7 @@
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/csv.hpp"
+#include "mfree/io/dynamics_checkpoint.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_output.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
@@ -159,117 +158,16 @@ int run_static(const ElasticityScene& scene) {
 
 namespace {
 
-constexpr double unbounded = std::numeric_limits<double>::infinity();
-
-// Checkpoints of a dynamic run: the integrator's state (DynamicsProgress<2>) and the run's
-// records so far (errors, probe history, frames, the next error and frame times).
-
-void put_vector(CheckpointState& s, const std::string& name, const Eigen::VectorXd& v) {
-  s.put(name, std::vector<double>(v.data(), v.data() + v.size()));
-}
-
-Eigen::VectorXd get_vector(const CheckpointState& s, const std::string& name) {
-  const std::vector<double>& v = s.get(name);
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
-/// Material states as 7 numbers each: E_p (xx, yx, xy, yy), E_p,zz, alpha, dissipation.
-void put_history(CheckpointState& s, const std::string& name, const std::vector<MaterialState<2>>& states) {
-  std::vector<double> v;
-  v.reserve(7 * states.size());
-  for (const MaterialState<2>& m : states)
-    v.insert(v.end(), {m.plastic_strain(0, 0), m.plastic_strain(1, 0), m.plastic_strain(0, 1), m.plastic_strain(1, 1),
-                       m.plastic_strain_zz, m.alpha, m.dissipation});
-  s.put(name, std::move(v));
-}
-
-/// The states put_history() wrote: whole records, alpha (the equivalent plastic strain) 0 or
-/// more. Their number is checked against the model by integrate_dynamics.
-std::vector<MaterialState<2>> get_history(const CheckpointState& s, const std::string& name) {
-  const std::vector<double>& v = s.get(name);
-  if (v.size() % 7 != 0) s.refuse(name, fmt::format("it holds {} numbers, not 7 per point", v.size()));
-  std::vector<MaterialState<2>> states(v.size() / 7);
-  for (std::size_t k = 0; k < states.size(); ++k) {
-    const double* x = v.data() + 7 * k;
-    if (!(x[5] >= 0.0))
-      s.refuse(name,
-               fmt::format("value {} is {}, not an equivalent plastic strain (0 or more)", 7 * k + 5, x[5]));
-    states[k].plastic_strain << x[0], x[2], x[1], x[3];
-    states[k].plastic_strain_zz = x[4];
-    states[k].alpha = x[5];
-    states[k].dissipation = x[6];
-  }
-  return states;
-}
-
-void save_progress(CheckpointState& s, const DynamicsProgress<2>& p) {
-  s.put("step", p.step);
-  put_vector(s, "d", p.d);
-  put_vector(s, "v", p.v);
-  put_vector(s, "a", p.a);
-  put_vector(s, "v_half", p.v_half);
-  put_vector(s, "g", p.g);
-  s.put("work", p.work);
-  std::vector<double> energy;
-  for (const EnergyRecord& e : p.energy)
-    energy.insert(energy.end(), {e.time, e.kinetic, e.strain, e.external_work, e.dissipated});
-  s.put("energy", std::move(energy));
-  put_history(s, "history.domain", p.history.domain);
-  put_history(s, "history.boundary", p.history.boundary);
-  s.put("newton_iterations", static_cast<double>(p.newton_iterations));
-  s.put("factorisations", static_cast<double>(p.factorisations));
-  put_vector(s, "tangent", p.tangent);
-}
-
-/// The integrator's state of checkpoint `s` of step `step`, as save_progress() wrote it: its
-/// "step" that of the checkpoint, whole energy records, counts of 0 or more. The rest is
-/// checked against the run by integrate_dynamics (DynamicsCheckpoints<2>::refuse).
-DynamicsProgress<2> restore_progress(const CheckpointState& s, long long step) {
-  if (step > static_cast<long long>(max_time_steps))
-    throw InputError(
-        fmt::format("checkpoint {}: step {} is past the most steps a run may take ({:g}): the checkpoint "
-                    "is damaged; restart from an earlier checkpoint or without --restart",
-                    s.source.string(), step, max_time_steps));
-  DynamicsProgress<2> p;
-  p.step =
-      static_cast<int>(s.integers("step", step, step, fmt::format("the checkpoint's step {}", step), 1)[0]);
-  p.d = get_vector(s, "d");
-  p.v = get_vector(s, "v");
-  p.a = get_vector(s, "a");
-  p.v_half = get_vector(s, "v_half");
-  p.g = get_vector(s, "g");
-  p.work = s.scalar("work");
-  const std::vector<double>& e = s.get("energy");
-  if (e.size() % 5 != 0) s.refuse("energy", fmt::format("it holds {} numbers, not 5 per record", e.size()));
-  for (std::size_t at = 0; at < e.size(); at += 5)
-    p.energy.push_back({e[at], e[at + 1], e[at + 2], e[at + 3], e[at + 4]});
-  p.history = {get_history(s, "history.domain"), get_history(s, "history.boundary")};
-  constexpr long long most = 1LL << 53;  // doubles hold every whole number up to here
-  p.newton_iterations =
-      static_cast<long>(s.integers("newton_iterations", 0, most, "a count (0 or more)", 1)[0]);
-  p.factorisations = static_cast<long>(s.integers("factorisations", 0, most, "a count (0 or more)", 1)[0]);
-  p.tangent = get_vector(s, "tangent");
-  return p;
-}
+// Checkpoints of a dynamic run: the integrator's state and the errors (io/dynamics_checkpoint)
+// and the run's own records (probe history, frames, the next frame time).
 
 /// The run's own records of checkpoint `s` of step `step`, at `time` (step dt) of a run to
-/// `end` (end_time): error records
-/// (4 numbers: a time of the run so far, errors of 0 or more) at most one per error time, one
-/// probe record at t = 0 and after every step when the scene has a probe, the next frame time
-/// within a frame interval past end_time.
+/// `end` (end_time): the errors (restore_errors: at most one per error time), one probe record at t = 0 and
+/// after every step when the scene has a probe, the next frame time within a frame interval past end_time.
 void restore_records(const CheckpointState& s, long long step, double time, double end,
                      const ElasticityScene& scene, bool sampled, DynamicRun& run, double& next_frame) {
   const DynamicsScene& dyn = *scene.dynamics;
-  const std::vector<double>& errors = s.within("errors", 0.0, unbounded, "a time or an error (0 or more)");
-  if (errors.size() % 4 != 0 || errors.size() / 4 > (sampled ? dyn.error_times.size() : 0))
-    s.refuse("errors", fmt::format("it holds {} numbers, not 4 for each of at most {} error times",
-                                   errors.size(), sampled ? dyn.error_times.size() : 0));
-  for (std::size_t at = 0; at < errors.size(); at += 4) {
-    if (errors[at] > time)
-      s.refuse("errors", fmt::format("value {} is {}, after the run's time {} s at step {}", at, errors[at],
-                                     time, step));
-    run.errors.push_back({errors[at], errors[at + 1], errors[at + 2], errors[at + 3]});
-  }
+  run.errors = restore_errors(s, step, time, sampled ? dyn.error_times.size() : 0);
   const double interval = dyn.frames > 0 ? end / dyn.frames : 0.0;
   next_frame = s.within("next_frame", 0.0, (end + interval) * (1 + 1e-9),
                         fmt::format("a time within a frame interval past end_time ({} s)", end), 1)[0];
@@ -360,7 +258,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   if (checkpoints && checkpoints->resume()) {
     const CheckpointState& s = *checkpoints->resume();
     const long long step = checkpoints->resume_step();
-    resume = restore_progress(s, step);
+    resume = restore_progress<2>(s, step);
     dc.resume = &*resume;
     dc.refuse = [&s](const std::string& name, const std::string& what) { s.refuse(name, what); };
     dc.resumed = [&, step](int, double dt) {
@@ -378,11 +276,9 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
     dc.save = [&](const DynamicsProgress<2>& p) {
       CheckpointState s;
       save_progress(s, p);
-      std::vector<double> errors, probe;
-      for (const MotionErrors& e : run.errors)
-        errors.insert(errors.end(), {e.time, e.displacement, e.velocity, e.stress});
+      save_errors(s, run.errors);
+      std::vector<double> probe;
       for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
-      s.put("errors", std::move(errors));
       s.put("probe", std::move(probe));
       s.put("next_frame", next_frame);
       if (run.reactions) run.reactions->save(s);

@@ -21,6 +21,7 @@
 #include "mfree/geometry/tetrahedral_mesh.hpp"
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/csv.hpp"
+#include "mfree/io/dynamics_checkpoint.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_scene.hpp"
 #include "mfree/io/solid_scene_output.hpp"
@@ -222,12 +223,22 @@ struct SolidDynamicRun {
 using OnState = std::function<void(const Discretisation<3>&, const TotalLagrangian<3>&, const DynamicState&,
                                    StageTimer&)>;
 
+/// The checkpoints of a dynamic run and the caller's own records in them (beyond the
+/// integrator's state and the errors): save() puts them, restore() takes them back (and checks
+/// them) at step `step`, time `time`, before the first step of a resumed run.
+struct RunCheckpoints {
+  const Checkpoints* checkpoints = nullptr;
+  std::function<void(CheckpointState&)> save;
+  std::function<void(const CheckpointState&, long long step, double time)> restore;
+};
+
 /// One dynamic run of the scene with node settings s and time settings ds: the
 /// discretisation, the initial fields L2-projected onto the RK functions (of the exact motion,
 /// or the scene's formulas), central differences or Newmark to end_time, the errors against
-/// the exact motion at the first step at or past each error time, on_state after every step.
+/// the exact motion at the first step at or past each error time, on_state after every step;
+/// checkpoints written and resumed from as `cp` says.
 SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, DynamicsSettings ds,
-                         bool verbose, const OnState& on_state) {
+                         bool verbose, const OnState& on_state, const RunCheckpoints& cp = {}) {
   const SolidDynamics& dyn = *scene.dynamics;
   SolidDynamicRun run;
   StageTimer& timer = run.timer;
@@ -267,7 +278,37 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
   if (verbose) ds.progress = &std::cout;
   const double end = ds.end_time;
   std::size_t next_error = 0;
-  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, [&](const DynamicState& state) {
+  DynamicsCheckpoints<3> dc;
+  std::optional<DynamicsProgress<3>> resume;
+  if (cp.checkpoints && cp.checkpoints->resume()) {
+    const CheckpointState& c = *cp.checkpoints->resume();
+    const long long step = cp.checkpoints->resume_step();
+    resume = restore_progress<3>(c, step);
+    dc.resume = &*resume;
+    dc.refuse = [&c](const std::string& name, const std::string& what) { c.refuse(name, what); };
+    dc.resumed = [&, step](int, double dt) {
+      const double time = static_cast<double>(step) * dt;  // as the integrator's t = n dt
+      run.errors = restore_errors(c, step, time, sampler ? dyn.error_times.size() : 0);
+      next_error = run.errors.size();
+      if (cp.restore) cp.restore(c, step, time);
+    };
+    if (verbose)
+      std::cout << fmt::format("  continuing from step {} of {}\n", step, c.source.parent_path().string());
+  }
+  if (cp.checkpoints && cp.checkpoints->every() > 0) {
+    dc.every = cp.checkpoints->every();
+    dc.save = [&](const DynamicsProgress<3>& p) {
+      CheckpointState c;
+      save_progress(c, p);
+      save_errors(c, run.errors);
+      if (cp.save) cp.save(c);
+      timer.time("checkpoints", [&] { cp.checkpoints->write(p.step, c, scene.output.folder); });
+    };
+    if (verbose)
+      std::cout << fmt::format("  checkpoints every {} steps in {}\n", dc.every,
+                               cp.checkpoints->folder().string());
+  }
+  const auto on_step = [&](const DynamicState& state) {
     // The first step at or past each error time; the exact motion at the step's own time.
     while (sampler && next_error < dyn.error_times.size() &&
            state.time >= dyn.error_times[next_error] * end * (1 - 1e-12)) {
@@ -276,47 +317,56 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
       ++next_error;
     }
     if (on_state) on_state(disc, model, state, timer);
-  });
+  };
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, dc);
   return run;
 }
 
 /// A dynamic run: progress, frames of the fields (volume.pvd and surface.pvd), the probe at
-/// every frame, the errors against an exact motion, energy.csv and the balance at the end.
-int run_dynamics(const SolidScene& scene) {
+/// every frame, the errors against an exact motion, energy.csv and the balance at the end;
+/// checkpoints every [output] checkpoint_every steps, or continuing from one.
+int run_dynamics(const SolidScene& scene, const Checkpoints& checkpoints) {
   const SolidDynamics& dyn = *scene.dynamics;
   const SolidOutput& o = scene.output;
-  std::vector<std::pair<double, std::string>> volume_frames, surface_frames;
+  checkpoints.restore_output(o.folder);
+  const bool write = o.vtk && !o.fields.empty();
+  std::vector<double> frame_times;  // frame k: volume_k.vtu and surface_k.vtu (k in 4 digits)
+  const auto suffix = [](std::size_t k) { return fmt::format("_{:04d}", k); };
+  const auto write_series = [&] {
+    for (const char* kind : {"volume", "surface"}) {
+      std::vector<std::pair<double, std::string>> series;
+      for (std::size_t k = 0; k < frame_times.size(); ++k)
+        series.emplace_back(frame_times[k], kind + suffix(k) + ".vtu");
+      write_pvd(o.folder / (std::string(kind) + ".pvd"), series);
+    }
+  };
   std::optional<GalerkinQuadrature<3>> probe_at;
-  int frame = 0;
   const double end = dyn.settings.end_time;
   const auto on_state = [&](const Discretisation<3>& disc, const TotalLagrangian<3>& model,
                             const DynamicState& state, StageTimer& timer) {
     // Frames at k end / frames (and t = 0): the first step at or past each.
-    const int wanted =
-        dyn.frames > 0 ? static_cast<int>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
-    if (!(state.step == 0 || (dyn.frames > 0 && wanted >= frame))) return;
+    const auto wanted =
+        dyn.frames > 0 ? static_cast<std::size_t>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
+    if (!(state.step == 0 || (dyn.frames > 0 && wanted >= frame_times.size()))) return;
     if (o.probe) {
       if (!probe_at) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
       const Point<3> u = displacement_at(*probe_at, 0, state.d);
       std::cout << fmt::format("  t = {:.6g}: probe u^h = ({:.9e}, {:.9e}, {:.9e})\n", state.time, u.x(),
                                u.y(), u.z());
     }
-    if (!o.vtk || o.fields.empty()) {
-      ++frame;
-      return;
-    }
-    const std::string suffix = fmt::format("_{:04d}", frame++);
-    const auto files = timer.time(
-        "output", [&] { return write_solid_fields(scene, disc, model, state.d, &state.v, suffix); });
-    for (const auto& f : files) {
-      const std::string name = f.filename().string();
-      if (name.starts_with("volume")) volume_frames.emplace_back(state.time, name);
-      if (name.starts_with("surface")) surface_frames.emplace_back(state.time, name);
-    }
-    write_pvd(o.folder / "volume.pvd", volume_frames);
-    write_pvd(o.folder / "surface.pvd", surface_frames);
+    frame_times.push_back(state.time);
+    if (!write) return;
+    timer.time("output", [&] {
+      write_solid_fields(scene, disc, model, state.d, &state.v, suffix(frame_times.size() - 1));
+      write_series();
+    });
   };
-  SolidDynamicRun run = simulate(scene, scene.settings, dyn.settings, true, on_state);
+  RunCheckpoints cp{&checkpoints, [&](CheckpointState& c) { c.put("frames", frame_times); },
+                    [&](const CheckpointState& c, long long, double time) {
+                      // The frames written so far: their files came back with the output.
+                      frame_times = c.times("frames", time, static_cast<std::size_t>(dyn.frames) + 1);
+                    }};
+  SolidDynamicRun run = simulate(scene, scene.settings, dyn.settings, true, on_state, cp);
   StageTimer& timer = run.timer;
   const DynamicsResult& r = run.result;
   std::cout << fmt::format(
@@ -365,8 +415,9 @@ int run_dynamics(const SolidScene& scene) {
     }
     summary.records("errors", errors);
   }
-  if (frame > 0 && o.vtk && !o.fields.empty())
-    std::cout << fmt::format("  wrote {} frames: open volume.pvd (or surface.pvd) in ParaView\n", frame);
+  if (write)
+    std::cout << fmt::format("  wrote {} frames: open volume.pvd (or surface.pvd) in ParaView\n",
+                             frame_times.size());
   std::cout << "stages:\n";
   print_stages(timer);
   summary.stages(timer);
@@ -487,16 +538,22 @@ int converge(const SolidScene& scene) {
 
 }  // namespace
 
-int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
-                    bool study) {
+int run_solid_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides, bool study,
+                    const std::filesystem::path& restart) {
   SolidScene scene = read_solid_scene(file, study, overrides);
+  if (!scene.dynamics && !restart.empty())
+    throw InputError(fmt::format(
+        "{}: --restart continues a [dynamics] run from its checkpoints; this scene is a static solve",
+        file.string()));
   if (!study)
     std::cout << fmt::format("mfree run: {} (solid, {}, {} thread(s))\n", file.string(), scene.model,
                              thread_count());
   std::cout << describe_solid(scene.solid) << scene.describe_conditions();
-  return in_staged_folder(scene.output.folder, [&] {
-    return study ? converge(scene) : scene.dynamics ? run_dynamics(scene) : run(scene);
-  });
+  if (study) return in_staged_folder(scene.output.folder, [&] { return converge(scene); });
+  if (!scene.dynamics) return in_staged_folder(scene.output.folder, [&] { return run(scene); });
+  const Checkpoints checkpoints(scene.output.folder, scene.output.checkpoint_every,
+                                scene_fingerprint(file, overrides), restart);
+  return in_staged_folder(scene.output.folder, checkpoints, [&] { return run_dynamics(scene, checkpoints); });
 }
 
 }  // namespace mfree

@@ -249,8 +249,8 @@ SolidDynamics read_dynamics(const SceneTable& t, const Constants& constants, dou
   return dyn;
 }
 
-/// [output]: the folder, the fields, the probe.
-SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamics) {
+/// [output]: the folder, the fields, the probe, the checkpoints of a dynamic run.
+SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamics, bool study) {
   SolidOutput o;
   o.folder = read_output_folder(t);
   if (t.has("fields") && !t.is_array_empty("fields"))
@@ -272,6 +272,10 @@ SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamic
     o.probe = Point<3>(p[0], p[1], p[2]);
     if (!out.solid.contains(*o.probe)) t.error("probe", "the probe lies outside the solid");
   }
+  o.checkpoint_every = static_cast<int>(t.integer_or("checkpoint_every", 0, 0, 1 << 30));
+  if (o.checkpoint_every > 0 && !dynamics) t.error("checkpoint_every", "checkpoints are for [dynamics] runs");
+  if (o.checkpoint_every > 0 && study)
+    t.error("checkpoint_every", "a study is not checkpointed: checkpoints are for one long `mfree run`");
   t.finish();
   return o;
 }
@@ -371,7 +375,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   if (dynamics)
     out.dynamics =
         read_dynamics(root.table("dynamics"), constants, m.density, out.newton, out.motion.has_value());
-  out.output = read_output(root.table("output"), out, dynamics);
+  out.output = read_output(root.table("output"), out, dynamics, want_study);
   if (want_study || root.has("study")) out.study = read_study(root.table("study"), out);
   root.finish();
   return out;

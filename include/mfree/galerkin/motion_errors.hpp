@@ -10,7 +10,6 @@
 //
 // The shape functions are sampled at the points once; each evaluation is a pass over them.
 // dim = 2 (plane) or 3; explicitly instantiated for both.
-// dim = 2 (plane) or 3; explicitly instantiated for both.
 
 #include "mfree/core/exact_motion.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"

@@ -37,7 +37,8 @@
 //                 fractions of end_time, default [1]); needs [material] density. Loads and
 //                 boundary values may then use t.
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain,
-//                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame)
+//                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame),
+//                 checkpoint_every (steps between checkpoints of a [dynamics] run; 0: none)
 //   [study]       for `mfree converge`: spacings, orders (default the scene's), probe = [x, y,
 //                 z] (default [output]'s; needed without [exact]), quadratic_factor (the
 //                 support factor of an order the scene does not run, default 3); of a
@@ -95,6 +96,7 @@ struct SolidOutput {
   std::set<std::string> fields;  ///< empty: nothing computed or written
   bool vtk = true;
   std::optional<Point<3>> probe;
+  int checkpoint_every = 0;  ///< steps between checkpoints of a dynamic run (0: none)
   [[nodiscard]] bool wants(const std::string& f) const { return fields.count(f) > 0; }
 };
 

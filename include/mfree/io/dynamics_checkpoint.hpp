@@ -1,0 +1,45 @@
+#pragma once
+// The part of a checkpoint (checkpoint.hpp) that a total-Lagrangian dynamics run owns, in the
+// plane (dim = 2) and in solids (dim = 3): the integrator's state and the errors against an
+// exact motion measured so far. Arrays of the state:
+//
+//   step                     the step of the checkpoint
+//   d, v, a, v_half, g       the integrator's vectors (DynamicsProgress), one value a DOF
+//   work, energy             the work so far; energy records of 5 numbers (time, kinetic,
+//                            strain, external work, dissipated)
+//   history.domain,          material states of the domain's and the boundary's points,
+//   history.boundary         dim^2 + 3 numbers each: E_p (column by column: xx, yx, xy, yy in
+//                            the plane), E_p,zz (0 in 3D), alpha, dissipation
+//   newton_iterations,       counts of the run so far
+//   factorisations
+//   tangent                  Newmark: the values of the effective tangent kept across steps
+//   errors                   4 numbers an error time passed: time, RMS errors of u, v, stress
+//
+// Explicitly instantiated for dim = 2 and 3.
+
+#include <vector>
+
+#include "mfree/galerkin/elastodynamics.hpp"
+#include "mfree/galerkin/motion_errors.hpp"
+#include "mfree/io/checkpoint.hpp"
+
+namespace mfree {
+
+template <int dim>
+void save_progress(CheckpointState& s, const DynamicsProgress<dim>& p);
+
+/// The integrator's state of checkpoint `s` of step `step`, as save_progress() wrote it: its
+/// "step" that of the checkpoint, whole energy and history records, equivalent plastic strains
+/// and counts of 0 or more. The rest (sizes against the model) is checked by
+/// integrate_dynamics (DynamicsCheckpoints<dim>::refuse). InputError naming the array.
+template <int dim>
+DynamicsProgress<dim> restore_progress(const CheckpointState& s, long long step);
+
+void save_errors(CheckpointState& s, const std::vector<MotionErrors>& errors);
+
+/// The error records of checkpoint `s` at `time` (step `step`): whole records, at most
+/// `most` (the error times), none after `time`, errors 0 or more. InputError naming the value.
+std::vector<MotionErrors> restore_errors(const CheckpointState& s, long long step, double time,
+                                         std::size_t most);
+
+}  // namespace mfree
