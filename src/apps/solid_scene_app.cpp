@@ -116,12 +116,11 @@ SolidLevel solve_level(const SolidScene& scene, const ElasticitySettings& s,
   level.solver = sol.solver.text();
   level.seconds = timer.total();
   if (scene.exact) {
-    const auto* law = std::get_if<LinearElastic>(&problem.material);
     const SolidExact& ex = *scene.exact;
     level.errors = timer.time("errors", [&] {
       return small_strain_errors(
           *disc.trial, sol.coefficients, error_rule(solid, s),
-          lame_constants(law->youngs_modulus, law->poisson_ratio),
+          [&](const Point<3>& x) { return scene.lame_at(x); },
           [&](const Point<3>& x) { return ex.displacement(x); },
           [&](const Point<3>& x) { return ex.gradient_at(x); });
     });
@@ -272,7 +271,7 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
   std::optional<MotionErrorSampler<3>> sampler;
   if (motion)
     sampler.emplace(*disc.trial, error_rule(scene.solid, s),
-                    [&problem](const Point<3>&) -> const Material& { return problem.material; });
+                    [&](const Point<3>& x) -> const Material& { return problem.law_at(scene.solid, x); });
   ds.newton.solver = s.solver;
   ds.newton.nearly_symmetric = disc.nearly_symmetric;
   if (verbose) ds.progress = &std::cout;

@@ -76,8 +76,9 @@ Reactions<dim> reactions(const TotalLagrangian<dim>& model, const Eigen::VectorX
   const BoundaryQuadrature<dim>& bq = model.boundary();
   const GalerkinQuadrature<dim>& at = model.at_boundary();
   Reactions<dim> r;
-  r.current_arm = !is_small_strain(problem.material);
-  for (const Material& m : problem.region_materials) r.current_arm = r.current_arm || !is_small_strain(m);
+  const std::vector<Material> laws = problem.laws();
+  r.current_arm =
+      !std::all_of(laws.begin(), laws.end(), [](const Material& m) { return is_small_strain(m); });
   const auto boundary_arm = [&](Index p) -> Point<dim> {
     return r.current_arm ? Point<dim>(bq.points[p] + row_value(at, p, d)) : bq.points[p];
   };

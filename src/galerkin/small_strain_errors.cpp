@@ -15,7 +15,8 @@ Tensor2<3> linear_stress(const Lame& lame, const Tensor2<3>& g) {
 }
 
 SmallStrainErrors small_strain_errors(const RKShapeFunctions<3>& trial, const Eigen::VectorXd& d,
-                                      const QuadratureRule<3>& rule, const Lame& lame,
+                                      const QuadratureRule<3>& rule,
+                                      const std::function<Lame(const Point<3>&)>& lame_at,
                                       const std::function<Point<3>(const Point<3>&)>& exact_u,
                                       const std::function<Tensor2<3>(const Point<3>&)>& exact_grad) {
   double l2 = 0.0, l2_norm = 0.0, energy = 0.0, energy_norm = 0.0;
@@ -36,6 +37,7 @@ SmallStrainErrors small_strain_errors(const RKShapeFunctions<3>& trial, const Ei
       const Point<3>& x = points[static_cast<std::size_t>(k)];
       const Point<3> u = exact_u(x);
       const Tensor2<3> exact = exact_grad(x), e = g - exact;
+      const Lame lame = lame_at(x);
       l2 += w * (displacement_at(at, k, d) - u).squaredNorm();
       l2_norm += w * u.squaredNorm();
       energy += w * (linear_stress(lame, e).array() * e.array()).sum();

@@ -46,9 +46,10 @@ Point<dim> dead_traction(const BoundaryCondition<dim>& c, const Point<dim>& x, c
                                                           : c.value(x, n, t);
 }
 
-/// The regions of a domain (a solid is one).
+/// The regions of a domain (a plane domain's list is empty for one region, a solid's may
+/// name its one region).
 std::size_t domain_regions(const Domain& domain) { return domain.regions().size(); }
-std::size_t domain_regions(const Solid&) { return 1; }
+std::size_t domain_regions(const Solid& solid) { return std::max<std::size_t>(1, solid.regions().size()); }
 
 /// R (a, b) = (b, -a): the rotation by -90 degrees that turns a tangent (body on its left)
 /// into the outward normal.
@@ -201,6 +202,17 @@ TotalLagrangian<dim>::TotalLagrangian(SolidProblem<dim> problem, const DomainOf<
       for (std::size_t k = 0; k < law.size(); ++k)
         if (law[k] < 0 || off[k] > tolerance)
           throw Error(fmt::format("{} point {} {} lies in no region of the domain", kind, k,
+                                  point_text<dim>(points[k])));
+    } else {
+      // A solid's regions are bonded (no interface conditions): a point on a face between
+      // two takes either law.
+      if (laws == 1) return law;
+      parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index begin, Index end) {
+        for (Index k = begin; k < end; ++k) law[k] = domain.region_at(points[k]);
+      });
+      for (std::size_t k = 0; k < law.size(); ++k)
+        if (law[k] < 0)
+          throw Error(fmt::format("{} point {} {} lies in no region of the solid", kind, k,
                                   point_text<dim>(points[k])));
     }
     return law;
@@ -724,9 +736,13 @@ Eigen::VectorXd TotalLagrangian<dim>::lumped_mass(const std::vector<Point<dim>>&
     if (!(m[dim * i] > 0.0))
       throw NumericalError(fmt::format(
           "lumped mass of node {} at {} is {:.3e}, not positive: the row-sum mass needs "
-          "shape functions with a positive integral (use linear RK, or the implicit scheme with the "
-          "consistent mass)",
-          i, point_text<dim>(node_positions[i]), m[dim * i]));
+          "shape functions with a positive integral{} (use linear RK, or the implicit scheme with the "
+          "consistent mass{})",
+          i, point_text<dim>(node_positions[i]), m[dim * i],
+          problem_.region_densities.empty() ? ""
+                                            : " weighted by the regions' densities (a function whose "
+                                              "negative part lies in a denser region than its positive part)",
+          problem_.region_densities.empty() ? "" : ", or a finer spacing"));
   return m;
 }
 

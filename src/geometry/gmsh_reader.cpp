@@ -142,7 +142,11 @@ std::map<int, int> entity_parts(int dim, const std::vector<std::pair<int, int>>&
       throw InputError(
           fmt::format("{}: {} {} belongs to the physical {} {}; a {} belongs to one "
                       "named part only",
-                      source, kind, entity, dim == 1 ? "curves" : "surfaces", quoted_list(names), kind));
+                      source, kind, entity,
+                      dim == 1   ? "curves"
+                      : dim == 2 ? "surfaces"
+                                 : "volumes",
+                      quoted_list(names), kind));
     }
     group_of_entity[entity] = groups.empty() ? 0 : groups.front();
     if (!groups.empty()) used[groups.front()] = names.front();

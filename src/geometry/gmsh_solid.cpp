@@ -19,11 +19,14 @@ namespace mfree {
 
 namespace {
 
-/// What is read from gmsh: the nodes, the tetrahedra's corners and the triangles of the
-/// boundary surfaces in physical groups (corner nodes, part), nodes numbered from 0.
+/// What is read from gmsh: the nodes, the tetrahedra's corners and regions (their physical
+/// volumes', when the volumes are in physical volumes) and the triangles of the boundary
+/// surfaces in physical groups (corner nodes, part), nodes numbered from 0.
 struct VolumeMesh {
   std::vector<Point<3>> nodes;
   std::vector<std::array<Index, 4>> tetrahedra;
+  std::vector<int> tetrahedron_regions;  ///< empty: one region
+  std::vector<std::string> region_names;
   std::vector<std::array<Index, 3>> triangles;
   std::vector<int> triangle_parts;
   std::vector<std::string> part_names;
@@ -97,11 +100,21 @@ VolumeMesh read_volume_mesh(const std::string& file) {
       throw InputError(fmt::format("{}: an element names node {}, which the mesh lacks", file, tag));
     return it->second;
   };
+  // Regions: the physical volumes, when there are any (then every volume is in one).
+  const std::map<int, int> region = gmsh_reader::entity_parts(3, volumes, mesh.region_names, file, "volume");
   for (const auto& [dim, volume] : volumes) {
+    const int r = region.at(volume);
+    if (r < 0 && !mesh.region_names.empty())
+      throw InputError(
+          fmt::format("{}: volume {} is in no physical volume, and others are in {}: put every "
+                      "volume of the solid in a physical volume (its region), or none",
+                      file, volume, gmsh_reader::quoted_list(mesh.region_names)));
     const std::vector<std::size_t> corners = corner_nodes(3, volume, 4, "Tetrahedron", file);
-    for (std::size_t e = 0; e < corners.size(); e += 4)
+    for (std::size_t e = 0; e < corners.size(); e += 4) {
       mesh.tetrahedra.push_back(
           {node(corners[e]), node(corners[e + 1]), node(corners[e + 2]), node(corners[e + 3])});
+      if (r >= 0) mesh.tetrahedron_regions.push_back(r);
+    }
   }
   gmsh::vectorpair boundary;
   gmsh::model::getBoundary(volumes, boundary, /*combined=*/true, /*oriented=*/false, /*recursive=*/false);
@@ -132,6 +145,8 @@ std::string serialise(const VolumeMesh& mesh) {
   std::string out = "M";
   put_list(out, mesh.nodes);
   put_list(out, mesh.tetrahedra);
+  put_list(out, mesh.tetrahedron_regions);
+  gmsh_reader::put_names(out, mesh.region_names);
   put_list(out, mesh.triangles);
   put_list(out, mesh.triangle_parts);
   gmsh_reader::put_names(out, mesh.part_names);
@@ -149,6 +164,8 @@ VolumeMesh deserialise(const std::string& bytes, const std::string& file) {
   VolumeMesh mesh;
   take_list(in, mesh.nodes);
   take_list(in, mesh.tetrahedra);
+  take_list(in, mesh.tetrahedron_regions);
+  mesh.region_names = in.names();
   take_list(in, mesh.triangles);
   take_list(in, mesh.triangle_parts);
   mesh.part_names = in.names();
@@ -161,7 +178,12 @@ VolumeMesh deserialise(const std::string& bytes, const std::string& file) {
                      std::all_of(mesh.triangles.begin(), mesh.triangles.end(), [&](const auto& t) {
                        return std::all_of(t.begin(), t.end(), [&](Index v) { return v >= 0 && v < nodes; });
                      });
-  if (!known) throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
+  const auto regions = static_cast<int>(mesh.region_names.size());
+  const bool regions_known = mesh.tetrahedron_regions.size() == (regions > 0 ? mesh.tetrahedra.size() : 0) &&
+                             std::all_of(mesh.tetrahedron_regions.begin(), mesh.tetrahedron_regions.end(),
+                                         [&](int r) { return r >= 0 && r < regions; });
+  if (!known || !regions_known)
+    throw Error(fmt::format("{}: the gmsh reader process sent a malformed mesh", file));
   return mesh;
 }
 
@@ -222,9 +244,10 @@ Solid read_gmsh_solid(const std::filesystem::path& file, const GmshReaderLimits&
   VolumeMesh mesh = deserialise(
       gmsh_reader::read_in_child(source, limits, [&source] { return serialise(read_volume_mesh(source)); }),
       source);
-  TetrahedralMesh tets(mesh.nodes, mesh.tetrahedra, source);
+  TetrahedralMesh tets(mesh.nodes, mesh.tetrahedra, source, mesh.tetrahedron_regions);
   std::vector<SurfaceTriangle> surface = boundary_faces(mesh, tets);
-  return Solid::from_mesh(std::move(tets), std::move(surface), std::move(mesh.part_names), source);
+  return Solid::from_mesh(std::move(tets), std::move(surface), std::move(mesh.part_names), source,
+                          std::move(mesh.region_names));
 }
 
 }  // namespace mfree

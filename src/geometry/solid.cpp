@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
 
@@ -39,8 +42,13 @@ Solid Solid::box(const Point<3>& lo, const Point<3>& hi) {
 }
 
 Solid Solid::from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
-                       std::vector<std::string> parts, const std::string& source) {
+                       std::vector<std::string> parts, const std::string& source,
+                       std::vector<std::string> regions) {
   if (surface.empty()) throw InputError(fmt::format("{}: the solid has no surface triangle", source));
+  for (Index k = 0; k < mesh.size(); ++k)
+    if (mesh.region(k) >= std::max<int>(1, static_cast<int>(regions.size())))
+      throw InputError(fmt::format("{}: tetrahedron {} is in region {}, not one of the {} regions", source, k,
+                                   mesh.region(k), std::max<std::size_t>(1, regions.size())));
   // Divergence theorem: the volume enclosed by the outward surface, about its box's centre.
   const Point<3> centre = mesh.bounding_box().center();
   double enclosed = 0.0;
@@ -57,12 +65,33 @@ Solid Solid::from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surfac
         fmt::format("{}: the surface encloses a volume of {:.10g}, its tetrahedra fill {:.10g}: the "
                     "surface does not bound the solid (triangles missing or facing inward)",
                     source, enclosed, mesh.volume()));
+  // A face with the solid on both sides: volumes that touch without sharing their faces (a
+  // mesh that does not conform there), whose touching faces would be taken as surface. A
+  // point just off the face (1e-4 of its size) on its outer side must lie outside.
+  for (std::size_t t = 0; t < surface.size(); ++t) {
+    const SurfaceTriangle& tri = surface[t];
+    const Point<3> an = tri.area_normal();
+    const double size = std::sqrt(an.norm());
+    const Point<3> centroid = (tri.vertices[0] + tri.vertices[1] + tri.vertices[2]) / 3.0;
+    if (mesh.contains(centroid + 1e-4 * size * an.normalized()))
+      throw InputError(fmt::format(
+          "{}: surface triangle {} (centroid ({:.6g}, {:.6g}, {:.6g})) has the solid on both sides: volumes "
+          "touch there without sharing their faces; make the mesh conform (BooleanFragments or Coherence "
+          "in the .geo)",
+          source, t, centroid.x(), centroid.y(), centroid.z()));
+  }
   const AlignedBox<3> box = mesh.bounding_box();
   return Solid(box, std::move(surface), std::move(parts),
-               std::make_shared<const TetrahedralMesh>(std::move(mesh)));
+               std::make_shared<const TetrahedralMesh>(std::move(mesh)), std::move(regions));
 }
 
 bool Solid::contains(const Point<3>& x) const { return mesh_ ? mesh_->contains(x) : box_.contains(x); }
+
+int Solid::region_at(const Point<3>& x) const {
+  if (!mesh_) return box_.contains(x) ? 0 : -1;
+  const Index t = mesh_->locate(x);
+  return t < 0 ? -1 : mesh_->region(t);
+}
 
 double Solid::measure() const { return mesh_ ? mesh_->volume() : box_.volume(); }
 

@@ -14,9 +14,15 @@ std::string point_text(const Point<3>& x) { return fmt::format("{}, {}, {}", x.x
 }  // namespace
 
 TetrahedralMesh::TetrahedralMesh(std::vector<Point<3>> nodes, std::vector<std::array<Index, 4>> tetrahedra,
-                                 const std::string& source)
-    : nodes_(std::move(nodes)), tetrahedra_(std::move(tetrahedra)) {
+                                 const std::string& source, std::vector<int> regions)
+    : nodes_(std::move(nodes)), tetrahedra_(std::move(tetrahedra)), regions_(std::move(regions)) {
   if (tetrahedra_.empty()) throw InputError(fmt::format("{}: the solid has no tetrahedron", source));
+  if (!regions_.empty() && regions_.size() != tetrahedra_.size())
+    throw InputError(
+        fmt::format("{}: {} regions for {} tetrahedra", source, regions_.size(), tetrahedra_.size()));
+  if (const auto r = std::find_if(regions_.begin(), regions_.end(), [](int v) { return v < 0; });
+      r != regions_.end())
+    throw InputError(fmt::format("{}: tetrahedron {} is in region {}", source, r - regions_.begin(), *r));
   const auto n = static_cast<Index>(nodes_.size());
   for (Index i = 0; i < n; ++i)
     if (!nodes_[i].allFinite())
@@ -82,21 +88,22 @@ std::array<Index, 3> TetrahedralMesh::cell_of(const Point<3>& x) const {
   return out;
 }
 
-bool TetrahedralMesh::contains(const Point<3>& x) const {
+Index TetrahedralMesh::locate(const Point<3>& x) const {
   const double slack = 1e-12 * box_.sizes().maxCoeff();
   if (!x.allFinite() || ((x - box_.min()).array() < -slack).any() || ((x - box_.max()).array() > slack).any())
-    return false;
+    return -1;
   const std::array<Index, 3> c = cell_of(x);
   const std::size_t b = (static_cast<std::size_t>(c[2]) * counts_[1] + c[1]) * counts_[0] + c[0];
   for (Index i = start_[b]; i < start_[b + 1]; ++i) {
-    const Tetrahedron t = tetrahedron(bucket_[static_cast<std::size_t>(i)]);
+    const Index k = bucket_[static_cast<std::size_t>(i)];
+    const Tetrahedron t = tetrahedron(k);
     Tensor2<3> edges;
     edges << t[1] - t[0], t[2] - t[0], t[3] - t[0];
     const Point<3> lambda = edges.inverse() * (x - t[0]);
     constexpr double tolerance = -1e-12;
-    if (lambda.minCoeff() >= tolerance && 1.0 - lambda.sum() >= tolerance) return true;
+    if (lambda.minCoeff() >= tolerance && 1.0 - lambda.sum() >= tolerance) return k;
   }
-  return false;
+  return -1;
 }
 
 }  // namespace mfree

@@ -175,51 +175,14 @@ void read_plane_materials(const SceneTable& root, ElasticityScene& out) {
       tables.front().error("regions",
                            "[[material]] tables give the regions of a domain their laws, and this domain "
                            "has one region: use one [material] table");
-    std::vector<int> law_of(regions.size(), -1);
-    std::vector<std::string> names;
-    for (const SceneTable& t : tables) {
-      const std::string name = t.string("name");
-      if (std::find(names.begin(), names.end(), name) != names.end())
-        t.error("name", fmt::format("a second [[material]] named '{}'", name));
-      names.push_back(name);
-      for (const std::string& r : t.choices("regions", region_names)) {
-        const auto at = static_cast<std::size_t>(std::find(region_names.begin(), region_names.end(), r) -
-                                                 region_names.begin());
-        if (law_of[at] >= 0)
-          t.error("regions",
-                  fmt::format("region '{}' has a law already ([[material]] '{}')", r, names[law_of[at]]));
-        law_of[at] = static_cast<int>(names.size() - 1);
-      }
-      const MaterialSection m = read_plane_material(t);
+    for (const MaterialSection& m : read_region_materials(tables, region_names, read_plane_material)) {
       out.region_materials.push_back(m.material);
       out.region_densities.push_back(m.density);
       s.problem.region_materials.push_back(m.linear);
     }
-    for (std::size_t r = 0; r < regions.size(); ++r)
-      if (law_of[r] < 0)
-        tables.back().error(
-            "regions",
-            fmt::format("region '{}' has no law: name it in the regions of a [[material]]", regions[r].name));
-    // Laws per region, in region order.
-    const auto by_region = [&](const auto& per_table) {
-      std::remove_cvref_t<decltype(per_table)> ordered;
-      for (int l : law_of) ordered.push_back(per_table[static_cast<std::size_t>(l)]);
-      return ordered;
-    };
-    s.problem.region_materials = by_region(s.problem.region_materials);
-    out.region_materials = by_region(out.region_materials);
-    out.region_densities = by_region(out.region_densities);
     s.problem.material = s.problem.region_materials.front();
     out.material = out.region_materials.front();
     out.density = out.region_densities.front();
-    // A density in some tables and not in others is a slip, whatever the run needs.
-    for (std::size_t l = 0; l < tables.size(); ++l)
-      if (tables[l].has("density") != tables.front().has("density"))
-        tables[l].error("density",
-                        fmt::format("[[material]] '{}' gives a density and '{}' does not: give one in "
-                                    "every [[material]], or in none",
-                                    names[tables.front().has("density") ? 0 : l],
-                                    names[tables.front().has("density") ? l : 0]));
   } else {
     const MaterialSection m = read_plane_material(root.table("material"));
     s.problem.material = m.linear;

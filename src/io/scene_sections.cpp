@@ -71,6 +71,45 @@ MaterialSection read_material_keys(const SceneTable& t, int dimension) {
   return m;
 }
 
+std::vector<MaterialSection> read_region_materials(
+    const std::vector<SceneTable>& tables, const std::vector<std::string>& region_names,
+    const std::function<MaterialSection(const SceneTable&)>& read) {
+  std::vector<int> law_of(region_names.size(), -1);
+  std::vector<std::string> names;
+  std::vector<MaterialSection> sections;
+  for (const SceneTable& t : tables) {
+    const std::string name = t.string("name");
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      t.error("name", fmt::format("a second [[material]] named '{}'", name));
+    names.push_back(name);
+    for (const std::string& r : t.choices("regions", region_names)) {
+      const auto at = static_cast<std::size_t>(std::find(region_names.begin(), region_names.end(), r) -
+                                               region_names.begin());
+      if (law_of[at] >= 0)
+        t.error("regions",
+                fmt::format("region '{}' has a law already ([[material]] '{}')", r, names[law_of[at]]));
+      law_of[at] = static_cast<int>(names.size() - 1);
+    }
+    sections.push_back(read(t));
+  }
+  for (std::size_t r = 0; r < region_names.size(); ++r)
+    if (law_of[r] < 0)
+      tables.back().error(
+          "regions",
+          fmt::format("region '{}' has no law: name it in the regions of a [[material]]", region_names[r]));
+  // A density in some tables and not in others is a slip, whatever the run needs.
+  for (std::size_t l = 0; l < tables.size(); ++l)
+    if (tables[l].has("density") != tables.front().has("density"))
+      tables[l].error("density",
+                      fmt::format("[[material]] '{}' gives a density and '{}' does not: give one in "
+                                  "every [[material]], or in none",
+                                  names[tables.front().has("density") ? 0 : l],
+                                  names[tables.front().has("density") ? l : 0]));
+  std::vector<MaterialSection> by_region;
+  for (int l : law_of) by_region.push_back(sections[static_cast<std::size_t>(l)]);
+  return by_region;
+}
+
 Box read_box(const SceneTable& t, const std::string& key) {
   const auto p = t.pairs(key, 2);
   return {Vec2(std::min(p[0][0], p[1][0]), std::min(p[0][1], p[1][1])),

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "mfree/core/error.hpp"
@@ -103,12 +105,13 @@ void check_slivers(const SceneTable& t, const std::string& what, const BoundaryS
                       what, "xyz"[axis], pieces, area, "xyz"[axis]));
 }
 
-SolidExact read_exact(const SceneTable& t, const Constants& constants, const Material& law) {
-  if (!std::holds_alternative<LinearElastic>(law))
-    t.error("displacement",
-            fmt::format("errors against an exact solution are those of the small-strain law: give "
-                        "[material] model = \"linear_elastic\", not \"{}\"",
-                        name(law)));
+SolidExact read_exact(const SceneTable& t, const Constants& constants, const SolidProblem<3>& problem) {
+  for (const Material& law : problem.laws())
+    if (!std::holds_alternative<LinearElastic>(law))
+      t.error("displacement",
+              fmt::format("errors against an exact solution are those of the small-strain law: give "
+                          "[material] model = \"linear_elastic\", not \"{}\"",
+                          name(law)));
   SolidExact e{read_space_vector_formula(t, "displacement", constants), {}};
   check_static(t, "displacement", e.displacement, false);
   const std::vector<std::string> texts = t.expressions("gradient", 9);
@@ -122,7 +125,8 @@ SolidExact read_exact(const SceneTable& t, const Constants& constants, const Mat
 
 /// [exact] of a dynamics run: a built-in motion (solution = "vibration", amplitude), posed on
 /// the cube [0, L]^3 of the scene's Neo-Hookean material and density.
-ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const MaterialSection& m) {
+ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const MaterialSection& m,
+                           std::size_t problem_laws) {
   if (t.has("displacement") || !t.has("solution"))
     t.error(
         t.has("displacement") ? "displacement" : "solution",
@@ -135,6 +139,8 @@ ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const Materi
       (b.sizes().array() - length).abs().maxCoeff() > 1e-12 * length)
     t.error("solution", fmt::format("the vibration solution needs the box [[0, 0, 0], [L, L, L]], not {}",
                                     solid.mesh() ? std::string("a meshed solid") : box_text(b)));
+  if (problem_laws > 1)
+    t.error("solution", "the vibration solution is of one material: give one [material] table");
   if (!std::holds_alternative<NeoHookean>(m.material))
     t.error(
         "solution",
@@ -151,10 +157,13 @@ ExactMotion<3> read_motion(const SceneTable& t, const Solid& solid, const Materi
   return a.motion<3>();
 }
 
-/// [loads]: body_force (formulas in x, y, z), gravity (times the density).
-BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, double density, bool dynamics) {
+/// [loads]: body_force (formulas in x, y, z), gravity (times the density of the region at x).
+BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, const SolidScene& scene,
+                        bool dynamics) {
   std::optional<SpaceVectorFormula> force;
   Point<3> gravity = Point<3>::Zero();
+  const SolidProblem<3>& problem = scene.problem;
+  const double density = problem.density;
   if (t.has("body_force")) {
     force = read_space_vector_formula(t, "body_force", constants);
     check_static(t, "body_force", *force, dynamics);
@@ -162,20 +171,28 @@ BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, double 
   if (t.has("gravity")) {
     const auto g = t.numbers("gravity", 3, -1e300, 1e300);
     if (!(density > 0.0)) t.error("gravity", "gravity needs the material's density ([material] density)");
-    gravity = density * Point<3>(g[0], g[1], g[2]);
+    gravity = Point<3>(g[0], g[1], g[2]);
   }
   if (!t.has("body_force") && !t.has("gravity"))
     t.error("body_force", "give body_force or gravity (or both)");
   t.finish();
-  return [force, gravity](const Point<3>& x, double time) {
-    return force ? Point<3>((*force)(x, time) + gravity) : gravity;
+  // The density of each region, and the solid to find the region of x in (a copy: the force
+  // outlives this reader's scene).
+  const std::vector<double> densities = problem.region_densities;
+  const auto solid = densities.empty() ? nullptr : std::make_shared<const Solid>(scene.solid);
+  const auto rho = [densities, density, solid](const Point<3>& x) {
+    return solid ? densities[static_cast<std::size_t>(std::max(0, solid->region_at(x)))] : density;
+  };
+  return [force, gravity, rho](const Point<3>& x, double time) {
+    const Point<3> weight = rho(x) * gravity;
+    return force ? Point<3>((*force)(x, time) + weight) : weight;
   };
 }
 
 /// One [[boundary]] table: the condition, its selection checked (no area, slivers, overlaps
 /// with the conditions before it), recorded in out.selected.
 BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const Constants& constants,
-                                    const LinearElastic& law, bool dynamics) {
+                                    bool dynamics) {
   BoundaryCondition<3> c;
   c.name = t.string("name");
   c.type = read_choice(t, "type", condition_table);
@@ -207,9 +224,17 @@ BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const 
     if (c.type != ConditionType::traction) {
       c.value = [ex](const Point<3>& x, const Point<3>&, double) { return ex.displacement(x); };
     } else {
-      const Lame lame = lame_constants(law.youngs_modulus, law.poisson_ratio);
-      c.value = [ex, lame](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
-        return Point<3>(linear_stress(lame, ex.gradient_at(x)) * n);
+      // The Lamé constants of each region's law, and the solid to find the region of x in
+      // (a copy: the condition outlives this reader's scene).
+      std::vector<Lame> lame;
+      for (const Material& law : out.problem.laws()) {
+        const auto& linear = std::get<LinearElastic>(law);
+        lame.push_back(lame_constants(linear.youngs_modulus, linear.poisson_ratio));
+      }
+      const auto solid = lame.size() > 1 ? std::make_shared<const Solid>(out.solid) : nullptr;
+      c.value = [ex, lame, solid](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
+        const Lame& l = lame[solid ? static_cast<std::size_t>(std::max(0, solid->region_at(x))) : 0];
+        return Point<3>(linear_stress(l, ex.gradient_at(x)) * n);
       };
     }
   } else {
@@ -257,9 +282,9 @@ SolidOutput read_output(const SceneTable& t, const SolidScene& out, bool dynamic
     for (const auto& f :
          t.choices("fields", {"displacement", "velocity", "stress", "von_mises", "plastic_strain", "error"}))
       o.fields.insert(f);
-  if (o.wants("plastic_strain") && !has_history(out.problem.material))
-    t.error("fields", fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}",
-                                  name(out.problem.material)));
+  if (o.wants("plastic_strain") && !out.problem.any_history())
+    t.error("fields",
+            fmt::format("'plastic_strain' needs a law with history (j2, drucker_prager), not {}", out.model));
   if (o.wants("error") && !out.exact)
     t.error("fields", out.motion
                           ? "'error' fields are written in statics; a [dynamics] run prints its errors at "
@@ -328,6 +353,36 @@ bool is_solid_scene(const std::filesystem::path& file) {
   return domain.has("box") || domain.has("solid");
 }
 
+/// [material], or [[material]] tables giving the solid's regions (its physical volumes) their
+/// laws, bonded to each other; the section of the first region (the one law of a solid of one
+/// region) is returned.
+MaterialSection read_solid_materials(const SceneTable& root, SolidScene& out) {
+  SolidProblem<3>& problem = out.problem;
+  const auto read = [](const SceneTable& t) { return read_material_keys(t, 3); };
+  if (!root.is_array_of_tables("material")) {
+    const MaterialSection m = read(root.table("material"));
+    out.model = m.model;
+    problem.material = m.material;
+    problem.density = m.density;
+    return m;
+  }
+  const std::vector<SceneTable> tables = root.tables("material");
+  const std::vector<std::string>& regions = out.solid.regions();
+  if (regions.size() < 2)
+    tables.front().error("regions",
+                         "[[material]] tables give the regions of a solid (the physical volumes of its gmsh "
+                         "file) their laws, and this solid has one region: use one [material] table");
+  const std::vector<MaterialSection> laws = read_region_materials(tables, regions, read);
+  for (const MaterialSection& m : laws) {
+    problem.region_materials.push_back(m.material);
+    problem.region_densities.push_back(m.density);
+    if (out.model.find(m.model) == std::string::npos) out.model += (out.model.empty() ? "" : " + ") + m.model;
+  }
+  problem.material = problem.region_materials.front();
+  problem.density = problem.region_densities.front();
+  return laws.front();
+}
+
 SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
                             const std::vector<std::string>& overrides) {
   const Scene scene = Scene::load(file, overrides);
@@ -340,16 +395,11 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   read_kernel_section(root.table("kernel"), s, 3);
   read_quadrature_section(root.optional_table("quadrature"), s, 3);
   problem.spacing = s.nodes.spacing;
-  if (root.is_array_of_tables("material"))
-    root.error("material", "a solid is one region so far: give one [material] table");
-  const MaterialSection m = read_material_keys(root.table("material"), 3);
-  out.model = m.model;
-  problem.material = m.material;
-  problem.density = m.density;
+  const MaterialSection m = read_solid_materials(root, out);
   const Constants constants = read_constants(root);
 
   if (root.has("exact") && dynamics) {
-    out.motion = read_motion(root.table("exact"), out.solid, m);
+    out.motion = read_motion(root.table("exact"), out.solid, m, problem.laws().size());
     if (root.has("loads"))
       root.table("loads").error("body_force", "the [exact] motion sets the body force: remove [loads]");
     const ExactMotion<3>& motion = *out.motion;
@@ -357,12 +407,12 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
       return Point<3>(rho * b(x, time));
     };
   } else if (root.has("exact")) {
-    out.exact = read_exact(root.table("exact"), constants, m.material);
+    out.exact = read_exact(root.table("exact"), constants, problem);
   }
-  if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, m.density, dynamics);
+  if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, out, dynamics);
 
   for (const SceneTable& t : root.tables("boundary"))
-    problem.conditions.push_back(read_condition(t, out, constants, m.linear, dynamics));
+    problem.conditions.push_back(read_condition(t, out, constants, dynamics));
   if (root.has("nitsche"))
     problem.nitsche_beta = read_nitsche_section(root.table("nitsche"), problem.nitsche_beta);
   if (root.has("solver")) read_solver_section(root.table("solver"), s);
@@ -379,6 +429,11 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   if (want_study || root.has("study")) out.study = read_study(root.table("study"), out);
   root.finish();
   return out;
+}
+
+Lame SolidScene::lame_at(const Point<3>& x) const {
+  const auto& law = std::get<LinearElastic>(problem.law_at(solid, x));
+  return lame_constants(law.youngs_modulus, law.poisson_ratio);
 }
 
 std::string SolidScene::describe_conditions() const {

@@ -79,8 +79,7 @@ std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<
                                   const Eigen::VectorXd& d, const Eigen::VectorXd* v,
                                   const std::vector<Point<3>>& points) {
   const SolidOutput& o = scene.output;
-  const Material& law = scene.problem.material;
-  const bool stresses = !has_history(law) && (o.wants("stress") || o.wants("von_mises"));
+  const bool stresses = !scene.problem.any_history() && (o.wants("stress") || o.wants("von_mises"));
   const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, points, stresses);
   PointField u{"displacement", 3, {}}, velocity{"velocity", 3, {}}, stress{"stress", 6, {}},
       mises{"von_mises", 1, {}}, error{"error", 3, {}};
@@ -99,7 +98,9 @@ std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<
     Tensor2<3> f = Tensor2<3>::Identity();
     for (Index j = at.row_begin(k); j < at.row_end(k); ++j)
       f += d.segment<3>(3 * at.nodes[j]) * at.grad[j].transpose();
-    const Tensor2<3> sigma = cauchy_stress<3>(law, f);
+    // The law of the vertex's region (on a face between two regions, either's).
+    const Tensor2<3> sigma =
+        cauchy_stress<3>(scene.problem.law_at(scene.solid, points[static_cast<std::size_t>(k)]), f);
     append_tensor(stress.values, sigma);
     mises.values.push_back(von_mises(sigma));
   }
@@ -131,7 +132,7 @@ std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, c
   }
 
   const SolidOutput& o = scene.output;
-  if (has_history(scene.problem.material) &&
+  if (scene.problem.any_history() &&
       (o.wants("stress") || o.wants("von_mises") || o.wants("plastic_strain"))) {
     const GalerkinQuadrature<3>& q = disc.quadrature;
     PointField u{"displacement", 3, {}}, stress{"stress", 6, {}}, mises{"von_mises", 1, {}},

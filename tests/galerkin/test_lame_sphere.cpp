@@ -74,7 +74,8 @@ ElasticErrors solve_and_measure(double h, double size, RKOrder order) {
   const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
 
   const ElasticErrors e = small_strain_errors(
-      *disc.trial, sol.coefficients, gauss_cell_rule(solid, h, 3), lame_constants(lame.young, lame.nu),
+      *disc.trial, sol.coefficients, gauss_cell_rule(solid, h, 3),
+      [&](const P3&) { return lame_constants(lame.young, lame.nu); },
       [&](const P3& x) { return lame.displacement(x); }, [&](const P3& x) { return lame.gradient(x); });
   std::string stages;
   for (const auto& [name, seconds] : timer.stages()) stages += fmt::format(" {} {:.2f} s,", name, seconds);

@@ -92,7 +92,7 @@ ElasticErrors solve_and_measure(double h, RKOrder order) {
   const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
 
   return small_strain_errors(
-      *disc.trial, sol.coefficients, gauss_cell_rule(unit_cube(), h, 4), m.lame,
+      *disc.trial, sol.coefficients, gauss_cell_rule(unit_cube(), h, 4), [&](const P3&) { return m.lame; },
       [&](const P3& x) { return m.displacement(x); }, [&](const P3& x) { return m.gradient(x); });
 }
 

@@ -1,7 +1,7 @@
 // Solids from gmsh files: the octant of a thick sphere (meshes/thick_sphere_octant.geo) read
-// as tetrahedra with named surface parts; its volume and areas converging to the curved
-// solid's at second order in the element size; the surface closed and outward; the inside
-// test; and the files refused, each naming what is wrong.
+// as tetrahedra with named surface parts (and regions: the two-layer sphere); its volume and areas converging
+// to the curved solid's at second order in the element size; the surface closed and outward; the inside test;
+// and the files refused, each naming what is wrong.
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
@@ -129,4 +129,50 @@ TEST_CASE(
   // The faces are reached by boxes: x = 0 has area 0.48.
   CHECK(selection_area(solid, select_box(solid, AlignedBox<3>(Point<3>(-1, -1, -1), Point<3>(0, 2, 2)))) ==
         Approx(0.48).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh solid: physical volumes are the solid's regions (the two-layer sphere's octant)",
+          "[geometry][3d]") {
+  const Solid solid = read_gmsh_solid(testing::source_dir() + "/meshes/two_layer_sphere_octant.geo");
+  REQUIRE(solid.regions() == std::vector<std::string>{"inner", "outer"});
+  REQUIRE(solid.parts() == std::vector<std::string>{"bore", "outside", "x_sym", "y_sym", "z_sym"});
+  // The interface r = c is inside: no surface triangle on it, the outside a whole sphere's eighth.
+  CHECK(selection_area(solid, select_part(solid, "outside")) == Approx(2 * pi).epsilon(0.01));
+  for (const SurfaceTriangle& t : solid.surface()) CHECK(t.part >= 0);
+  // Each region's volume (inscribed spheres: a little less than the layer's).
+  const TetrahedralMesh& mesh = *solid.mesh();
+  std::array<double, 2> volume{};
+  for (Index k = 0; k < mesh.size(); ++k) volume[mesh.region(k)] += tetrahedron_volume(mesh.tetrahedron(k));
+  const double inner = (1.5 * 1.5 * 1.5 - 1) * pi / 6, outer = (8 - 1.5 * 1.5 * 1.5) * pi / 6;
+  CHECK(volume[0] < inner);
+  CHECK(volume[0] > 0.99 * inner);
+  CHECK(volume[1] == Approx(outer).epsilon(0.01));
+  CHECK(solid.region_at(P3(0.7, 0.7, 0.7)) == 0);   // r = 1.21
+  CHECK(solid.region_at(P3(1.0, 1.0, 1.0)) == 1);   // r = 1.73
+  CHECK(solid.region_at(P3(0.5, 0.5, 0.5)) == -1);  // in the bore
+  CHECK(solid.region_at(P3(1.2, 1.2, 1.2)) == -1);  // outside
+  // A box is one region.
+  CHECK(Solid::box(P3(0, 0, 0), P3(1, 1, 1)).regions().empty());
+  CHECK(Solid::box(P3(0, 0, 0), P3(1, 1, 1)).region_at(P3(0.5, 0.5, 0.5)) == 0);
+
+  // Some volumes in physical volumes and others in none: refused.
+  const testing::ScratchFolder folder("gmsh_solid_regions");
+  const std::string half = write_file(folder, "half.geo",
+                                      "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                                      "Box(2) = {1, 0, 0, 1, 1, 1};\nCoherence;\n"
+                                      "Physical Volume(\"left\") = {1};\n");
+  CHECK_THAT(input_error(half), Catch::Contains("half.geo: volume 2 is in no physical volume, and others are "
+                                                "in 'left'"));
+  // Two volumes touching without a conforming mesh: the faces between them are not surface.
+  const std::string loose = write_file(folder, "loose.geo",
+                                       "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                                       "Box(2) = {1, 0, 0, 1, 1, 1};\nPhysical Volume(\"left\") = {1};\n"
+                                       "Physical Volume(\"right\") = {2};\n");
+  CHECK_THAT(input_error(loose), Catch::Contains("loose.geo: surface triangle") &&
+                                     Catch::Contains("has the solid on both sides") &&
+                                     Catch::Contains("BooleanFragments or Coherence"));
+  const std::string twice = write_file(folder, "twice_volume.geo",
+                                       "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\n"
+                                       "Physical Volume(\"a\") = {1};\nPhysical Volume(\"b\") = {1};\n");
+  CHECK_THAT(input_error(twice), Catch::Contains("volume 1 belongs to the physical volumes 'a' and 'b'"));
 }

@@ -311,3 +311,52 @@ TEST_CASE("solid scenes: the vibration motion of a cube, and what it does not ta
       refusal(box_scene("out", "linear", "\n[study]\nspacings = [0.2]\ntime_schemes = [\"newmark\"]\n")),
       Catch::Contains("needs a [dynamics] section"));
 }
+
+TEST_CASE("solid scenes: several materials, one per region of a gmsh part, and what they may not do",
+          "[io][solid]") {
+  const std::string ok = [] {
+    std::ifstream in(testing::source_dir() + "/verification/two-layer-sphere/two_layer_sphere.toml");
+    return replace(std::string{std::istreambuf_iterator<char>(in), {}}, "\\.\\./\\.\\./meshes",
+                   testing::source_dir() + "/meshes");
+  }();
+  const testing::ScratchFolder folder("solid_scene_materials");
+  const SolidScene scene = read_solid_scene(write_scene(folder, ok));
+  REQUIRE(scene.problem.region_materials.size() == 2);
+  CHECK(scene.model == "linear_elastic");
+  const auto young = [&](const Point<3>& x) {
+    return std::get<LinearElastic>(scene.problem.law_at(scene.solid, x)).youngs_modulus;
+  };
+  CHECK(young(Point<3>(0.7, 0.7, 0.7)) == 1000.0);  // r = 1.21: the stiff core
+  CHECK(young(Point<3>(1.0, 1.0, 1.0)) == 200.0);   // r = 1.73: the soft shell
+  CHECK(scene.lame_at(Point<3>(1.0, 1.0, 1.0)).mu == Approx(200.0 / 2.7).epsilon(1e-15));
+
+  // Gravity weighs each region with its own density.
+  const std::string heavy =
+      replace(replace(ok, "poisson_ratio = 0.3\n", "poisson_ratio = 0.3\ndensity = 1000.0\n"),
+              "poisson_ratio = 0.35\n", "poisson_ratio = 0.35\ndensity = 3000.0\n") +
+      "\n[loads]\ngravity = [0, 0, -10]\n";
+  const SolidScene weighed = read_solid_scene(write_scene(folder, heavy, "heavy.toml"));
+  CHECK(weighed.problem.body_force(Point<3>(0.7, 0.7, 0.7), 0.0).z() == -1e4);
+  CHECK(weighed.problem.body_force(Point<3>(1.0, 1.0, 1.0), 0.0).z() == -3e4);
+
+  CHECK_THAT(refusal(replace(ok, "regions = \\[\"outer\"\\]", "regions = [\"shell\"]")),
+             Catch::Contains("'shell'") && Catch::Contains("inner"));
+  CHECK_THAT(refusal(replace(ok, "regions = \\[\"outer\"\\]", "regions = [\"inner\"]")),
+             Catch::Contains("region 'inner' has a law already ([[material]] 'stiff core')"));
+  CHECK_THAT(
+      refusal(replace(ok,
+                      "\\[\\[material\\]\\]\nname = \"soft shell\"\nregions = \\[\"outer\"\\]\nmodel = "
+                      "\"linear_elastic\"\nyoungs_modulus = 200.0\npoisson_ratio = 0.35\n",
+                      "")),
+      Catch::Contains("region 'outer' has no law"));
+  CHECK_THAT(refusal(replace(ok, "poisson_ratio = 0.35\n", "poisson_ratio = 0.35\ndensity = 10.0\n")),
+             Catch::Contains("'soft shell' gives a density and 'stiff core' does not"));
+  CHECK_THAT(refusal(replace(ok, "model = \"linear_elastic\"\nyoungs_modulus = 200.0",
+                             "model = \"neo_hookean\"\nyoungs_modulus = 200.0")),
+             Catch::Contains("errors against an exact solution are those of the small-strain law") &&
+                 Catch::Contains("neo_hookean"));
+  // A box is one region.
+  CHECK_THAT(
+      refusal(replace(box_scene("out"), "\\[material\\]", "[[material]]\nname = \"steel\"\nregions = []")),
+      Catch::Contains("this solid has one region: use one [material] table"));
+}

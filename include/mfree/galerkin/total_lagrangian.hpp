@@ -62,6 +62,7 @@
 // Dimension: one code for dim = 2 (a plane Domain) and dim = 3 (a Solid), instantiated in
 // the .cpp. The interfaces between regions are plane only (a solid is one region).
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -148,6 +149,15 @@ struct SolidProblem {
   double nitsche_beta = 100.0;
   double spacing = 1.0;                       ///< h of the penalty: nodal spacing
 
+  /// The laws: one per region, or the one law.
+  [[nodiscard]] std::vector<Material> laws() const {
+    return region_materials.empty() ? std::vector<Material>{material} : region_materials;
+  }
+  /// Whether a law has history (J2, Drucker–Prager).
+  [[nodiscard]] bool any_history() const {
+    const std::vector<Material> all = laws();
+    return std::any_of(all.begin(), all.end(), [](const Material& m) { return has_history(m); });
+  }
   /// The law of region r.
   [[nodiscard]] const Material& law(int region) const {
     return region_materials.empty() ? material : region_materials[static_cast<std::size_t>(region)];
@@ -159,6 +169,10 @@ struct SolidProblem {
   /// The law at X of the domain (its region's; on the boundary, the nearest region's).
   [[nodiscard]] const Material& law_at(const Domain& domain, const Vec2& x) const requires(dim == 2) {
     return region_materials.empty() ? material : law(domain.nearest_region(x).first);
+  }
+  /// The law at X of the solid (its region's; X in the closed solid).
+  [[nodiscard]] const Material& law_at(const Solid& solid, const Point<3>& x) const requires(dim == 3) {
+    return region_materials.empty() ? material : law(std::max(0, solid.region_at(x)));
   }
 };
 

@@ -15,6 +15,10 @@
 // a face carries the name of the physical surface ("Physical Surface") of the boundary
 // surface whose 2D element it is, part -1 where the surface is in none; a group without a
 // name is named by its number; Solid::parts() lists the groups on the boundary, by group tag.
+// Regions: when the volumes are in physical volumes ("Physical Volume"), each is a region of
+// the solid (Solid::regions(), by group tag; a tetrahedron takes its volume's), and a volume in
+// none is refused. Volumes that touch need a conforming mesh there (BooleanFragments or
+// Coherence in the .geo): a face with the solid on both sides is refused (Solid::from_mesh).
 //
 // gmsh runs in a child process under the limits of the plane reader (gmsh_domain.hpp: one
 // session per read, crashes, endless loops and runaway memory end as errors naming the file).

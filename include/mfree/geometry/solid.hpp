@@ -49,12 +49,15 @@ class Solid {
   static Solid box(const Point<3>& lo, const Point<3>& hi);
 
   /// The solid Omega_h filled by `mesh`, bounded by `surface` (outward triangles, each in one
-  /// of `parts`, or in none: part -1). Throws InputError naming `source` when the surface is
-  /// empty, a triangle's part is out of range, or the surface does not enclose the mesh's
-  /// volume (sum of (x . n) dA / 3 over the surface against the volume, 1e-9 relative: a
-  /// surface missing triangles or turned inward).
+  /// of `parts`, or in none: part -1), of the named `regions` (the mesh's region indices count
+  /// them; empty: one region). Throws InputError naming `source` when the surface is empty, a
+  /// triangle's part or a tetrahedron's region is out of range, or the surface does not
+  /// enclose the mesh's volume (sum of (x . n) dA / 3 over the surface against the volume,
+  /// 1e-9 relative: a surface missing triangles or turned inward), or a triangle has the solid
+  /// on its outer side too (volumes touching without a conforming mesh).
   static Solid from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
-                         std::vector<std::string> parts, const std::string& source);
+                         std::vector<std::string> parts, const std::string& source,
+                         std::vector<std::string> regions = {});
 
   [[nodiscard]] const AlignedBox<3>& bounding_box() const { return box_; }
   /// Whether x lies in the closed solid.
@@ -67,14 +70,25 @@ class Solid {
   [[nodiscard]] const std::vector<SurfaceTriangle>& surface() const { return surface_; }
   /// The names of the surface's parts, in the order SurfaceTriangle::part counts them.
   [[nodiscard]] const std::vector<std::string>& parts() const { return parts_; }
+  /// The names of the solid's regions (gmsh's physical volumes), in the order region_at()
+  /// counts them; empty: one region (a box, or a part without physical volumes).
+  [[nodiscard]] const std::vector<std::string>& regions() const { return regions_; }
+  /// The region of x (0 for a solid of one region); on a face between two regions, either;
+  /// -1 outside the solid.
+  [[nodiscard]] int region_at(const Point<3>& x) const;
 
  private:
   Solid(const AlignedBox<3>& box, std::vector<SurfaceTriangle> surface, std::vector<std::string> parts,
-        std::shared_ptr<const TetrahedralMesh> mesh = nullptr)
-      : box_(box), surface_(std::move(surface)), parts_(std::move(parts)), mesh_(std::move(mesh)) {}
+        std::shared_ptr<const TetrahedralMesh> mesh = nullptr, std::vector<std::string> regions = {})
+      : box_(box),
+        surface_(std::move(surface)),
+        parts_(std::move(parts)),
+        regions_(std::move(regions)),
+        mesh_(std::move(mesh)) {}
   AlignedBox<3> box_;
   std::vector<SurfaceTriangle> surface_;
   std::vector<std::string> parts_;
+  std::vector<std::string> regions_;
   std::shared_ptr<const TetrahedralMesh> mesh_;
 };
 

@@ -22,11 +22,12 @@ namespace mfree {
 
 class TetrahedralMesh {
  public:
-  /// Nodes and tetrahedra (four node indices each). Throws InputError naming `source` when
-  /// there is no tetrahedron, an index is out of range, a node is not finite, or a
-  /// tetrahedron has no volume (below 1e-14 of its bounding box's).
+  /// Nodes and tetrahedra (four node indices each), and the region of each tetrahedron (empty:
+  /// all in region 0). Throws InputError naming `source` when there is no tetrahedron, an
+  /// index is out of range, a node is not finite, a tetrahedron has no volume (below 1e-14 of
+  /// its bounding box's), or the regions are not one per tetrahedron, each 0 or more.
   TetrahedralMesh(std::vector<Point<3>> nodes, std::vector<std::array<Index, 4>> tetrahedra,
-                  const std::string& source);
+                  const std::string& source, std::vector<int> regions = {});
 
   [[nodiscard]] const std::vector<Point<3>>& nodes() const { return nodes_; }
   [[nodiscard]] const std::vector<std::array<Index, 4>>& tetrahedra() const { return tetrahedra_; }
@@ -36,11 +37,19 @@ class TetrahedralMesh {
   /// The sum of the tetrahedra's volumes.
   [[nodiscard]] double volume() const { return volume_; }
   /// Whether x lies in a tetrahedron (above).
-  [[nodiscard]] bool contains(const Point<3>& x) const;
+  [[nodiscard]] bool contains(const Point<3>& x) const { return locate(x) >= 0; }
+  /// A tetrahedron holding x (of the two or more sharing a face, edge or vertex x lies on,
+  /// one of them); -1 for none.
+  [[nodiscard]] Index locate(const Point<3>& x) const;
+  /// The region of tetrahedron k.
+  [[nodiscard]] int region(Index k) const {
+    return regions_.empty() ? 0 : regions_[static_cast<std::size_t>(k)];
+  }
 
  private:
   std::vector<Point<3>> nodes_;
   std::vector<std::array<Index, 4>> tetrahedra_;
+  std::vector<int> regions_;  ///< per tetrahedron; empty: all 0
   AlignedBox<3> box_;
   double volume_ = 0.0;
   // The bucket grid: cells of side cell_ from box_.min(), counts_ per axis; the tetrahedra

@@ -10,7 +10,9 @@
 //               vector value is an array of two of them, e.g. ["0", "-rho * g * (H - y)"]
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "mfree/core/types.hpp"
 #include "mfree/geometry/solid.hpp"
@@ -35,6 +37,15 @@ MaterialSection read_material(const SceneTable& root);
 /// linear_elastic (the 3D small-strain law) and the finite-strain and plastic laws, without
 /// the logarithmic kinematics.
 MaterialSection read_material_keys(const SceneTable& t, int dimension = 2);
+
+/// [[material]] tables giving the named regions of a domain their laws: each table's `name`
+/// (unique) and `regions` (each region in exactly one table), the rest of it read by `read`
+/// (plane or solid keys). Returns the section of each region, in the order of
+/// `region_names`. InputError naming the key: a name twice, a region in two tables or in none,
+/// a density in some tables and not in others.
+std::vector<MaterialSection> read_region_materials(
+    const std::vector<SceneTable>& tables, const std::vector<std::string>& region_names,
+    const std::function<MaterialSection(const SceneTable&)>& read);
 
 /// The box of two corners under `key`.
 Box read_box(const SceneTable& t, const std::string& key);

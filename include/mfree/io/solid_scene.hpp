@@ -6,12 +6,17 @@
 //   [domain]      box = [[x0, y0, z0], [x1, y1, z1]] (its faces are the parts x_min, x_max,
 //                 y_min, y_max, z_min, z_max), or solid = "part.geo" (a gmsh file: .geo, .msh,
 //                 .step, .stp, .brep, .iges, .igs, relative to the scene, meshed into
-//                 tetrahedra; its parts are the physical surfaces: geometry/gmsh_solid.hpp)
+//                 tetrahedra; its parts are the physical surfaces, its regions the physical
+//                 volumes: geometry/gmsh_solid.hpp)
 //   [nodes], [kernel], [quadrature], [nitsche], [solver], [newton]: io/elasticity_sections.hpp
 //                 (a solid integrates by the projected scheme, with VCI by default)
 //   [material]    model (linear_elastic | neo_hookean | st_venant_kirchhoff | j2 |
 //                 drucker_prager), youngs_modulus, poisson_ratio, the plastic laws' keys
 //                 (io/scene_sections.hpp), density (with gravity)
+//   [[material]]  instead of [material] in a solid of several regions: name, regions = ["r",
+//                 ...] (each region in one table) and the keys of [material]. The regions are
+//                 bonded, one set of RK functions spans them (the plane's tied interfaces are
+//                 not in 3D yet), each quadrature point takes its region's law.
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy, fz] (per unit reference volume; numbers or formulas in
 //                 x, y, z), gravity = [gx, gy, gz] (per unit mass, times density)
@@ -109,7 +114,7 @@ struct SelectedSurface {
 struct SolidScene {
   std::filesystem::path file;
   Solid solid;
-  std::string model;            ///< [material] model, as the scene names it
+  std::string model;            ///< [material] model, as the scene names it ("a + b": [[material]] laws)
   ElasticitySettings settings;  ///< nodes, kernel, quadrature, solver (settings.problem unused)
   SolidProblem<3> problem;      ///< the law, the loads, the conditions, Nitsche's beta, the spacing
   NewtonSettings newton;        ///< [newton], or one load step (and Newmark's iterations)
@@ -120,6 +125,8 @@ struct SolidScene {
   std::vector<SelectedSurface> selected;  ///< per [[boundary]], in order
   std::optional<SolidStudy> study;
 
+  /// The Lamé constants of the linear law at x (scenes with [exact]: every law linear_elastic).
+  [[nodiscard]] Lame lame_at(const Point<3>& x) const;
   /// A line per [[boundary]]: name, type, what it selects and the area selected.
   [[nodiscard]] std::string describe_conditions() const;
 };
