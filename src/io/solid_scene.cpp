@@ -34,24 +34,6 @@ std::string box_text(const AlignedBox<3>& b) {
                      b.max().y(), b.max().z());
 }
 
-Solid read_domain(const SceneTable& t) {
-  if (t.has("box") == t.has("solid")) t.error("box", "give exactly one of 'box' and 'solid'");
-  Solid solid = [&] {
-    if (t.has("box")) {
-      const AlignedBox<3> b = read_space_box(t, "box");
-      if (!(b.max().array() > b.min().array()).all()) t.error("box", "the corners must differ in x, y and z");
-      return Solid::box(b.min(), b.max());
-    }
-    try {
-      return read_gmsh_solid(t.folder() / t.string("solid"));
-    } catch (const InputError& e) {
-      t.error("solid", e.what());
-    }
-  }();
-  t.finish();
-  return solid;
-}
-
 /// The selector of a [[boundary]] table: part or region.
 BoundarySelection<3> read_selection(const SceneTable& t, const Solid& solid, std::string& key,
                                     std::string& what) {
@@ -338,6 +320,24 @@ SolidStudy read_study(const SceneTable& t, const SolidScene& out) {
 
 }  // namespace
 
+Solid read_solid_domain(const SceneTable& t) {
+  if (t.has("box") == t.has("solid")) t.error("box", "give exactly one of 'box' and 'solid'");
+  Solid solid = [&] {
+    if (t.has("box")) {
+      const AlignedBox<3> b = read_space_box(t, "box");
+      if (!(b.max().array() > b.min().array()).all()) t.error("box", "the corners must differ in x, y and z");
+      return Solid::box(b.min(), b.max());
+    }
+    try {
+      return read_gmsh_solid(t.folder() / t.string("solid"));
+    } catch (const InputError& e) {
+      t.error("solid", e.what());
+    }
+  }();
+  t.finish();
+  return solid;
+}
+
 Tensor2<3> SolidExact::gradient_at(const Point<3>& x) const {
   Tensor2<3> g;
   for (int i = 0; i < 3; ++i)
@@ -388,7 +388,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   const Scene scene = Scene::load(file, overrides);
   const SceneTable root = scene.root();
   const bool dynamics = root.has("dynamics");
-  SolidScene out{file, read_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  SolidScene out{file, read_solid_domain(root.table("domain")), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   ElasticitySettings& s = out.settings;
   SolidProblem<3>& problem = out.problem;
   read_nodes_section(root.table("nodes"), s);

@@ -9,30 +9,48 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-Integrand f1(const Box& r) {
-  const double lx = r.size().x(), ly = r.size().y();
-  const Vec2 lo = r.lo;
-  return {[=](const Vec2& x) {
-            return std::sin(pi * (x.x() - lo.x()) / lx) * std::sin(pi * (x.y() - lo.y()) / ly);
+// The integrals as 2^dim prod L_i / c^dim: in the plane 4 Lx Ly / c^2, to the bit.
+
+template <int dim>
+IntegrandOf<dim> f1(const Point<dim>& lo, const Point<dim>& hi) {
+  const Point<dim> size = hi - lo;
+  double integral = std::pow(2.0, dim);
+  for (int i = 0; i < dim; ++i) integral *= size[i];
+  integral /= std::pow(pi, dim);
+  return {[=](const Point<dim>& x) {
+            double f = 1.0;
+            for (int i = 0; i < dim; ++i) f *= std::sin(pi * (x[i] - lo[i]) / size[i]);
+            return f;
           },
-          4.0 * lx * ly / (pi * pi)};
+          integral};
 }
 
-Integrand f2(const Box& r) {
-  const double lx = r.size().x(), ly = r.size().y();
-  const Vec2 centre = 0.5 * (r.lo + r.hi);
-  return {[=](const Vec2& x) {
-            const double u = 2.0 * (x.x() - centre.x()) / lx, v = 2.0 * (x.y() - centre.y()) / ly;
-            return (1.0 - u * u) * (1.0 - v * v);
+template <int dim>
+IntegrandOf<dim> f2(const Point<dim>& lo, const Point<dim>& hi) {
+  const Point<dim> size = hi - lo, centre = 0.5 * (lo + hi);
+  double integral = std::pow(2.0, dim);
+  for (int i = 0; i < dim; ++i) integral *= size[i];
+  integral /= std::pow(3.0, dim);
+  return {[=](const Point<dim>& x) {
+            double f = 1.0;
+            for (int i = 0; i < dim; ++i) {
+              const double u = 2.0 * (x[i] - centre[i]) / size[i];
+              f *= 1.0 - u * u;
+            }
+            return f;
           },
-          4.0 * lx * ly / 9.0};
+          integral};
 }
 
 }  // namespace
 
-const NameTable<IntegrandOn>& integration_functions() {
-  static const NameTable<IntegrandOn> table{{"f1", f1}, {"f2", f2}};
+template <int dim>
+const NameTable<IntegrandOn<dim>>& integration_functions() {
+  static const NameTable<IntegrandOn<dim>> table{{"f1", f1<dim>}, {"f2", f2<dim>}};
   return table;
 }
+
+template const NameTable<IntegrandOn<2>>& integration_functions<2>();
+template const NameTable<IntegrandOn<3>>& integration_functions<3>();
 
 }  // namespace mfree

@@ -131,6 +131,10 @@ struct SolidScene {
   [[nodiscard]] std::string describe_conditions() const;
 };
 
+/// The solid of a [domain] table: box = [[x0, y0, z0], [x1, y1, z1]] or solid = "part" (a gmsh
+/// file relative to the scene); InputError naming the key.
+Solid read_solid_domain(const SceneTable& t);
+
 /// True when the scene's [domain] gives `box` or `solid`.
 bool is_solid_scene(const std::filesystem::path& file);
 
