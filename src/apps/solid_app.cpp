@@ -96,7 +96,7 @@ int run_static(const ElasticityScene& scene) {
                                 plastic ? ",dissipated,plastic_area" : "");
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dofs());
   // The reactions of every converged step (reactions.csv), the last one reported.
-  ReactionTable reaction_table("load_factor", essential_parts(model.problem()), false);
+  ReactionTable<2> reaction_table("load_factor", essential_parts(model.problem()), false);
   std::optional<Reactions<2>> last_reactions;
   const auto on_step = [&](const LoadStepRecord& step, const Eigen::VectorXd& d) {
     last_reactions = timer.time("reactions", [&] { return reactions(model, d, {step.factor, 0.0}); });
@@ -171,14 +171,7 @@ void restore_records(const CheckpointState& s, long long step, double time, doub
   const double interval = dyn.frames > 0 ? end / dyn.frames : 0.0;
   next_frame = s.within("next_frame", 0.0, (end + interval) * (1 + 1e-9),
                         fmt::format("a time within a frame interval past end_time ({} s)", end), 1)[0];
-  const std::vector<double>& probe =
-      s.get("probe", scene.output.probe ? 3 * static_cast<std::size_t>(step + 1) : 0);
-  for (std::size_t at = 0; at < probe.size(); at += 3) {
-    if (!(probe[at] >= 0.0 && probe[at] <= time))
-      s.refuse("probe",
-               fmt::format("value {} is {}, not a time of the run so far (0 to {} s)", at, probe[at], time));
-    run.probe.emplace_back(probe[at], Vec2(probe[at + 1], probe[at + 2]));
-  }
+  run.probe = restore_probe<2>(s, step, time, scene.output.probe.has_value());
 }
 
 }  // namespace
@@ -277,9 +270,7 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
       CheckpointState s;
       save_progress(s, p);
       save_errors(s, run.errors);
-      std::vector<double> probe;
-      for (const auto& [t, u] : run.probe) probe.insert(probe.end(), {t, u.x(), u.y()});
-      s.put("probe", std::move(probe));
+      save_probe<2>(s, run.probe);
       s.put("next_frame", next_frame);
       if (run.reactions) run.reactions->save(s);
       if (frames) frames->save(s);

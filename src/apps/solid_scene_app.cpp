@@ -22,6 +22,7 @@
 #include "mfree/io/atomic_file.hpp"
 #include "mfree/io/csv.hpp"
 #include "mfree/io/dynamics_checkpoint.hpp"
+#include "mfree/io/reaction_output.hpp"
 #include "mfree/io/run_summary.hpp"
 #include "mfree/io/solid_scene.hpp"
 #include "mfree/io/solid_scene_output.hpp"
@@ -175,29 +176,8 @@ int run(const SolidScene& scene) {
     summary.number("energy", level.errors->energy);
   }
   if (support) {
-    const auto vector = [](const Point<3>& v) {
-      return fmt::format("({:.6e}, {:.6e}, {:.6e})", v.x(), v.y(), v.z());
-    };
-    std::vector<std::pair<std::string, RunSummary::Record>> parts;
-    const auto record = [](const Resultant<3>& r) {
-      return RunSummary::Record{{"fx", r.force.x()},  {"fy", r.force.y()},  {"fz", r.force.z()},
-                                {"mx", r.moment.x()}, {"my", r.moment.y()}, {"mz", r.moment.z()}};
-    };
-    for (const PartReaction<3>& p : support->parts) {
-      std::cout << fmt::format("  reaction of '{}': force {}, moment {}\n", p.name, vector(p.reaction.force),
-                               vector(p.reaction.moment));
-      parts.emplace_back(p.name, record(p.reaction));
-    }
-    std::cout << fmt::format("  applied loads: force {}, moment {}\n", vector(support->applied.force),
-                             vector(support->applied.moment));
-    std::cout << fmt::format(
-        "  balance (reactions + loads): force {:.2e}, moment {:.2e} of their scale ({} arm)\n",
-        support->force_imbalance(), support->moment_imbalance(),
-        support->current_arm ? "current" : "reference");
-    summary.objects("reactions", parts);
-    summary.object("applied", record(support->applied));
-    summary.number("force_imbalance", support->force_imbalance());
-    summary.number("moment_imbalance", support->moment_imbalance());
+    std::cout << reaction_lines(*support);
+    summarise_reactions(summary, *support);
   }
   for (const auto& f : files) std::cout << fmt::format("  wrote {}\n", f.filename().string());
   if (!files.empty())
@@ -322,7 +302,8 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
 }
 
 /// A dynamic run: progress, frames of the fields (volume.pvd and surface.pvd), the probe at
-/// every frame, the errors against an exact motion, energy.csv and the balance at the end;
+/// every frame (probe.csv: every step), the errors against an exact motion, energy.csv and the
+/// balance at the end, the reactions with the inertia (reactions.csv: at the energy records);
 /// checkpoints every [output] checkpoint_every steps, or continuing from one.
 int run_dynamics(const SolidScene& scene, const Checkpoints& checkpoints) {
   const SolidDynamics& dyn = *scene.dynamics;
@@ -340,16 +321,35 @@ int run_dynamics(const SolidScene& scene, const Checkpoints& checkpoints) {
     }
   };
   std::optional<GalerkinQuadrature<3>> probe_at;
+  ProbeHistory<3> probe;  // at t = 0 and after every step
+  ReactionTable<3> reaction_table("time", essential_parts(scene.problem), true);
+  std::optional<Reactions<3>> last_reactions;
   const double end = dyn.settings.end_time;
+  const int energy_every = dyn.settings.energy_every;
   const auto on_state = [&](const Discretisation<3>& disc, const TotalLagrangian<3>& model,
                             const DynamicState& state, StageTimer& timer) {
+    if (o.probe) {
+      if (!probe_at) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
+      probe.emplace_back(state.time, displacement_at(*probe_at, 0, state.d));
+    }
+    // Reactions with the inertia at the steps of the energy records (the first and last steps
+    // when there are none).
+    const bool last = state.time >= end * (1 - 1e-12);
+    if (state.step == 0 || last || (energy_every > 0 && state.step % energy_every == 0)) {
+      Reactions<3> r = timer.time("reactions", [&] {
+        Reactions<3> re = reactions(model, state.d, {1.0, state.time});
+        re.inertia = nodal_resultant(state.inertia(), disc.nodes, state.d, re.current_arm);
+        return re;
+      });
+      reaction_table.add(state.step, state.time, r);
+      if (last) last_reactions = std::move(r);
+    }
     // Frames at k end / frames (and t = 0): the first step at or past each.
     const auto wanted =
         dyn.frames > 0 ? static_cast<std::size_t>(std::floor(state.time / end * dyn.frames + 1e-9)) : 0;
     if (!(state.step == 0 || (dyn.frames > 0 && wanted >= frame_times.size()))) return;
     if (o.probe) {
-      if (!probe_at) probe_at = sample_shape_functions(*disc.trial, std::vector<Point<3>>{*o.probe}, false);
-      const Point<3> u = displacement_at(*probe_at, 0, state.d);
+      const Point<3>& u = probe.back().second;
       std::cout << fmt::format("  t = {:.6g}: probe u^h = ({:.9e}, {:.9e}, {:.9e})\n", state.time, u.x(),
                                u.y(), u.z());
     }
@@ -360,10 +360,17 @@ int run_dynamics(const SolidScene& scene, const Checkpoints& checkpoints) {
       write_series();
     });
   };
-  RunCheckpoints cp{&checkpoints, [&](CheckpointState& c) { c.put("frames", frame_times); },
-                    [&](const CheckpointState& c, long long, double time) {
+  RunCheckpoints cp{&checkpoints,
+                    [&](CheckpointState& c) {
+                      c.put("frames", frame_times);
+                      save_probe<3>(c, probe);
+                      reaction_table.save(c);
+                    },
+                    [&](const CheckpointState& c, long long step, double time) {
                       // The frames written so far: their files came back with the output.
                       frame_times = c.times("frames", time, static_cast<std::size_t>(dyn.frames) + 1);
+                      probe = restore_probe<3>(c, step, time, o.probe.has_value());
+                      reaction_table.restore(c, step, time);
                     }};
   SolidDynamicRun run = simulate(scene, scene.settings, dyn.settings, true, on_state, cp);
   StageTimer& timer = run.timer;
@@ -413,6 +420,19 @@ int run_dynamics(const SolidScene& scene, const Checkpoints& checkpoints) {
                         {"stress", e.stress}});
     }
     summary.records("errors", errors);
+  }
+  if (last_reactions) {
+    std::cout << reaction_lines(*last_reactions);
+    summarise_reactions(summary, *last_reactions);
+  }
+  write_file_atomically(o.folder / "reactions.csv", reaction_table.csv());
+  std::cout << "  wrote reactions.csv\n";
+  if (!probe.empty()) {
+    std::string csv = "time,probe_ux,probe_uy,probe_uz\n";
+    for (const auto& [t, u] : probe)
+      csv += fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}\n", t, u.x(), u.y(), u.z());
+    write_file_atomically(o.folder / "probe.csv", csv);
+    std::cout << "  wrote probe.csv\n";
   }
   if (write)
     std::cout << fmt::format("  wrote {} frames: open volume.pvd (or surface.pvd) in ParaView\n",

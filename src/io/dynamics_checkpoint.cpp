@@ -131,6 +131,34 @@ std::vector<MotionErrors> restore_errors(const CheckpointState& s, long long ste
   return errors;
 }
 
+template <int dim>
+void save_probe(CheckpointState& s, const ProbeHistory<dim>& probe) {
+  std::vector<double> v;
+  for (const auto& [t, u] : probe) {
+    v.push_back(t);
+    v.insert(v.end(), u.data(), u.data() + dim);
+  }
+  s.put("probe", std::move(v));
+}
+
+template <int dim>
+ProbeHistory<dim> restore_probe(const CheckpointState& s, long long step, double time, bool probe) {
+  constexpr std::size_t n = 1 + dim;
+  const std::vector<double>& v = s.get("probe", probe ? n * static_cast<std::size_t>(step + 1) : 0);
+  ProbeHistory<dim> out;
+  for (std::size_t at = 0; at < v.size(); at += n) {
+    if (!(v[at] >= 0.0 && v[at] <= time))
+      s.refuse("probe",
+               fmt::format("value {} is {}, not a time of the run so far (0 to {} s)", at, v[at], time));
+    out.emplace_back(v[at], Eigen::Map<const Point<dim>>(v.data() + at + 1));
+  }
+  return out;
+}
+
+template void save_probe<2>(CheckpointState&, const ProbeHistory<2>&);
+template void save_probe<3>(CheckpointState&, const ProbeHistory<3>&);
+template ProbeHistory<2> restore_probe<2>(const CheckpointState&, long long, double, bool);
+template ProbeHistory<3> restore_probe<3>(const CheckpointState&, long long, double, bool);
 template void save_progress<2>(CheckpointState&, const DynamicsProgress<2>&);
 template void save_progress<3>(CheckpointState&, const DynamicsProgress<3>&);
 template DynamicsProgress<2> restore_progress<2>(const CheckpointState&, long long);

@@ -46,7 +46,7 @@ TEST_CASE("reaction output: console lines, summary and CSV rows per part, the lo
   CHECK_THAT(json.str(), Catch::Contains(R"("inertia": {"force_x": 0.5)"));
   CHECK_THAT(json.str(), Catch::Contains(R"("imbalance": 0,)"));
 
-  ReactionTable table("time", {"clamp, left", "wall"}, true);
+  ReactionTable<2> table("time", {"clamp, left", "wall"}, true);
   table.add(0, 0.0, sample(0.0, true));
   table.add(5, 0.25, r);
   const std::string csv = table.csv();
@@ -61,20 +61,20 @@ TEST_CASE("reaction output: console lines, summary and CSV rows per part, the lo
 TEST_CASE(
     "reaction output: a table saved in a checkpoint restores to the same CSV; broken records are refused",
     "[io][checkpoint]") {
-  ReactionTable table("time", {"clamp", "wall"}, true);
+  ReactionTable<2> table("time", {"clamp", "wall"}, true);
   for (int step = 0; step <= 6; step += 3) table.add(step, 0.1 * step, sample(0.1 * step + 0.3, true));
   CheckpointState state;
   state.source = "run.checkpoints/step_0000000006/state.bin";
   table.save(state);
   REQUIRE(state.get("reactions").size() == 3 * (2 + 3 * 4));
-  ReactionTable again("time", {"clamp", "wall"}, true);
+  ReactionTable<2> again("time", {"clamp", "wall"}, true);
   again.restore(state, 6, 6 * 0.1);  // the time of step 6 as the run takes it
   CHECK(again.csv() == table.csv());
 
   const auto refusal = [&](std::vector<double> values, long long step, double time) {
     CheckpointState s = state;
     s.put("reactions", std::move(values));
-    ReactionTable t("time", {"clamp", "wall"}, true);
+    ReactionTable<2> t("time", {"clamp", "wall"}, true);
     return mfree::testing::message_of<InputError>([&] { t.restore(s, step, time); });
   };
   std::vector<double> v = state.get("reactions");
@@ -90,7 +90,7 @@ TEST_CASE(
   CHECK_THAT(refusal(v, 6, 0.5), Catch::Contains("value 29 is 0.6") &&
                                      Catch::Contains("not a time of the run so far (0 to 0.5)"));
   // A table of other parts (another scene) does not fit.
-  ReactionTable one("time", {"clamp"}, true);
+  ReactionTable<2> one("time", {"clamp"}, true);
   CHECK_THAT(mfree::testing::message_of<InputError>([&] { one.restore(state, 6, 6 * 0.1); }),
              Catch::Contains("not 11 per record (1 essential part(s) and the inertia)"));
 }

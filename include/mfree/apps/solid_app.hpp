@@ -34,7 +34,7 @@ struct DynamicRun {
   DynamicsResult result;
   std::vector<MotionErrors> errors;             ///< at the scene's error times
   std::vector<std::pair<double, Vec2>> probe;   ///< (t, u^h at the probe) every step
-  std::optional<ReactionTable> reactions;       ///< verbose runs: at the energy records' steps
+  std::optional<ReactionTable<2>> reactions;    ///< verbose runs: at the energy records' steps
   std::optional<Reactions<2>> last_reactions;   ///< verbose runs: at the last step
   StageTimer timer;
 };

@@ -14,6 +14,8 @@
 //   factorisations
 //   tangent                  Newmark: the values of the effective tangent kept across steps
 //   errors                   4 numbers an error time passed: time, RMS errors of u, v, stress
+//   probe                    1 + dim numbers a record (a run with a probe: t = 0 and every
+//                            step): time, u^h at the probe
 //
 // Explicitly instantiated for dim = 2 and 3.
 
@@ -41,5 +43,17 @@ void save_errors(CheckpointState& s, const std::vector<MotionErrors>& errors);
 /// `most` (the error times), none after `time`, errors 0 or more. InputError naming the value.
 std::vector<MotionErrors> restore_errors(const CheckpointState& s, long long step, double time,
                                          std::size_t most);
+
+/// A probe's history: (time, u^h at the probe) at t = 0 and after every step.
+template <int dim>
+using ProbeHistory = std::vector<std::pair<double, Point<dim>>>;
+
+template <int dim>
+void save_probe(CheckpointState& s, const ProbeHistory<dim>& probe);
+
+/// The probe records of checkpoint `s` at `time` (step `step`): step + 1 of them when the run
+/// has a probe (none otherwise), each time within the run so far. InputError naming the value.
+template <int dim>
+ProbeHistory<dim> restore_probe(const CheckpointState& s, long long step, double time, bool probe);
 
 }  // namespace mfree

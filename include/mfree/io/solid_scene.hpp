@@ -42,7 +42,8 @@
 //                 fractions of end_time, default [1]); needs [material] density. Loads and
 //                 boundary values may then use t.
 //   [output]      folder, fields (displacement, velocity, stress, von_mises, plastic_strain,
-//                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame),
+//                 error), vtk, probe = [x, y, z] (u^h there after every load step or frame;
+//                 dynamics: probe.csv of every step),
 //                 checkpoint_every (steps between checkpoints of a [dynamics] run; 0: none)
 //   [study]       for `mfree converge`: spacings, orders (default the scene's), probe = [x, y,
 //                 z] (default [output]'s; needed without [exact]), quadratic_factor (the
