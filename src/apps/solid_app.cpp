@@ -246,40 +246,23 @@ DynamicRun simulate(const ElasticityScene& scene, const DynamicsSettings& settin
   DynamicsSettings ds = settings;
   ds.newton.nearly_symmetric = disc.nearly_symmetric;
   if (verbose) ds.progress = &std::cout;
-  DynamicsCheckpoints<2> dc;
-  std::optional<DynamicsProgress<2>> resume;
-  if (checkpoints && checkpoints->resume()) {
-    const CheckpointState& s = *checkpoints->resume();
-    const long long step = checkpoints->resume_step();
-    resume = restore_progress<2>(s, step);
-    dc.resume = &*resume;
-    dc.refuse = [&s](const std::string& name, const std::string& what) { s.refuse(name, what); };
-    dc.resumed = [&, step](int, double dt) {
-      const double time = static_cast<double>(step) * dt;  // as the integrator's t = n dt
-      restore_records(s, step, time, end, scene, sampler.has_value(), run, next_frame);
-      if (run.reactions) run.reactions->restore(s, step, time);
-      next_error = run.errors.size();
-      if (frames) frames->restore(s, time, static_cast<std::size_t>(step) + 1);
-    };
-    if (verbose)
-      std::cout << fmt::format("  continuing from step {} of {}\n", resume->step, s.source.parent_path().string());
-  }
-  if (checkpoints && checkpoints->every() > 0) {
-    dc.every = checkpoints->every();
-    dc.save = [&](const DynamicsProgress<2>& p) {
-      CheckpointState s;
-      save_progress(s, p);
-      save_errors(s, run.errors);
-      save_probe<2>(s, run.probe);
-      s.put("next_frame", next_frame);
-      if (run.reactions) run.reactions->save(s);
-      if (frames) frames->save(s);
-      timer.time("checkpoints", [&] { checkpoints->write(p.step, s, scene.output.folder); });
-    };
-    if (verbose)
-      std::cout << fmt::format("  checkpoints every {} steps in {}\n", dc.every, checkpoints->folder().string());
-  }
-  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, dc);
+  const DynamicsCheckpointing<2> cp(
+      checkpoints, scene.output.folder, timer,
+      [&](CheckpointState& s) {
+        save_errors(s, run.errors);
+        save_probe<2>(s, run.probe);
+        s.put("next_frame", next_frame);
+        if (run.reactions) run.reactions->save(s);
+        if (frames) frames->save(s);
+      },
+      [&](const CheckpointState& s, long long step, double time) {
+        restore_records(s, step, time, end, scene, sampler.has_value(), run, next_frame);
+        if (run.reactions) run.reactions->restore(s, step, time);
+        next_error = run.errors.size();
+        if (frames) frames->restore(s, time, static_cast<std::size_t>(step) + 1);
+      },
+      verbose ? &std::cout : nullptr);
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, cp.hooks());
   return run;
 }
 

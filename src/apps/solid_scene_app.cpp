@@ -257,36 +257,18 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
   if (verbose) ds.progress = &std::cout;
   const double end = ds.end_time;
   std::size_t next_error = 0;
-  DynamicsCheckpoints<3> dc;
-  std::optional<DynamicsProgress<3>> resume;
-  if (cp.checkpoints && cp.checkpoints->resume()) {
-    const CheckpointState& c = *cp.checkpoints->resume();
-    const long long step = cp.checkpoints->resume_step();
-    resume = restore_progress<3>(c, step);
-    dc.resume = &*resume;
-    dc.refuse = [&c](const std::string& name, const std::string& what) { c.refuse(name, what); };
-    dc.resumed = [&, step](int, double dt) {
-      const double time = static_cast<double>(step) * dt;  // as the integrator's t = n dt
-      run.errors = restore_errors(c, step, time, sampler ? dyn.error_times.size() : 0);
-      next_error = run.errors.size();
-      if (cp.restore) cp.restore(c, step, time);
-    };
-    if (verbose)
-      std::cout << fmt::format("  continuing from step {} of {}\n", step, c.source.parent_path().string());
-  }
-  if (cp.checkpoints && cp.checkpoints->every() > 0) {
-    dc.every = cp.checkpoints->every();
-    dc.save = [&](const DynamicsProgress<3>& p) {
-      CheckpointState c;
-      save_progress(c, p);
-      save_errors(c, run.errors);
-      if (cp.save) cp.save(c);
-      timer.time("checkpoints", [&] { cp.checkpoints->write(p.step, c, scene.output.folder); });
-    };
-    if (verbose)
-      std::cout << fmt::format("  checkpoints every {} steps in {}\n", dc.every,
-                               cp.checkpoints->folder().string());
-  }
+  const DynamicsCheckpointing<3> checkpointing(
+      cp.checkpoints, scene.output.folder, timer,
+      [&](CheckpointState& c) {
+        save_errors(c, run.errors);
+        if (cp.save) cp.save(c);
+      },
+      [&](const CheckpointState& c, long long step, double time) {
+        run.errors = restore_errors(c, step, time, sampler ? dyn.error_times.size() : 0);
+        next_error = run.errors.size();
+        if (cp.restore) cp.restore(c, step, time);
+      },
+      verbose ? &std::cout : nullptr);
   const auto on_step = [&](const DynamicState& state) {
     // The first step at or past each error time; the exact motion at the step's own time.
     while (sampler && next_error < dyn.error_times.size() &&
@@ -297,7 +279,7 @@ SolidDynamicRun simulate(const SolidScene& scene, const ElasticitySettings& s, D
     }
     if (on_state) on_state(disc, model, state, timer);
   };
-  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, dc);
+  run.result = integrate_dynamics(model, disc.nodes, d0, v0, ds, timer, on_step, checkpointing.hooks());
   return run;
 }
 

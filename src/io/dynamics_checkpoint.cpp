@@ -108,6 +108,37 @@ DynamicsProgress<dim> restore_progress(const CheckpointState& s, long long step)
   return p;
 }
 
+template <int dim>
+DynamicsCheckpointing<dim>::DynamicsCheckpointing(const Checkpoints* checkpoints,
+                                                  std::filesystem::path staging, StageTimer& timer, Save save,
+                                                  Restore restore, std::ostream* log)
+    : save_(std::move(save)), restore_(std::move(restore)) {
+  if (!checkpoints) return;
+  if (const CheckpointState* state = checkpoints->resume()) {
+    const long long step = checkpoints->resume_step();
+    resume_ = restore_progress<dim>(*state, step);
+    hooks_.resume = &*resume_;
+    hooks_.refuse = [state](const std::string& name, const std::string& what) { state->refuse(name, what); };
+    hooks_.resumed = [this, state, step](int, double dt) {
+      if (restore_) restore_(*state, step, static_cast<double>(step) * dt);  // as the integrator's t = n dt
+    };
+    if (log)
+      *log << fmt::format("  continuing from step {} of {}\n", step, state->source.parent_path().string());
+  }
+  if (checkpoints->every() > 0) {
+    hooks_.every = checkpoints->every();
+    hooks_.save = [this, checkpoints, staging = std::move(staging), &timer](const DynamicsProgress<dim>& p) {
+      CheckpointState state;
+      save_progress(state, p);
+      if (save_) save_(state);
+      timer.time("checkpoints", [&] { checkpoints->write(p.step, state, staging); });
+    };
+    if (log)
+      *log << fmt::format("  checkpoints every {} steps in {}\n", hooks_.every,
+                          checkpoints->folder().string());
+  }
+}
+
 void save_errors(CheckpointState& s, const std::vector<MotionErrors>& errors) {
   std::vector<double> v;
   for (const MotionErrors& e : errors) v.insert(v.end(), {e.time, e.displacement, e.velocity, e.stress});
@@ -159,6 +190,8 @@ template void save_probe<2>(CheckpointState&, const ProbeHistory<2>&);
 template void save_probe<3>(CheckpointState&, const ProbeHistory<3>&);
 template ProbeHistory<2> restore_probe<2>(const CheckpointState&, long long, double, bool);
 template ProbeHistory<3> restore_probe<3>(const CheckpointState&, long long, double, bool);
+template class DynamicsCheckpointing<2>;
+template class DynamicsCheckpointing<3>;
 template void save_progress<2>(CheckpointState&, const DynamicsProgress<2>&);
 template void save_progress<3>(CheckpointState&, const DynamicsProgress<3>&);
 template DynamicsProgress<2> restore_progress<2>(const CheckpointState&, long long);

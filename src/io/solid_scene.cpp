@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <numbers>
 
@@ -32,6 +33,21 @@ void check_static(const SceneTable& t, const std::string& key, const SpaceVector
 std::string box_text(const AlignedBox<3>& b) {
   return fmt::format("[[{}, {}, {}], [{}, {}, {}]]", b.min().x(), b.min().y(), b.min().z(), b.max().x(),
                      b.max().y(), b.max().z());
+}
+
+/// The Lamé constants of a linear law.
+Lame lame_of(const Material& law) {
+  const auto& linear = std::get<LinearElastic>(law);
+  return lame_constants(linear.youngs_modulus, linear.poisson_ratio);
+}
+
+/// The region of x in `solid` (0 for a solid of one region), for values that outlive the
+/// scene: a solid of several regions is kept as a copy.
+std::function<std::size_t(const Point<3>&)> region_of(const Solid& solid) {
+  if (solid.regions().size() < 2) return [](const Point<3>&) { return std::size_t{0}; };
+  return [copy = std::make_shared<const Solid>(solid)](const Point<3>& x) {
+    return static_cast<std::size_t>(std::max(0, copy->region_at(x)));
+  };
 }
 
 /// The selector of a [[boundary]] table: part or region.
@@ -158,15 +174,10 @@ BodyForce<3> read_loads(const SceneTable& t, const Constants& constants, const S
   if (!t.has("body_force") && !t.has("gravity"))
     t.error("body_force", "give body_force or gravity (or both)");
   t.finish();
-  // The density of each region, and the solid to find the region of x in (a copy: the force
-  // outlives this reader's scene).
-  const std::vector<double> densities = problem.region_densities;
-  const auto solid = densities.empty() ? nullptr : std::make_shared<const Solid>(scene.solid);
-  const auto rho = [densities, density, solid](const Point<3>& x) {
-    return solid ? densities[static_cast<std::size_t>(std::max(0, solid->region_at(x)))] : density;
-  };
-  return [force, gravity, rho](const Point<3>& x, double time) {
-    const Point<3> weight = rho(x) * gravity;
+  const std::vector<double> densities =
+      problem.region_densities.empty() ? std::vector<double>{density} : problem.region_densities;
+  return [force, gravity, densities, region = region_of(scene.solid)](const Point<3>& x, double time) {
+    const Point<3> weight = densities[region(x)] * gravity;
     return force ? Point<3>((*force)(x, time) + weight) : weight;
   };
 }
@@ -206,17 +217,11 @@ BoundaryCondition<3> read_condition(const SceneTable& t, SolidScene& out, const 
     if (c.type != ConditionType::traction) {
       c.value = [ex](const Point<3>& x, const Point<3>&, double) { return ex.displacement(x); };
     } else {
-      // The Lamé constants of each region's law, and the solid to find the region of x in
-      // (a copy: the condition outlives this reader's scene).
+      // The Lamé constants of each region's law ([exact] takes linear laws only).
       std::vector<Lame> lame;
-      for (const Material& law : out.problem.laws()) {
-        const auto& linear = std::get<LinearElastic>(law);
-        lame.push_back(lame_constants(linear.youngs_modulus, linear.poisson_ratio));
-      }
-      const auto solid = lame.size() > 1 ? std::make_shared<const Solid>(out.solid) : nullptr;
-      c.value = [ex, lame, solid](const Point<3>& x, const Point<3>& n, double) -> Point<3> {
-        const Lame& l = lame[solid ? static_cast<std::size_t>(std::max(0, solid->region_at(x))) : 0];
-        return Point<3>(linear_stress(l, ex.gradient_at(x)) * n);
+      for (const Material& law : out.problem.laws()) lame.push_back(lame_of(law));
+      c.value = [ex, lame, region = region_of(out.solid)](const Point<3>& x, const Point<3>& n, double) {
+        return Point<3>(linear_stress(lame[region(x)], ex.gradient_at(x)) * n);
       };
     }
   } else {
@@ -431,10 +436,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
   return out;
 }
 
-Lame SolidScene::lame_at(const Point<3>& x) const {
-  const auto& law = std::get<LinearElastic>(problem.law_at(solid, x));
-  return lame_constants(law.youngs_modulus, law.poisson_ratio);
-}
+Lame SolidScene::lame_at(const Point<3>& x) const { return lame_of(problem.law_at(solid, x)); }
 
 std::string SolidScene::describe_conditions() const {
   std::string text;

@@ -19,13 +19,42 @@
 //
 // Explicitly instantiated for dim = 2 and 3.
 
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <ostream>
 #include <vector>
 
+#include "mfree/core/stage_timer.hpp"
 #include "mfree/galerkin/elastodynamics.hpp"
 #include "mfree/galerkin/motion_errors.hpp"
 #include "mfree/io/checkpoint.hpp"
 
 namespace mfree {
+
+/// A run's checkpoints wired to the integrator (DynamicsCheckpoints<dim>): with `checkpoints`
+/// resuming, its newest state is restored (restore_progress) and, once the integrator accepted
+/// it, restore(state, step, time) takes the run's own records back; with checkpoints due,
+/// every checkpoints->every() steps the state (save_progress) and the run's records (save) are
+/// written into `staging` (the run's output folder), timed as "checkpoints" on `timer`. Lines
+/// saying so go to `log` when given. Not copyable: hooks() points into it.
+template <int dim>
+class DynamicsCheckpointing {
+ public:
+  using Save = std::function<void(CheckpointState&)>;
+  using Restore = std::function<void(const CheckpointState&, long long step, double time)>;
+  DynamicsCheckpointing(const Checkpoints* checkpoints, std::filesystem::path staging, StageTimer& timer,
+                        Save save, Restore restore, std::ostream* log);
+  DynamicsCheckpointing(const DynamicsCheckpointing&) = delete;
+  DynamicsCheckpointing& operator=(const DynamicsCheckpointing&) = delete;
+  [[nodiscard]] const DynamicsCheckpoints<dim>& hooks() const { return hooks_; }
+
+ private:
+  std::optional<DynamicsProgress<dim>> resume_;
+  DynamicsCheckpoints<dim> hooks_;
+  Save save_;
+  Restore restore_;
+};
 
 template <int dim>
 void save_progress(CheckpointState& s, const DynamicsProgress<dim>& p);
