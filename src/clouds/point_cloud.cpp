@@ -175,8 +175,9 @@ std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSetti
   return quadrature_cloud_in<3>(solid, nodes, ratio);
 }
 
-std::vector<double> surface_support_radii(const Solid& solid, const std::vector<Point<3>>& nodes, double h,
-                                          double factor, int order) {
+std::vector<double> surface_support_radii(
+    const Solid& solid, const std::vector<Point<3>>& nodes, double h, double factor, int order,
+    const std::function<void(const Point<3>& sample, std::vector<Point<3>>& near)>& unseen) {
   const double reach = factor * h, wide = (factor + 0.5) * h;
   // Samples of the surface: each triangle's barycentric grid of n steps a side, n such that
   // a step is at most h / 4.
@@ -200,6 +201,7 @@ std::vector<double> surface_support_radii(const Solid& solid, const std::vector<
       cells.for_each_in_box(x, reach, [&](Index, const Point<3>& p) {
         if ((p - x).squaredNorm() < reach * reach) near.push_back(p);
       });
+      if (unseen) unseen(x, near);
       if (near.size() >= 2) {
         Point<3> mean = Point<3>::Zero();
         for (const Point<3>& p : near) mean += p;

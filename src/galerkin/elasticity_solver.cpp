@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "mfree/core/error.hpp"
@@ -80,12 +81,40 @@ RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, Cl
 /// are evaluated on the surface; the quadrature cloud's functions are evaluated at the
 /// lattice points inside, and widening them near the surface made a weight negative (Lamé's
 /// sphere, h = 0.4).
+/// In a solid, under the visibility rule, the obstacles of its surface for supports of the
+/// settings' radii (a wider reach only adds triangles no segment within a support can cross
+/// without leaving the solid).
+RKSettings with_visibility(RKSettings r, const Solid& solid, const ElasticitySettings& s) {
+  if (s.support_rule != SupportRule::visibility) return r;
+  r.rule = SupportRule::visibility;
+  const double largest =
+      r.node_radii.empty() ? r.radius : *std::max_element(r.node_radii.begin(), r.node_radii.end());
+  const double reach = r.support == SupportShape::circular ? largest : std::sqrt(3.0) * largest;
+  if (!r.surface_obstacles)
+    r.surface_obstacles = std::make_shared<const SurfaceObstacles>(support_obstacles(solid, reach));
+  return r;
+}
 RKSettings rk_settings(const Solid& solid, const std::vector<Point<3>>& points, CloudKind kind, double h,
                        RKOrder order, const ElasticitySettings& s, double factor) {
   RKSettings r = rk_settings<3>(points, kind, h, order, s, factor);
-  if (kind == CloudKind::lattice)
-    r.node_radii = surface_support_radii(solid, points, h, factor, order == RKOrder::linear ? 1 : 2);
-  return r;
+  if (kind != CloudKind::lattice) return with_visibility(std::move(r), solid, s);
+  // The widest radius surface_support_radii gives, and what those supports see.
+  const double wide = (factor + 0.5) * h * (r.support == SupportShape::circular ? 1.0 : std::sqrt(3.0));
+  std::function<void(const Point<3>&, std::vector<Point<3>>&)> unseen;
+  std::shared_ptr<const SurfaceVisibility> visibility;
+  if (s.support_rule == SupportRule::visibility) {
+    r.surface_obstacles = std::make_shared<const SurfaceObstacles>(support_obstacles(solid, wide));
+    if (!r.surface_obstacles->empty()) {
+      visibility = std::make_shared<const SurfaceVisibility>(*r.surface_obstacles, wide);
+      unseen = [&visibility](const Point<3>& x, std::vector<Point<3>>& near) {
+        VisibilityScratch scratch;
+        if (!visibility->prepare(x, scratch)) return;
+        std::erase_if(near, [&](const Point<3>& p) { return !visibility->visible(p, 0.0, x, scratch); });
+      };
+    }
+  }
+  r.node_radii = surface_support_radii(solid, points, h, factor, order == RKOrder::linear ? 1 : 2, unseen);
+  return with_visibility(std::move(r), solid, s);
 }
 
 /// A lower bound of the bytes a discretisation takes in dim dimensions, from the node count
@@ -127,6 +156,19 @@ void refuse_bridges(const std::vector<Vec2>& nodes, const std::vector<Vec2>& poi
       b->node.y(), b->point.x(), b->point.y(), b->straight,
       std::isfinite(b->in_domain) ? fmt::format("{:.4g}", b->in_domain)
                                   : std::string("more than two radii")));
+}
+
+/// Plain supports must not join material across a gap of a solid (a slot, a thin cavity,
+/// a narrow hole): the place, and what to change, in an InputError.
+void refuse_gaps(const Solid& solid, double radius) {
+  const std::optional<SurfaceGap> g = find_gap(support_obstacles(solid, radius), radius);
+  if (!g) return;
+  throw InputError(fmt::format(
+      "plain supports of radius {:.4g} join material across a gap near ({:.6g}): the surface at ({:.6g}) "
+      "faces the surface at ({:.6g}), {:.4g} away outside the solid, so the two sides would move together; "
+      "use support_rule = \"visibility\", a smaller spacing, or allow_bridging = true to run it anyway",
+      radius, fmt::join((0.5 * (g->from + g->to)).eval(), ", "), fmt::join(g->from, ", "),
+      fmt::join(g->to, ", "), g->width));
 }
 
 /// The boundary Gauss points (traction and Nitsche terms, and the consistency target b_I),
@@ -234,6 +276,10 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
   if (s.consistency == Consistency::symmetric)
     throw InputError(
         "the symmetric consistency correction is plane only so far: use consistency = \"vci\" in 3D");
+  if (s.support_rule == SupportRule::geodesic)
+    throw InputError(
+        "the geodesic support rule is plane only so far: a solid takes support_rule = \"plain\" or "
+        "\"visibility\"");
   const double h = s.nodes.spacing;
   const double quadrature_factor =
       s.quadrature_factor.value_or(s.quadrature_order == RKOrder::linear ? 2.0 : 3.0);
@@ -246,13 +292,16 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
     return std::make_unique<RKShapeFunctions<3>>(
         res.nodes, rk_settings(solid, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
   });
+  if (s.support_rule == SupportRule::plain && !s.allow_bridging)
+    refuse_gaps(solid, res.trial->max_support_radius());
   res.quadrature = timer.time("weights and projection", [&] {
     CloudSettings qc = s.nodes;
     if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
     const double hq = h / std::cbrt(s.quadrature_ratio);
     const std::vector<Point<3>> xq = make_quadrature_cloud(solid, qc, s.quadrature_ratio);
-    const RKShapeFunctions<3> quad(xq,
-                                   rk_settings(xq, qc.kind, hq, s.quadrature_order, s, quadrature_factor));
+    const RKShapeFunctions<3> quad(
+        xq,
+        with_visibility(rk_settings(xq, qc.kind, hq, s.quadrature_order, s, quadrature_factor), solid, s));
     const BackgroundLattice<3> lattice(solid, hq / s.lattice_refinement,
                                        s.quadrature_order == RKOrder::linear ? 1 : 2);
     return projected_quadrature(*res.trial, quad, lattice);

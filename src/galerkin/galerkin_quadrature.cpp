@@ -167,6 +167,11 @@ GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
   // row K = sum_v c_v phi_K(v) grad phi_I(v); grad phi_I evaluated once per lattice point.
   std::vector<double> w(nq, 0.0);
   std::vector<Index> missing(nq, 0);
+  // Visibility supports in a solid: the rows (found by straight distances) hold nodes across a
+  // gap whose supports never meet K's in the solid; the slots no term reaches are dropped
+  // below, so that a correction on the rows holding a node (VCI) stays on its side.
+  const bool shadowed = trial.settings().surface_obstacles && !trial.settings().surface_obstacles->empty();
+  std::vector<char> reached(shadowed ? q.nodes.size() : 0, 0);
   std::vector<Point<dim>> moment(nq, Point<dim>::Zero());
   const auto& lp = lattice.points();
   std::vector<ShapeValues<dim>> phii(
@@ -192,8 +197,27 @@ GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
             continue;
           }
           q.grad[static_cast<std::size_t>(it - q.nodes.begin())] += c * gi.grad[i];
+          if (shadowed) reached[static_cast<std::size_t>(it - q.nodes.begin())] = 1;
         }
       });
+  if (shadowed) {
+    Index kept = 0;
+    for (Index k = 0; k < nq; ++k) {
+      const Index first = q.offsets[k];
+      q.offsets[k] = kept;
+      for (Index s = first; s < q.offsets[k + 1]; ++s)
+        if (reached[s] || q.phi[s] != 0.0) {
+          q.nodes[kept] = q.nodes[s];
+          q.phi[kept] = q.phi[s];
+          q.grad[kept] = q.grad[s];
+          ++kept;
+        }
+    }
+    q.offsets[nq] = kept;
+    q.nodes.resize(kept);
+    q.phi.resize(kept);
+    q.grad.resize(kept);
+  }
   for (Index k = 0; k < nq; ++k) {
     if (missing[k] > 0)
       throw NumericalError(fmt::format(

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "mfree/core/parallel.hpp"
 #include "mfree/geometry/segment_grid.hpp"
+#include "mfree/search/cell_list.hpp"
 
 namespace mfree {
 
@@ -167,6 +169,43 @@ SupportObstacles support_obstacles(const Domain& domain, double reach) {
       add_segment(out, p[i], p[(i + 1) % n], closed || !(i == 0 && c.tip[0]),
                   closed || !(i + 2 == n && c.tip[1]), false);
   }
+  return out;
+}
+
+}  // namespace mfree
+
+namespace mfree {
+
+SurfaceObstacles support_obstacles(const Solid& solid, double reach) {
+  const std::vector<SurfaceTriangle>& surface = solid.surface();
+  std::vector<Vec3> vertices;
+  vertices.reserve(3 * surface.size());
+  for (const SurfaceTriangle& t : surface)
+    vertices.insert(vertices.end(), t.vertices.begin(), t.vertices.end());
+  const CellList<3> cells(vertices, reach);
+  const double beyond = 1e-9 * reach;
+  std::vector<char> obstacle(surface.size(), 0);
+  parallel_blocks(static_cast<Index>(surface.size()), 256, [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k) {
+      const auto& t = surface[static_cast<std::size_t>(k)].vertices;
+      const Vec3 n = surface[static_cast<std::size_t>(k)].area_normal().normalized();
+      const Vec3 centroid = (t[0] + t[1] + t[2]) / 3.0;
+      double spread = 0.0;
+      for (const Vec3& v : t) spread = std::max(spread, (v - centroid).norm());
+      bool found = false;
+      cells.for_each_in_box(centroid, reach + spread, [&](Index, const Vec3& v) {
+        if (found || !((v - t[0]).dot(n) > beyond)) return;
+        found = (closest_point_on_triangle(v, t) - v).norm() < reach;
+      });
+      obstacle[static_cast<std::size_t>(k)] = found ? 1 : 0;
+    }
+  });
+  SurfaceObstacles out;
+  for (std::size_t k = 0; k < surface.size(); ++k)
+    if (obstacle[k]) {
+      out.triangles.push_back(surface[k].vertices);
+      out.normals.push_back(surface[k].area_normal().normalized());
+    }
   return out;
 }
 

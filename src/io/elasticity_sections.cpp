@@ -59,17 +59,16 @@ void read_kernel_section(const SceneTable& t, ElasticitySettings& s, int dimensi
   s.support = read_choice_or(t, "support", support_names(), SupportShape::circular);
   s.support_factor = t.number_or("factor", s.order == RKOrder::linear ? 2.0 : 3.0, 0.5, 10.0);
   s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
-  if (dimension == 3) {
-    for (const char* key : {"support_rule", "allow_bridging"})
-      if (t.has(key))
-        t.error(key,
-                "supports that respect cracks and slots are plane only so far: a solid's supports are plain");
-    t.finish();
-    return;
-  }
   const bool circular = s.support == SupportShape::circular;
+  // In a solid the supports are plain unless asked (visibility changes the functions beside
+  // every re-entrant edge and hole); plain ones are refused across gaps.
   s.support_rule = read_choice_or(t, "support_rule", support_rule_names(),
-                                  circular ? SupportRule::geodesic : SupportRule::visibility);
+                                  dimension == 3 ? SupportRule::plain
+                                  : circular     ? SupportRule::geodesic
+                                                 : SupportRule::visibility);
+  if (dimension == 3 && s.support_rule == SupportRule::geodesic)
+    t.error("support_rule",
+            "geodesic supports are plane only so far: a solid takes \"plain\" or \"visibility\"");
   s.allow_bridging = t.boolean_or("allow_bridging", false);
   if (s.allow_bridging && s.support_rule != SupportRule::plain)
     t.error("allow_bridging", "applies to support_rule = \"plain\" only: the other rules do not bridge gaps");

@@ -261,12 +261,28 @@ RKShapeFunctions<dim>::RKShapeFunctions(std::vector<Point> nodes, RKSettings set
   // Cells of half the support: a query's box of side 2a then covers about (5 a / 2)^2 of
   // candidates instead of (3 a)^2, 30 % fewer to test.
   cells_ = CellList<dim>(nodes_, 0.5 * max_radius_);
+  if (settings_.rule != SupportRule::plain && settings_.surface_obstacles &&
+      !settings_.surface_obstacles->empty()) {
+    if (dim != 3) throw InputError("RK shape functions: surface obstacles are for clouds in a solid");
+    if (settings_.rule != SupportRule::visibility)
+      throw InputError(
+          fmt::format("RK shape functions: the {} support rule is for plane clouds; in a solid supports take "
+                      "\"visibility\"",
+                      to_string(settings_.rule)));
+    // The longest segment from a node to a point it covers: a ball's radius, a cube's half-diagonal.
+    const double reach =
+        settings_.support == SupportShape::circular ? max_radius_ : std::sqrt(3.0) * max_radius_;
+    visibility_ = std::make_shared<const SurfaceVisibility>(*settings_.surface_obstacles, reach);
+    node_clearance_.resize(nodes_.size());
+    parallel_blocks(size(), 1024, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i) {
+        if constexpr (dim == 3) node_clearance_[i] = visibility_->clearance(nodes_[i]);
+      }
+    });
+  }
   if (settings_.rule != SupportRule::plain && settings_.obstacles && !settings_.obstacles->empty()) {
     if constexpr (dim == 3)
-      throw InputError(
-          fmt::format("RK shape functions: the {} support rule is for plane clouds; in three dimensions "
-                      "supports are plain for now",
-                      to_string(settings_.rule)));
+      throw InputError("RK shape functions: segment obstacles are for plane clouds; a solid's are triangles");
     if (settings_.rule == SupportRule::geodesic && settings_.support != SupportShape::circular)
       throw InputError(
           "RK shape functions: the geodesic support rule measures distances along paths and needs "
@@ -329,15 +345,24 @@ void RKShapeFunctions<dim>::evaluate(const Point& x, Values& out, bool with_grad
       evaluate_along_paths(x, out, with_gradient);
       return;
     }
+  // In a solid with obstacles near x, a node reaches x only along a visible segment.
+  bool shadows = false;
+  if constexpr (dim == 3) shadows = visibility_ && visibility_->prepare(x, out.shadows);
+  const auto reaches = [&](Index i, const Point& p) {
+    if constexpr (dim == 3)
+      return !shadows || visibility_->visible(p, node_clearance_[i], x, out.shadows);
+    else
+      return true;
+  };
   if (settings_.support == SupportShape::circular) {
     cells_.for_each_in_box(x, max_radius_, [&](Index i, const Point& p) {
       const double a = support_radius(i);
-      if ((p - x).squaredNorm() < a * a) out.nodes.push_back(i);
+      if ((p - x).squaredNorm() < a * a && reaches(i, p)) out.nodes.push_back(i);
     });
   } else {
     cells_.for_each_in_box(x, max_radius_, [&](Index i, const Point& p) {
       const double a = support_radius(i);
-      if (((p - x).cwiseAbs().array() < a).all()) out.nodes.push_back(i);
+      if (((p - x).cwiseAbs().array() < a).all() && reaches(i, p)) out.nodes.push_back(i);
     });
   }
   select_kernel<dim, false>(settings_)(x, nodes_, settings_, out, with_gradient);

@@ -59,6 +59,7 @@ ElasticErrors solve_and_measure(double h, double size, RKOrder order) {
   bore.pressure = [lame](const P3&, double) { return lame.p; };
   problem.conditions.push_back(bore);
   ElasticitySettings s;
+  s.support_rule = SupportRule::plain;  // a solid's default (geodesic supports are plane only)
   s.nodes.spacing = h;
   s.order = order;
   s.support_factor = order == RKOrder::linear ? 2.0 : 3.0;

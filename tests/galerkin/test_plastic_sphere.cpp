@@ -59,6 +59,7 @@ Sphere plastic_sphere(double h, double p_max) {
   bore.pressure = [p_max](const P3&, double) { return p_max; };  // scaled by the load factor
   s.problem.conditions.push_back(bore);
   ElasticitySettings settings;
+  settings.support_rule = SupportRule::plain;  // a solid's default (geodesic supports are plane only)
   settings.nodes.spacing = h;
   settings.order = RKOrder::linear;
   settings.support_factor = 2.0;

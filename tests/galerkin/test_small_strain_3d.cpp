@@ -75,6 +75,7 @@ ElasticErrors solve_and_measure(double h, RKOrder order) {
     p.conditions.push_back(
         {BoundaryCondition<3>::Type::traction, select_part(unit_cube(), face), traction, face});
   ElasticitySettings s;
+  s.support_rule = SupportRule::plain;  // a solid's default (geodesic supports are plane only)
   s.nodes.spacing = h;
   s.order = order;
   s.support_factor = order == RKOrder::linear ? 2.0 : 3.0;

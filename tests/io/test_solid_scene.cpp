@@ -180,7 +180,7 @@ TEST_CASE(
              Catch::Contains("outside the solid"));
   CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[quadrature]\nscheme = \"gauss_cells\"\n[kernel]")),
              Catch::Contains("plane only so far"));
-  CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[kernel]\nsupport_rule = \"visibility\"")),
+  CHECK_THAT(refusal(replace(ok, "\\[kernel\\]", "[kernel]\nsupport_rule = \"geodesic\"")),
              Catch::Contains("plane only"));
   CHECK_THAT(refusal(replace(ok, "0.005 \\* x", "0.005 * t")), Catch::Contains("uses t"));
   CHECK_THAT(refusal(replace(ok, "0.005 \\* x", "0.005 * w")),

@@ -17,6 +17,7 @@
 // meant to lie on the boundary may land a few ulps outside it).
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "mfree/core/name_table.hpp"
@@ -59,8 +60,11 @@ std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSetti
 /// depth at most (order + 1) h, offset at most h / sqrt(2), so sqrt((order + 1)^2 + 1/2) h =
 /// 2.12 h or 3.08 h. Faces on a lattice plane (boxes, planes of symmetry) are not flat in this
 /// sense and keep factor h. Returns an empty vector when every radius is factor h.
-std::vector<double> surface_support_radii(const Solid& solid, const std::vector<Point<3>>& nodes, double h,
-                                          double factor, int order);
+/// `unseen`, when given, removes from a sample's neighbours those its supports do not reach
+/// (the visibility rule: the wall of a gap sees the nodes on its own side only).
+std::vector<double> surface_support_radii(
+    const Solid& solid, const std::vector<Point<3>>& nodes, double h, double factor, int order,
+    const std::function<void(const Point<3>& sample, std::vector<Point<3>>& near)>& unseen = {});
 
 /// lattice, perturbed, random: the names scenes use.
 const NameTable<CloudKind>& cloud_kind_names();

@@ -62,10 +62,11 @@ struct ElasticitySettings {
   SupportShape support = SupportShape::circular;
   double support_factor = 2.0;          ///< a = factor * h
   double irregular_factor_scale = 1.25; ///< node radii on irregular clouds (nodal_support_radii)
-  /// How supports respect the domain's cracks, slots and re-entrant corners (support_paths.hpp).
+  /// How supports respect the domain's cracks, slots and re-entrant corners (support_paths.hpp;
+  /// in a solid plain or visibility, surface_visibility.hpp).
   SupportRule support_rule = SupportRule::geodesic;
   /// Plain supports are refused where they join material across a gap narrower than the
-  /// support (find_bridge, support_paths.hpp) unless this is set.
+  /// support (find_bridge, support_paths.hpp; find_gap in a solid) unless this is set.
   bool allow_bridging = false;
 
   QuadratureScheme scheme = QuadratureScheme::gauss_cells;

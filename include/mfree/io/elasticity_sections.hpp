@@ -5,7 +5,8 @@
 //
 //   [nodes]       cloud (lattice | perturbed | random), spacing, perturbation, seed
 //   [kernel]      order (linear | quadratic), window, support (circular | tensor), factor,
-//                 irregular_factor_scale; plane only: support_rule, allow_bridging
+//                 irregular_factor_scale, support_rule (plane: geodesic | visibility | plain,
+//                 default geodesic; solid: plain | visibility, default plain), allow_bridging
 //   [quadrature]  scheme, ratio, cloud, order, factor, lattice_refinement, consistency,
 //                 gauss_points. A solid integrates by the projected scheme only (its default),
 //                 with ratio default 8 (quadrature points per node), the quadrature cloud's
@@ -43,7 +44,7 @@ void check_static(const SceneTable& t, const std::string& key, const Formula& f,
 
 /// [nodes] into s.nodes.
 void read_nodes_section(const SceneTable& t, ElasticitySettings& s);
-/// [kernel] into s (order, window, support, factors; in the plane the support rule).
+/// [kernel] into s (order, window, support, factors, the support rule of the dimension).
 void read_kernel_section(const SceneTable& t, ElasticitySettings& s, int dimension);
 /// [quadrature] (an empty table when absent) into s; s.order must be read first.
 void read_quadrature_section(const SceneTable& t, ElasticitySettings& s, int dimension);

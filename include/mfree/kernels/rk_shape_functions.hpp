@@ -17,8 +17,9 @@
 // Supports may respect the domain (support_paths.hpp, plane clouds): the window then
 // measures the distance d(x_I, x) along paths inside the domain, w(d / a_I), and a node
 // whose path is blocked does not reach x. The basis keeps the straight offsets
-// z_I = (x - x_I) / a. In three dimensions supports are plain for now: obstacles given
-// there are refused.
+// z_I = (x - x_I) / a. In three dimensions the rule is visibility (surface_visibility.hpp):
+// a node whose segment to x crosses an obstacle triangle does not reach x, the others keep
+// their plain windows.
 //
 // The same construction serves the Galerkin trial functions, the quadrature-cloud functions
 // that define quadrature weights, and the MLS reconstruction of the MPM.
@@ -34,6 +35,7 @@
 #include "mfree/core/types.hpp"
 #include "mfree/kernels/polynomial_basis.hpp"
 #include "mfree/kernels/support_paths.hpp"
+#include "mfree/kernels/surface_visibility.hpp"
 #include "mfree/kernels/window_function.hpp"
 #include "mfree/search/cell_list.hpp"
 
@@ -55,7 +57,8 @@ struct RKSettings {
   /// How supports respect the domain, and what they respect (none: every rule is plain).
   /// The geodesic rule needs circular supports; tensor supports take visibility only.
   SupportRule rule = SupportRule::plain;
-  std::shared_ptr<const SupportObstacles> obstacles;
+  std::shared_ptr<const SupportObstacles> obstacles;          ///< plane clouds
+  std::shared_ptr<const SurfaceObstacles> surface_obstacles;  ///< clouds in a solid: visibility only
 };
 
 /// The number of terms of the basis of an order in dim dimensions (3, 6; 4, 10).
@@ -70,6 +73,7 @@ struct ShapeValues {
   std::vector<Point<dim>> grad;
   std::vector<Point<dim>> z;  ///< scratch: scaled offsets (x - x_I) / a, kept to reuse the storage
   PathScratch paths;          ///< scratch of supports that respect the domain (plane clouds)
+  VisibilityScratch shadows;  ///< the same in a solid
   [[nodiscard]] std::size_t size() const { return nodes.size(); }
 };
 
@@ -80,7 +84,7 @@ class RKShapeFunctions {
   using Values = ShapeValues<dim>;
 
   /// Throws InputError for a non-positive radius, an empty cloud, the geodesic rule on
-  /// tensor supports, or obstacles in three dimensions.
+  /// tensor supports or in three dimensions, or obstacles of the other dimension.
   RKShapeFunctions(std::vector<Point> nodes, RKSettings settings);
 
   [[nodiscard]] const std::vector<Point>& nodes() const { return nodes_; }
@@ -121,7 +125,9 @@ class RKShapeFunctions {
   RKSettings settings_;
   double max_radius_ = 0.0;
   CellList<dim> cells_;
-  std::shared_ptr<const SupportPaths> paths_;  ///< null: plain supports
+  std::shared_ptr<const SupportPaths> paths_;            ///< null: plain supports (plane clouds)
+  std::shared_ptr<const SurfaceVisibility> visibility_;  ///< null: plain supports (in a solid)
+  std::vector<double> node_clearance_;  ///< per node: the distance to the nearest obstacle (in a solid)
 };
 
 extern template class RKShapeFunctions<2>;
