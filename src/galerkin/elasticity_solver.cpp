@@ -289,11 +289,12 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
   Discretisation<3> res;
   res.nodes = timer.time("clouds", [&] { return make_cloud(solid, s.nodes); });
   res.trial = timer.time("shape functions", [&] {
-    return std::make_unique<RKShapeFunctions<3>>(
+    auto trial = std::make_unique<RKShapeFunctions<3>>(
         res.nodes, rk_settings(solid, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
+    if (s.support_rule == SupportRule::plain && !s.allow_bridging)
+      refuse_gaps(solid, trial->max_support_radius());
+    return trial;
   });
-  if (s.support_rule == SupportRule::plain && !s.allow_bridging)
-    refuse_gaps(solid, res.trial->max_support_radius());
   res.quadrature = timer.time("weights and projection", [&] {
     CloudSettings qc = s.nodes;
     if (s.quadrature_lattice) qc.kind = CloudKind::lattice;

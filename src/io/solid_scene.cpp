@@ -103,7 +103,53 @@ void check_slivers(const SceneTable& t, const std::string& what, const BoundaryS
                       what, "xyz"[axis], pieces, area, "xyz"[axis]));
 }
 
-SolidExact read_exact(const SceneTable& t, const Constants& constants, const SolidProblem<3>& problem) {
+/// The gradient formulas must be the derivatives of the displacement's, or every error measured
+/// against them is wrong: at the points of a 6 x 6 x 6 grid over the solid's box that lie in it
+/// (with their neighbours at the step), each d u_i / d x_j against a difference of u_i of step
+/// 1e-5 of the box's diagonal, central, forward or backward (one of them follows a branch of a
+/// formula with a kink), to 1e-3 of the largest gradient entry (or displacement per diagonal).
+void check_gradient(const SceneTable& t, const SolidExact& e, const Solid& solid) {
+  const AlignedBox<3>& box = solid.bounding_box();
+  const double diagonal = box.diagonal().norm(), step = 1e-5 * diagonal;
+  std::vector<Point<3>> samples;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) {
+        const Point<3> x = box.min() + box.sizes().cwiseProduct(Point<3>(i + 0.5, j + 0.5, k + 0.5) / 6.0);
+        bool inside = solid.contains(x);
+        for (int a = 0; a < 3 && inside; ++a)
+          inside =
+              solid.contains(x + step * Point<3>::Unit(a)) && solid.contains(x - step * Point<3>::Unit(a));
+        if (inside) samples.push_back(x);
+      }
+  double scale = 0.0;
+  for (const Point<3>& x : samples)
+    scale = std::max(
+        {scale, e.gradient_at(x).cwiseAbs().maxCoeff(), e.displacement(x).cwiseAbs().maxCoeff() / diagonal});
+  for (const Point<3>& x : samples) {
+    const Tensor2<3> g = e.gradient_at(x);
+    const Point<3> u = e.displacement(x);
+    for (int j = 0; j < 3; ++j) {
+      const Point<3> ahead = e.displacement(x + step * Point<3>::Unit(j));
+      const Point<3> behind = e.displacement(x - step * Point<3>::Unit(j));
+      for (int i = 0; i < 3; ++i) {
+        const double central = (ahead[i] - behind[i]) / (2.0 * step);
+        const double off =
+            std::min({std::abs(central - g(i, j)), std::abs((ahead[i] - u[i]) / step - g(i, j)),
+                      std::abs((u[i] - behind[i]) / step - g(i, j))});
+        if (off > 1e-3 * scale)
+          t.error("gradient",
+                  fmt::format("gradient[{}] is not d u_{} / d {} of the displacement's formula: at "
+                              "({:.6g}) its difference is {:.6g}, the formula gives {:.6g} (the "
+                              "entries run row by row: d u_x / dx, d u_x / dy, d u_x / dz, d u_y / dx, ...)",
+                              3 * i + j, "xyz"[i], "xyz"[j], fmt::join(x, ", "), central, g(i, j)));
+      }
+    }
+  }
+}
+
+SolidExact read_exact(const SceneTable& t, const Constants& constants, const SolidProblem<3>& problem,
+                      const Solid& solid) {
   for (const Material& law : problem.laws())
     if (!std::holds_alternative<LinearElastic>(law))
       t.error("displacement",
@@ -117,6 +163,7 @@ SolidExact read_exact(const SceneTable& t, const Constants& constants, const Sol
     e.gradient.emplace_back(texts[i], constants, t.where("gradient", static_cast<int>(i)), 3);
     check_static(t, "gradient", e.gradient.back(), false);
   }
+  check_gradient(t, e, solid);
   t.finish();
   return e;
 }
@@ -412,7 +459,7 @@ SolidScene read_solid_scene(const std::filesystem::path& file, bool want_study,
       return Point<3>(rho * b(x, time));
     };
   } else if (root.has("exact")) {
-    out.exact = read_exact(root.table("exact"), constants, problem);
+    out.exact = read_exact(root.table("exact"), constants, problem, out.solid);
   }
   if (root.has("loads")) problem.body_force = read_loads(root.table("loads"), constants, out, dynamics);
 
