@@ -107,15 +107,14 @@ double SurfaceVisibility::clearance(const Vec3& p) const {
 
 bool SurfaceVisibility::leaves(const Vec3& end, const Vec3& other, const VisibilityScratch& s) const {
   const double on_plane = 1e-12 * (other - end).norm();
-  std::array<int, 8> out{}, in{};
-  std::size_t n_out = 0, n_in = 0;
+  std::vector<int> out, in;  // the triangles holding `end` the segment leaves and enters (rare: ends on walls)
   for (int k : s.triangles) {
     const Triangle& t = obstacles_.triangles[k];
     const Vec3& n = obstacles_.normals[k];
     if (!(std::abs((end - t[0]).dot(n)) <= on_plane) || !in_triangle(end, t, n)) continue;
     const double along = (other - end).dot(n);
-    if (along > on_plane && n_out < out.size()) out[n_out++] = k;
-    if (along < -on_plane && n_in < in.size()) in[n_in++] = k;
+    if (along > on_plane) out.push_back(k);
+    if (along < -on_plane) in.push_back(k);
   }
   // Out through T and in through U at once (end on an edge or a vertex): the outside when the
   // edge is convex (U on T's inner side: the solid is the intersection of the half-spaces
@@ -127,9 +126,9 @@ bool SurfaceVisibility::leaves(const Vec3& end, const Vec3& other, const Visibil
       if ((v - a[0]).dot(obstacles_.normals[t]) > tolerance) return false;
     return true;
   };
-  for (std::size_t i = 0; i < n_out; ++i) {
+  for (int t : out) {
     bool outside = true;
-    for (std::size_t j = 0; j < n_in && outside; ++j) outside = convex(out[i], in[j]);
+    for (std::size_t j = 0; j < in.size() && outside; ++j) outside = convex(t, in[j]);
     if (outside) return true;
   }
   return false;
