@@ -126,7 +126,7 @@ TEST_CASE(
   ShapeValues<3> v, p;
   int across_plain = 0;
   for (const Vec3& x :
-       {Vec3(0.37, 0.49, 0.21), Vec3(0.5, 0.46, 0.25), Vec3(0.81, 0.54, 0.33), Vec3(0.1, 0.53, 0.02)}) {
+       {Vec3(0.37, 0.49, 0.21), Vec3(0.5, 0.46, 0.25), Vec3(0.81, 0.54, 0.33), Vec3(0.15, 0.56, 0.12)}) {
     rk.evaluate(x, v);
     bridging.evaluate(x, p);
     const bool in_a = x.y() < 0.515;
