@@ -61,14 +61,17 @@ void read_kernel_section(const SceneTable& t, ElasticitySettings& s, int dimensi
   s.irregular_factor_scale = t.number_or("irregular_factor_scale", 1.25, 1.0, 5.0);
   const bool circular = s.support == SupportShape::circular;
   // In a solid the supports are plain unless asked (visibility changes the functions beside
-  // every re-entrant edge and hole); plain ones are refused across gaps.
-  s.support_rule = read_choice_or(t, "support_rule", support_rule_names(),
-                                  dimension == 3 ? SupportRule::plain
-                                  : circular     ? SupportRule::geodesic
-                                                 : SupportRule::visibility);
-  if (dimension == 3 && s.support_rule == SupportRule::geodesic)
+  // every re-entrant edge and hole); plain ones are refused across gaps. Geodesic ones are
+  // plane only so far.
+  static const NameTable<SupportRule> solid_rules{{"plain", SupportRule::plain},
+                                                  {"visibility", SupportRule::visibility}};
+  if (dimension == 3 && t.has("support_rule") && t.string("support_rule") == "geodesic")
     t.error("support_rule",
             "geodesic supports are plane only so far: a solid takes \"plain\" or \"visibility\"");
+  s.support_rule = dimension == 3
+                       ? read_choice_or(t, "support_rule", solid_rules, SupportRule::plain)
+                       : read_choice_or(t, "support_rule", support_rule_names(),
+                                        circular ? SupportRule::geodesic : SupportRule::visibility);
   s.allow_bridging = t.boolean_or("allow_bridging", false);
   if (s.allow_bridging && s.support_rule != SupportRule::plain)
     t.error("allow_bridging", "applies to support_rule = \"plain\" only: the other rules do not bridge gaps");
