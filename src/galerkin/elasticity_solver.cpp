@@ -89,9 +89,9 @@ RKSettings with_visibility(RKSettings r, const Solid& solid, const ElasticitySet
   r.rule = SupportRule::visibility;
   const double largest =
       r.node_radii.empty() ? r.radius : *std::max_element(r.node_radii.begin(), r.node_radii.end());
-  const double reach = r.support == SupportShape::circular ? largest : std::sqrt(3.0) * largest;
   if (!r.surface_obstacles)
-    r.surface_obstacles = std::make_shared<const SurfaceObstacles>(support_obstacles(solid, reach));
+    r.surface_obstacles = std::make_shared<const SurfaceObstacles>(
+        support_obstacles(solid, support_reach(r.support, largest, 3)));
   return r;
 }
 RKSettings rk_settings(const Solid& solid, const std::vector<Point<3>>& points, CloudKind kind, double h,
@@ -99,13 +99,13 @@ RKSettings rk_settings(const Solid& solid, const std::vector<Point<3>>& points, 
   RKSettings r = rk_settings<3>(points, kind, h, order, s, factor);
   if (kind != CloudKind::lattice) return with_visibility(std::move(r), solid, s);
   // The widest radius surface_support_radii gives, and what those supports see.
-  const double wide = (factor + 0.5) * h * (r.support == SupportShape::circular ? 1.0 : std::sqrt(3.0));
+  const double wide = support_reach(r.support, (factor + 0.5) * h, 3);
   std::function<void(const Point<3>&, std::vector<Point<3>>&)> unseen;
-  std::shared_ptr<const SurfaceVisibility> visibility;
+  std::optional<SurfaceVisibility> visibility;
   if (s.support_rule == SupportRule::visibility) {
     r.surface_obstacles = std::make_shared<const SurfaceObstacles>(support_obstacles(solid, wide));
     if (!r.surface_obstacles->empty()) {
-      visibility = std::make_shared<const SurfaceVisibility>(*r.surface_obstacles, wide);
+      visibility.emplace(*r.surface_obstacles, wide);
       unseen = [&visibility](const Point<3>& x, std::vector<Point<3>>& near) {
         VisibilityScratch scratch;
         if (!visibility->prepare(x, scratch)) return;

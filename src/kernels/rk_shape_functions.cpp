@@ -269,10 +269,8 @@ RKShapeFunctions<dim>::RKShapeFunctions(std::vector<Point> nodes, RKSettings set
           fmt::format("RK shape functions: the {} support rule is for plane clouds; in a solid supports take "
                       "\"visibility\"",
                       to_string(settings_.rule)));
-    // The longest segment from a node to a point it covers: a ball's radius, a cube's half-diagonal.
-    const double reach =
-        settings_.support == SupportShape::circular ? max_radius_ : std::sqrt(3.0) * max_radius_;
-    visibility_ = std::make_shared<const SurfaceVisibility>(*settings_.surface_obstacles, reach);
+    visibility_ = std::make_shared<const SurfaceVisibility>(
+        *settings_.surface_obstacles, support_reach(settings_.support, max_radius_, dim));
     node_clearance_.resize(nodes_.size());
     parallel_blocks(size(), 1024, [&](Index b, Index e) {
       for (Index i = b; i < e; ++i) {

@@ -141,7 +141,7 @@ bool SurfaceVisibility::visible(const Vec3& p, double p_clearance, const Vec3& x
     if (crossing(p, x, obstacles_.triangles[k], obstacles_.normals[k])) return false;
   // An end on the surface from which the segment runs outside (from one wall of a gap to the
   // other, both ends on the walls).
-  if (s.clearance <= 0.0 + 1e-12 * (p - x).norm() && leaves(x, p, s)) return false;
+  if (s.clearance <= 1e-12 * (p - x).norm() && leaves(x, p, s)) return false;
   return !(p_clearance <= 1e-12 * (p - x).norm() && leaves(p, x, s));
 }
 

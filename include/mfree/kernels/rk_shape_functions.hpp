@@ -24,6 +24,7 @@
 // The same construction serves the Galerkin trial functions, the quadrature-cloud functions
 // that define quadrature weights, and the MLS reconstruction of the MPM.
 
+#include <cmath>
 #include <memory>
 #include <span>
 #include <string>
@@ -60,6 +61,12 @@ struct RKSettings {
   std::shared_ptr<const SupportObstacles> obstacles;          ///< plane clouds
   std::shared_ptr<const SurfaceObstacles> surface_obstacles;  ///< clouds in a solid: visibility only
 };
+
+/// The longest segment from a node to a point its support of radius a covers: a for a round
+/// support, sqrt(dim) a for a square (cubic) one (the reach a visibility test must serve).
+inline double support_reach(SupportShape shape, double radius, int dim) {
+  return shape == SupportShape::circular ? radius : std::sqrt(static_cast<double>(dim)) * radius;
+}
 
 /// The number of terms of the basis of an order in dim dimensions (3, 6; 4, 10).
 int rk_basis_size(int dim, RKOrder order);
