@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <random>
 
 #include "mfree/core/error.hpp"
 #include "mfree/core/memory.hpp"
 #include "mfree/core/parallel.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/search/cell_list.hpp"
 
 namespace mfree {
@@ -177,43 +179,57 @@ std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSetti
 
 std::vector<double> surface_support_radii(
     const Solid& solid, const std::vector<Point<3>>& nodes, double h, double factor, int order,
-    const std::function<void(const Point<3>& sample, std::vector<Point<3>>& near)>& unseen) {
+    const std::function<void(const Point<3>& sample, std::vector<Index>& near)>& unseen) {
   const double reach = factor * h, wide = (factor + 0.5) * h;
   // Samples of the surface: each triangle's barycentric grid of n steps a side, n such that
   // a step is at most h / 4.
+  // A tied interface's triangles are sampled on both sides (crack_offset h off the face).
   std::vector<Point<3>> samples;
-  for (const SurfaceTriangle& t : solid.surface()) {
-    const auto& v = t.vertices;
+  const auto sample = [&](const std::array<Point<3>, 3>& v, std::initializer_list<Point<3>> offsets) {
     const double longest = std::max({(v[1] - v[0]).norm(), (v[2] - v[1]).norm(), (v[0] - v[2]).norm()});
     const int n = std::max(1, static_cast<int>(std::ceil(longest / (0.25 * h))));
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j)
-        samples.push_back(v[0] + (static_cast<double>(i) / n) * (v[1] - v[0]) +
-                          (static_cast<double>(j) / n) * (v[2] - v[0]));
+        for (const Point<3>& offset : offsets)
+          samples.push_back(v[0] + (static_cast<double>(i) / n) * (v[1] - v[0]) +
+                            (static_cast<double>(j) / n) * (v[2] - v[0]) + offset);
+  };
+  for (const SurfaceTriangle& t : solid.surface()) sample(t.vertices, {Point<3>::Zero()});
+  for (const InterfaceTriangle& t : solid.interfaces()) {
+    // A little inside the triangle (its rim may lie on the surface), then off it to each side.
+    const Point<3> offset = crack_offset * h * t.area_normal().normalized();
+    const Point<3> centroid = (t.vertices[0] + t.vertices[1] + t.vertices[2]) / 3.0;
+    std::array<Point<3>, 3> inside;
+    for (std::size_t v = 0; v < 3; ++v)
+      inside[v] = t.vertices[v] + crack_offset * h * (centroid - t.vertices[v]).normalized();
+    sample(inside, {Point<3>(-offset), offset});
   }
   const CellList<3> cells(nodes, wide);
   std::vector<char> flat(samples.size(), 0);
   parallel_blocks(static_cast<Index>(samples.size()), 1024, [&](Index b, Index e) {
-    std::vector<Point<3>> near;
+    std::vector<Index> near;
     for (Index k = b; k < e; ++k) {
       const Point<3>& x = samples[static_cast<std::size_t>(k)];
       near.clear();
-      cells.for_each_in_box(x, reach, [&](Index, const Point<3>& p) {
-        if ((p - x).squaredNorm() < reach * reach) near.push_back(p);
+      cells.for_each_in_box(x, reach, [&](Index i, const Point<3>& p) {
+        if ((p - x).squaredNorm() < reach * reach) near.push_back(i);
       });
       if (unseen) unseen(x, near);
       if (near.size() >= 2) {
         Point<3> mean = Point<3>::Zero();
-        for (const Point<3>& p : near) mean += p;
+        for (const Index i : near) mean += nodes[static_cast<std::size_t>(i)];
         mean /= static_cast<double>(near.size());
         Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-        for (const Point<3>& p : near) covariance += (p - mean) * (p - mean).transpose();
+        for (const Index i : near) {
+          const Point<3> p = nodes[static_cast<std::size_t>(i)] - mean;
+          covariance += p * p.transpose();
+        }
         const Point<3> thin =
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (const Point<3>& p : near) {
-          lo = std::min(lo, p.dot(thin));
-          hi = std::max(hi, p.dot(thin));
+        for (const Index i : near) {
+          lo = std::min(lo, nodes[static_cast<std::size_t>(i)].dot(thin));
+          hi = std::max(hi, nodes[static_cast<std::size_t>(i)].dot(thin));
         }
         if (hi - lo >= 0.75 * order * h) continue;
       }

@@ -123,6 +123,30 @@ BoundaryQuadrature<3> boundary_quadrature(const Solid& solid, double max_length,
       if (p.clip) boxes[static_cast<std::size_t>(p.triangle)].push_back(*p.clip);
   BoundaryQuadrature<3> bq;
   QuadratureRule<3> rule;
+  // The rule on triangle (a, a + e_full, a + f_full): cut into m x m similar ones, rows i, the
+  // upright (a + i e + j f, + e, + f) and, between them, the inverted ones.
+  const auto triangle_rule = [&](const Point<3>& a, const Point<3>& e_full, const Point<3>& f_full) {
+    const double longest = std::max({e_full.norm(), f_full.norm(), (f_full - e_full).norm()});
+    const int m = std::max(1, static_cast<int>(std::ceil(longest / max_length - 1e-9)));
+    const Point<3> e = e_full / m, f = f_full / m;
+    rule.points.clear();
+    rule.weights.clear();
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; i + j < m; ++j) {
+        const Point<3> x = a + i * e + j * f;
+        add_triangle_rule<3>(x, Point<3>(x + e), Point<3>(x + f), g, rule);
+        if (i + j + 1 < m)
+          add_triangle_rule<3>(Point<3>(x + e), Point<3>(x + e + f), Point<3>(x + f), g, rule);
+      }
+  };
+  const auto add_point = [&bq](const Point<3>& x, const Point<3>& sample, const Point<3>& normal,
+                               double weight, std::size_t segment) {
+    bq.points.push_back(x);
+    bq.samples.push_back(sample);
+    bq.normals.push_back(normal);
+    bq.weights.push_back(weight);
+    bq.segment.push_back(static_cast<Index>(segment));
+  };
   for (std::size_t t = 0; t < surface.size(); ++t) {
     const SurfaceTriangle& tri = surface[t];
     const Point<3> normal = tri.area_normal().normalized();
@@ -136,30 +160,30 @@ BoundaryQuadrature<3> boundary_quadrature(const Solid& solid, double max_length,
     }
     for (const ConvexPolygon& p : polygons)
       for (std::size_t k = 1; k + 1 < p.size(); ++k) {
-        // Fan triangle (p0, pk, pk+1) cut into m x m similar ones: rows i, the upright
-        // (a + i e + j f, + e, + f) and, between them, the inverted ones.
-        const Point<3>&a = p[0], e_full = p[k] - p[0], f_full = p[k + 1] - p[0];
-        const double longest = std::max({e_full.norm(), f_full.norm(), (f_full - e_full).norm()});
-        const int m = std::max(1, static_cast<int>(std::ceil(longest / max_length - 1e-9)));
-        const Point<3> e = e_full / m, f = f_full / m;
-        rule.points.clear();
-        rule.weights.clear();
-        for (int i = 0; i < m; ++i)
-          for (int j = 0; i + j < m; ++j) {
-            const Point<3> x = a + i * e + j * f;
-            add_triangle_rule<3>(x, Point<3>(x + e), Point<3>(x + f), g, rule);
-            if (i + j + 1 < m)
-              add_triangle_rule<3>(Point<3>(x + e), Point<3>(x + e + f), Point<3>(x + f), g, rule);
-          }
-        for (std::size_t q = 0; q < rule.size(); ++q) {
-          bq.points.push_back(rule.points[q]);
-          bq.samples.push_back(rule.points[q]);
-          bq.normals.push_back(normal);
-          bq.weights.push_back(rule.weights[q]);
-          bq.segment.push_back(static_cast<Index>(t));
-        }
+        triangle_rule(p[0], p[k] - p[0], p[k + 1] - p[0]);
+        for (std::size_t q = 0; q < rule.size(); ++q)
+          add_point(rule.points[q], rule.points[q], normal, rule.weights[q], t);
       }
   }
+  // The tied interfaces: each point on both faces, the `from` side's first (outward normal n,
+  // sampled crack_offset max_length into its region), then the `to` side's (-n), twins.
+  const std::vector<InterfaceTriangle>& interfaces = solid.interfaces();
+  bq.twin.assign(bq.points.size(), -1);
+  for (std::size_t t = 0; t < interfaces.size(); ++t) {
+    const auto& v = interfaces[t].vertices;
+    const Point<3> n = interfaces[t].area_normal().normalized();
+    const Point<3> offset = crack_offset * max_length * n;
+    triangle_rule(v[0], v[1] - v[0], v[2] - v[0]);
+    for (std::size_t q = 0; q < rule.size(); ++q) {
+      const auto p = static_cast<Index>(bq.points.size());
+      add_point(rule.points[q], Point<3>(rule.points[q] - offset), n, rule.weights[q], surface.size() + t);
+      add_point(rule.points[q], Point<3>(rule.points[q] + offset), Point<3>(-n), rule.weights[q],
+                surface.size() + t);
+      bq.twin.push_back(p + 1);
+      bq.twin.push_back(p);
+    }
+  }
+  if (interfaces.empty()) bq.twin.clear();
   return bq;
 }
 

@@ -11,6 +11,7 @@
 #include "mfree/core/memory.hpp"
 #include "mfree/galerkin/rigid_body_modes.hpp"
 #include "mfree/geometry/crack_faces.hpp"
+#include "mfree/geometry/interface_faces.hpp"
 #include "mfree/geometry/support_obstacles.hpp"
 #include "mfree/quadrature/gauss_cells.hpp"
 #include "mfree/quadrature/voronoi_weights.hpp"
@@ -83,8 +84,13 @@ RKSettings rk_settings(const Domain& domain, const std::vector<Vec2>& points, Cl
 /// sphere, h = 0.4).
 /// In a solid, under the visibility rule, the obstacles of its surface for supports of the
 /// settings' radii (a wider reach only adds triangles no segment within a support can cross
-/// without leaving the solid).
+/// without leaving the solid); with tied interfaces, the regions as separate bodies (a node
+/// reaches the points of its own region only).
 RKSettings with_visibility(RKSettings r, const Solid& solid, const ElasticitySettings& s) {
+  if (!solid.interfaces().empty() && !r.region_of)
+    r.region_of = [copy = std::make_shared<const Solid>(solid)](const Point<3>& x) {
+      return copy->region_at(x);
+    };
   if (s.support_rule != SupportRule::visibility) return r;
   r.rule = SupportRule::visibility;
   const double largest =
@@ -98,21 +104,32 @@ RKSettings rk_settings(const Solid& solid, const std::vector<Point<3>>& points, 
                        RKOrder order, const ElasticitySettings& s, double factor) {
   RKSettings r = rk_settings<3>(points, kind, h, order, s, factor);
   if (kind != CloudKind::lattice) return with_visibility(std::move(r), solid, s);
-  // The widest radius surface_support_radii gives, and what those supports see.
+  // The widest radius surface_support_radii gives, and which nodes those supports reach.
   const double wide = support_reach(r.support, (factor + 0.5) * h, 3);
-  std::function<void(const Point<3>&, std::vector<Point<3>>&)> unseen;
   std::optional<SurfaceVisibility> visibility;
   if (s.support_rule == SupportRule::visibility) {
     r.surface_obstacles = std::make_shared<const SurfaceObstacles>(support_obstacles(solid, wide));
-    if (!r.surface_obstacles->empty()) {
-      visibility.emplace(*r.surface_obstacles, wide);
-      unseen = [&visibility](const Point<3>& x, std::vector<Point<3>>& near) {
-        VisibilityScratch scratch;
-        if (!visibility->prepare(x, scratch)) return;
-        std::erase_if(near, [&](const Point<3>& p) { return !visibility->visible(p, 0.0, x, scratch); });
-      };
-    }
+    if (!r.surface_obstacles->empty()) visibility.emplace(*r.surface_obstacles, wide);
   }
+  std::vector<int> region;
+  if (!solid.interfaces().empty()) {
+    region.resize(points.size());
+    parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+        region[static_cast<std::size_t>(i)] = solid.region_at(points[static_cast<std::size_t>(i)]);
+    });
+  }
+  std::function<void(const Point<3>&, std::vector<Index>&)> unseen;
+  if (visibility || !region.empty())
+    unseen = [&](const Point<3>& x, std::vector<Index>& near) {
+      if (const int r_x = region.empty() ? -1 : solid.region_at(x); r_x >= 0)
+        std::erase_if(near, [&](Index i) { return region[static_cast<std::size_t>(i)] != r_x; });
+      VisibilityScratch scratch;
+      if (!visibility || !visibility->prepare(x, scratch)) return;
+      std::erase_if(near, [&](Index i) {
+        return !visibility->visible(points[static_cast<std::size_t>(i)], 0.0, x, scratch);
+      });
+    };
   r.node_radii = surface_support_radii(solid, points, h, factor, order == RKOrder::linear ? 1 : 2, unseen);
   return with_visibility(std::move(r), solid, s);
 }
@@ -287,7 +304,7 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
                fmt::format("the discretisation of spacing {:.4g} (about {:.3g} nodes)", h,
                            solid.measure() / (h * h * h)));
   Discretisation<3> res;
-  res.nodes = timer.time("clouds", [&] { return make_cloud(solid, s.nodes); });
+  res.nodes = timer.time("clouds", [&] { return split_on_interfaces(solid, make_cloud(solid, s.nodes), h); });
   res.trial = timer.time("shape functions", [&] {
     auto trial = std::make_unique<RKShapeFunctions<3>>(
         res.nodes, rk_settings(solid, res.nodes, s.nodes.kind, h, s.order, s, s.support_factor));
@@ -299,7 +316,8 @@ Discretisation<3> discretise(const Solid& solid, const ElasticitySettings& s,
     CloudSettings qc = s.nodes;
     if (s.quadrature_lattice) qc.kind = CloudKind::lattice;
     const double hq = h / std::cbrt(s.quadrature_ratio);
-    const std::vector<Point<3>> xq = make_quadrature_cloud(solid, qc, s.quadrature_ratio);
+    const std::vector<Point<3>> xq =
+        split_on_interfaces(solid, make_quadrature_cloud(solid, qc, s.quadrature_ratio), hq);
     const RKShapeFunctions<3> quad(
         xq,
         with_visibility(rk_settings(xq, qc.kind, hq, s.quadrature_order, s, quadrature_factor), solid, s));

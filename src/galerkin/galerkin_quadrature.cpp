@@ -167,10 +167,12 @@ GalerkinQuadrature<dim> projected_quadrature(const RKShapeFunctions<dim>& trial,
   // row K = sum_v c_v phi_K(v) grad phi_I(v); grad phi_I evaluated once per lattice point.
   std::vector<double> w(nq, 0.0);
   std::vector<Index> missing(nq, 0);
-  // Visibility supports in a solid: the rows (found by straight distances) hold nodes across a
-  // gap whose supports never meet K's in the solid; the slots no term reaches are dropped
-  // below, so that a correction on the rows holding a node (VCI) stays on its side.
-  const bool shadowed = trial.settings().surface_obstacles && !trial.settings().surface_obstacles->empty();
+  // Visibility supports or tied regions in a solid: the rows (found by straight distances) hold
+  // nodes across a gap or an interface whose supports never meet K's in the solid; the slots no term reaches
+  // are dropped below, so that a correction on the rows holding a node (VCI) stays on its side.
+  const bool shadowed =
+      (trial.settings().surface_obstacles && !trial.settings().surface_obstacles->empty()) ||
+      trial.settings().region_of;
   std::vector<char> reached(shadowed ? q.nodes.size() : 0, 0);
   std::vector<Point<dim>> moment(nq, Point<dim>::Zero());
   const auto& lp = lattice.points();

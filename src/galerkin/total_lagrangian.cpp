@@ -204,8 +204,8 @@ TotalLagrangian<dim>::TotalLagrangian(SolidProblem<dim> problem, const DomainOf<
           throw Error(fmt::format("{} point {} {} lies in no region of the domain", kind, k,
                                   point_text<dim>(points[k])));
     } else {
-      // A solid's regions are bonded (no interface conditions): a point on a face between
-      // two takes either law.
+      // A point on a face between two regions takes either law (on a tied interface the
+      // points lie a little into their side).
       if (laws == 1) return law;
       parallel_blocks(static_cast<Index>(points.size()), 1024, [&](Index begin, Index end) {
         for (Index k = begin; k < end; ++k) law[k] = domain.region_at(points[k]);
@@ -269,33 +269,37 @@ TotalLagrangian<dim>::TotalLagrangian(SolidProblem<dim> problem, const DomainOf<
           traction_operator(reference_tangents_[law_of_boundary_[p]], at_boundary.grad[s], n);
     couple_row(p);
   }
-  // The ties (plane interfaces): each interface point once, from its + face (the first of
-  // the pair). Their rows couple the functions of both faces.
-  if constexpr (dim == 2) {
-    const auto& segments = domain.boundary();
-    for (Index p = 0; p < bq.size(); ++p) {
-      const Index q_twin = bq.twin.empty() ? -1 : bq.twin[p];
-      if (q_twin < 0) continue;
-      const Crack& crack = domain.cracks()[segments[bq.segment[p]].crack];
-      if (segments[bq.segment[p]].a != crack.points[segments[bq.segment[p]].edge]) continue;  // the - face
-      ties_.push_back(
-          {p, q_twin,
-           std::max(penalty_of_law_[law_of_boundary_[p]], penalty_of_law_[law_of_boundary_[q_twin]])});
-      for (const Index side : {p, q_twin}) {
-        const Point<dim>& n = bq.normals[p];
-        for (Index s = at_boundary.row_begin(side); s < at_boundary.row_end(side); ++s)
-          reference_traction_[s] =
-              traction_operator(reference_tangents_[law_of_boundary_[side]], at_boundary.grad[s], n);
-      }
-      std::vector<Index> row(at_boundary.nodes.begin() + at_boundary.row_begin(p),
-                             at_boundary.nodes.begin() + at_boundary.row_end(p));
-      row.insert(row.end(), at_boundary.nodes.begin() + at_boundary.row_begin(q_twin),
-                 at_boundary.nodes.begin() + at_boundary.row_end(q_twin));
-      std::sort(row.begin(), row.end());
-      row.erase(std::unique(row.begin(), row.end()), row.end());
-      boundary_nodes_.insert(boundary_nodes_.end(), row.begin(), row.end());
-      boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
+  // The ties: each interface point once, from its + face (plane: the first of the crack's
+  // pair; solid: the `from` face, the first of the twins). Their rows couple the functions of
+  // both faces.
+  const auto plus_face = [&](Index p, Index q_twin) {
+    if constexpr (dim == 2) {
+      const BoundarySegment& segment = domain.boundary()[bq.segment[p]];
+      return segment.a == domain.cracks()[segment.crack].points[segment.edge];
+    } else {
+      return p < q_twin;
     }
+  };
+  for (Index p = 0; p < bq.size(); ++p) {
+    const Index q_twin = bq.twin.empty() ? -1 : bq.twin[p];
+    if (q_twin < 0 || !plus_face(p, q_twin)) continue;
+    ties_.push_back(
+        {p, q_twin,
+         std::max(penalty_of_law_[law_of_boundary_[p]], penalty_of_law_[law_of_boundary_[q_twin]])});
+    for (const Index side : {p, q_twin}) {
+      const Point<dim>& n = bq.normals[p];
+      for (Index s = at_boundary.row_begin(side); s < at_boundary.row_end(side); ++s)
+        reference_traction_[s] =
+            traction_operator(reference_tangents_[law_of_boundary_[side]], at_boundary.grad[s], n);
+    }
+    std::vector<Index> row(at_boundary.nodes.begin() + at_boundary.row_begin(p),
+                           at_boundary.nodes.begin() + at_boundary.row_end(p));
+    row.insert(row.end(), at_boundary.nodes.begin() + at_boundary.row_begin(q_twin),
+               at_boundary.nodes.begin() + at_boundary.row_end(q_twin));
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    boundary_nodes_.insert(boundary_nodes_.end(), row.begin(), row.end());
+    boundary_offsets_.push_back(static_cast<Index>(boundary_nodes_.size()));
   }
   for (std::size_t c = 0; c < seen.size(); ++c)
     if (!seen[c])

@@ -238,7 +238,7 @@ std::vector<SurfaceTriangle> boundary_faces(const VolumeMesh& mesh, const Tetrah
 
 }  // namespace
 
-Solid read_gmsh_solid(const std::filesystem::path& file, const GmshReaderLimits& limits) {
+Solid read_gmsh_solid(const std::filesystem::path& file, const GmshReaderLimits& limits, bool tied) {
   const std::string source = file.string();
   gmsh_reader::check_file(file);
   VolumeMesh mesh = deserialise(
@@ -247,7 +247,7 @@ Solid read_gmsh_solid(const std::filesystem::path& file, const GmshReaderLimits&
   TetrahedralMesh tets(mesh.nodes, mesh.tetrahedra, source, mesh.tetrahedron_regions);
   std::vector<SurfaceTriangle> surface = boundary_faces(mesh, tets);
   return Solid::from_mesh(std::move(tets), std::move(surface), std::move(mesh.part_names), source,
-                          std::move(mesh.region_names));
+                          std::move(mesh.region_names), tied);
 }
 
 }  // namespace mfree

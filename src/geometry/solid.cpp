@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
@@ -41,9 +42,56 @@ Solid Solid::box(const Point<3>& lo, const Point<3>& hi) {
   return Solid(box, std::move(surface), std::move(parts));
 }
 
+namespace {
+
+/// The faces two tetrahedra of different regions share, oriented out of the one of the lower
+/// region (by its fourth vertex) into the other.
+std::vector<InterfaceTriangle> region_faces(const TetrahedralMesh& mesh) {
+  std::vector<InterfaceTriangle> out;
+  if (mesh.size() == 0) return out;
+  bool several = false;
+  for (Index k = 1; k < mesh.size() && !several; ++k) several = mesh.region(k) != mesh.region(0);
+  if (!several) return out;
+  // Each face as its sorted node indices, with the tetrahedron and the vertex opposite it.
+  struct Face {
+    std::array<Index, 3> key;
+    Index tet;
+    int opposite;
+  };
+  std::vector<Face> faces;
+  faces.reserve(4 * static_cast<std::size_t>(mesh.size()));
+  for (Index k = 0; k < mesh.size(); ++k)
+    for (int o = 0; o < 4; ++o) {
+      std::array<Index, 3> key;
+      for (int v = 0, n = 0; v < 4; ++v)
+        if (v != o) key[static_cast<std::size_t>(n++)] = mesh.tetrahedra()[static_cast<std::size_t>(k)][v];
+      std::sort(key.begin(), key.end());
+      faces.push_back({key, k, o});
+    }
+  std::sort(faces.begin(), faces.end(),
+            [](const Face& a, const Face& b) { return std::tie(a.key, a.tet) < std::tie(b.key, b.tet); });
+  for (std::size_t f = 0; f + 1 < faces.size(); ++f) {
+    const Face &a = faces[f], &b = faces[f + 1];
+    if (a.key != b.key || mesh.region(a.tet) == mesh.region(b.tet)) continue;
+    const Face& low = mesh.region(a.tet) < mesh.region(b.tet) ? a : b;  // the face's `from` side
+    InterfaceTriangle t;
+    for (int v = 0; v < 3; ++v)
+      t.vertices[static_cast<std::size_t>(v)] = mesh.nodes()[static_cast<std::size_t>(a.key[v])];
+    t.from = mesh.region(low.tet);
+    t.to = mesh.region((&low == &a ? b : a).tet);
+    const Point<3> inner = mesh.nodes()[static_cast<std::size_t>(
+        mesh.tetrahedra()[static_cast<std::size_t>(low.tet)][low.opposite])];
+    if ((inner - t.vertices[0]).dot(t.area_normal()) > 0.0) std::swap(t.vertices[1], t.vertices[2]);
+    out.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
 Solid Solid::from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
                        std::vector<std::string> parts, const std::string& source,
-                       std::vector<std::string> regions) {
+                       std::vector<std::string> regions, bool tied) {
   if (surface.empty()) throw InputError(fmt::format("{}: the solid has no surface triangle", source));
   for (Index k = 0; k < mesh.size(); ++k)
     if (mesh.region(k) >= std::max<int>(1, static_cast<int>(regions.size())))
@@ -80,9 +128,12 @@ Solid Solid::from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surfac
           "in the .geo)",
           source, t, centroid.x(), centroid.y(), centroid.z()));
   }
+  std::vector<InterfaceTriangle> interfaces = tied ? region_faces(mesh) : std::vector<InterfaceTriangle>{};
   const AlignedBox<3> box = mesh.bounding_box();
-  return Solid(box, std::move(surface), std::move(parts),
-               std::make_shared<const TetrahedralMesh>(std::move(mesh)), std::move(regions));
+  Solid solid(box, std::move(surface), std::move(parts),
+              std::make_shared<const TetrahedralMesh>(std::move(mesh)), std::move(regions));
+  solid.interfaces_ = std::move(interfaces);
+  return solid;
 }
 
 bool Solid::contains(const Point<3>& x) const { return mesh_ ? mesh_->contains(x) : box_.contains(x); }

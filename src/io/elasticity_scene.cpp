@@ -115,8 +115,6 @@ MaterialSection read_plane_material(const SceneTable& t) {
   return m;
 }
 
-const NameTable<bool> interface_names{{"tied", true}, {"smooth", false}};
-
 /// A [quadrature] key that no scheme of the scene (its own, or its study's) reads is an
 /// error, not a setting silently ignored.
 void check_scheme_keys(const SceneTable& t, QuadratureScheme scheme, const std::optional<StudySettings>& study) {
@@ -150,7 +148,7 @@ void read_plane_domain(const SceneTable& root, ElasticityScene& out) {
   } else {
     RegionOptions regions;
     if (t.has("regions")) regions.names = t.names("regions");
-    regions.interfaces = read_choice_or(t, "interfaces", interface_names, true);
+    regions.interfaces = read_choice_or(t, "interfaces", interface_choices(), true);
     try {
       out.domain = Domain::from_file(root.folder() / t.string("mesh"), regions);
     } catch (const InputError& e) {

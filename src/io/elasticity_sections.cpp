@@ -24,6 +24,11 @@ const NameTable<std::optional<SolverKind>>& solver_choices() {
 
 }  // namespace
 
+const NameTable<bool>& interface_choices() {
+  static const NameTable<bool> table{{"tied", true}, {"smooth", false}};
+  return table;
+}
+
 template <int dim>
 const NameTable<typename BoundaryCondition<dim>::Type>& condition_types() {
   using Type = typename BoundaryCondition<dim>::Type;

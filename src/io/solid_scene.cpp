@@ -378,14 +378,19 @@ Solid read_solid_domain(const SceneTable& t) {
     if (t.has("box")) {
       const AlignedBox<3> b = read_space_box(t, "box");
       if (!(b.max().array() > b.min().array()).all()) t.error("box", "the corners must differ in x, y and z");
+      if (t.has("interfaces"))
+        t.error("interfaces", "regions are the physical volumes of a gmsh part: a box is one region");
       return Solid::box(b.min(), b.max());
     }
+    const bool tied = read_choice_or(t, "interfaces", interface_choices(), true);
     try {
-      return read_gmsh_solid(t.folder() / t.string("solid"));
+      return read_gmsh_solid(t.folder() / t.string("solid"), default_gmsh_reader_limits(), tied);
     } catch (const InputError& e) {
       t.error("solid", e.what());
     }
   }();
+  if (t.has("interfaces") && solid.regions().size() < 2)
+    t.error("interfaces", "the solid has one region (the part has fewer than two physical volumes)");
   t.finish();
   return solid;
 }
@@ -406,7 +411,7 @@ bool is_solid_scene(const std::filesystem::path& file) {
 }
 
 /// [material], or [[material]] tables giving the solid's regions (its physical volumes) their
-/// laws, bonded to each other; the section of the first region (the one law of a solid of one
+/// laws (tied or bonded: [domain] interfaces); the section of the first region (the one law of a solid of one
 /// region) is returned.
 MaterialSection read_solid_materials(const SceneTable& root, SolidScene& out) {
   SolidProblem<3>& problem = out.problem;

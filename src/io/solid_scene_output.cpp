@@ -6,6 +6,7 @@
 
 #include "mfree/galerkin/galerkin_quadrature.hpp"
 #include "mfree/galerkin/small_strain_elasticity.hpp"
+#include "mfree/geometry/crack_faces.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
 #include "mfree/io/vtk_output.hpp"
 #include "mfree/materials/finite_strain.hpp"
@@ -14,9 +15,15 @@ namespace mfree {
 
 namespace {
 
+/// The volume mesh the fields are shown on: its vertices, tetrahedra and surface faces, and
+/// per vertex where the fields are sampled and the region whose law gives the stress (empty:
+/// the law at the vertex).
 struct Cells3 {
   std::vector<Point<3>> points;
   std::vector<std::array<Index, 4>> tetrahedra;
+  std::vector<std::array<Index, 3>> faces;
+  std::vector<Point<3>> samples;
+  std::vector<int> regions;
 };
 
 /// The box [lo, hi] in n_x n_y n_z cubes of about `spacing`, each split into the six
@@ -49,16 +56,20 @@ Cells3 box_tetrahedra(const AlignedBox<3>& box, double spacing) {
   return c;
 }
 
-/// The faces of the tetrahedra that belong to one of them: the surface of the volume mesh.
-std::vector<std::array<Index, 3>> boundary_faces(const std::vector<std::array<Index, 4>>& tetrahedra) {
+/// The faces of the tetrahedra that belong to one of them: the surface of the volume mesh,
+/// each as the vertices of `shown` (the same tetrahedra, some vertices replaced by copies).
+std::vector<std::array<Index, 3>> boundary_faces(const std::vector<std::array<Index, 4>>& tetrahedra,
+                                                 const std::vector<std::array<Index, 4>>& shown) {
   std::map<std::array<Index, 3>, std::pair<int, std::array<Index, 3>>>
       faces;  // sorted corners -> count, face
-  for (const std::array<Index, 4>& t : tetrahedra)
+  for (std::size_t t = 0; t < tetrahedra.size(); ++t)
     for (int skip = 0; skip < 4; ++skip) {
-      std::array<Index, 3> face{};
+      std::array<Index, 3> key{}, face{};
       for (int v = 0, k = 0; v < 4; ++v)
-        if (v != skip) face[static_cast<std::size_t>(k++)] = t[static_cast<std::size_t>(v)];
-      std::array<Index, 3> key = face;
+        if (v != skip) {
+          key[static_cast<std::size_t>(k)] = tetrahedra[t][static_cast<std::size_t>(v)];
+          face[static_cast<std::size_t>(k++)] = shown[t][static_cast<std::size_t>(v)];
+        }
       std::sort(key.begin(), key.end());
       auto& [count, kept] = faces[key];
       ++count;
@@ -70,15 +81,67 @@ std::vector<std::array<Index, 3>> boundary_faces(const std::vector<std::array<In
   return out;
 }
 
+/// The volume mesh of the scene's solid (a box: box_tetrahedra at the node spacing). Where
+/// tied interfaces make the fields jump, a vertex that tetrahedra of several regions share is
+/// one vertex per region, sampled crack_offset h into that region (towards the centroid of
+/// its first tetrahedron there), its stress by that region's law.
+Cells3 volume_cells(const SolidScene& scene) {
+  const Solid& solid = scene.solid;
+  const double h = scene.settings.nodes.spacing;
+  Cells3 c;
+  if (!solid.mesh()) {
+    c = box_tetrahedra(solid.bounding_box(), h);
+  } else {
+    c.points = solid.mesh()->nodes();
+    c.tetrahedra = solid.mesh()->tetrahedra();
+  }
+  c.samples = c.points;
+  if (solid.interfaces().empty()) {
+    c.faces = boundary_faces(c.tetrahedra, c.tetrahedra);
+    return c;
+  }
+  const TetrahedralMesh& mesh = *solid.mesh();
+  std::vector<int> region(c.points.size(), -1);
+  std::vector<char> shared(c.points.size(), 0);
+  for (Index k = 0; k < mesh.size(); ++k)
+    for (const Index v : c.tetrahedra[static_cast<std::size_t>(k)]) {
+      int& r = region[static_cast<std::size_t>(v)];
+      if (r < 0) r = mesh.region(k);
+      if (r != mesh.region(k)) shared[static_cast<std::size_t>(v)] = 1;
+    }
+  c.regions = region;
+  std::vector<std::array<Index, 4>> shown = c.tetrahedra;
+  std::map<std::pair<Index, int>, Index> copies;
+  for (Index k = 0; k < mesh.size(); ++k) {
+    const int r = mesh.region(k);
+    const Point<3> centroid = tetrahedron_centroid(mesh.tetrahedron(k));
+    for (Index& v : shown[static_cast<std::size_t>(k)]) {
+      if (!shared[static_cast<std::size_t>(v)]) continue;
+      const Point<3> x = c.points[static_cast<std::size_t>(v)];
+      const auto [it, added] = copies.try_emplace({v, r}, static_cast<Index>(c.points.size()));
+      if (added) {
+        c.points.push_back(x);
+        c.samples.push_back(x + crack_offset * h * (centroid - x).normalized());
+        c.regions.push_back(r);
+      }
+      v = it->second;
+    }
+  }
+  c.faces = boundary_faces(c.tetrahedra, shown);
+  c.tetrahedra = std::move(shown);
+  return c;
+}
+
 void append_tensor(std::vector<double>& out, const Tensor2<3>& s) {
   out.insert(out.end(), {s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1)});
 }
 
-/// The fields at `points` (the header's), those a law with history has elsewhere left out.
+/// The fields at the vertices of `cells` (the header's), those a law with history has
+/// elsewhere left out.
 std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<3>& disc,
-                                  const Eigen::VectorXd& d, const Eigen::VectorXd* v,
-                                  const std::vector<Point<3>>& points) {
+                                  const Eigen::VectorXd& d, const Eigen::VectorXd* v, const Cells3& cells) {
   const SolidOutput& o = scene.output;
+  const std::vector<Point<3>>& points = cells.samples;
   const bool stresses = !scene.problem.any_history() && (o.wants("stress") || o.wants("von_mises"));
   const GalerkinQuadrature<3> at = sample_shape_functions(*disc.trial, points, stresses);
   PointField u{"displacement", 3, {}}, velocity{"velocity", 3, {}}, stress{"stress", 6, {}},
@@ -98,9 +161,12 @@ std::vector<PointField> fields_at(const SolidScene& scene, const Discretisation<
     Tensor2<3> f = Tensor2<3>::Identity();
     for (Index j = at.row_begin(k); j < at.row_end(k); ++j)
       f += d.segment<3>(3 * at.nodes[j]) * at.grad[j].transpose();
-    // The law of the vertex's region (on a face between two regions, either's).
+    // The law of the vertex's region (on a face between bonded regions, either's).
+    const auto vertex = static_cast<std::size_t>(k);
     const Tensor2<3> sigma =
-        cauchy_stress<3>(scene.problem.law_at(scene.solid, points[static_cast<std::size_t>(k)]), f);
+        cauchy_stress<3>(cells.regions.empty() ? scene.problem.law_at(scene.solid, points[vertex])
+                                               : scene.problem.law(cells.regions[vertex]),
+                         f);
     append_tensor(stress.values, sigma);
     mises.values.push_back(von_mises(sigma));
   }
@@ -121,14 +187,12 @@ std::vector<std::filesystem::path> write_solid_fields(const SolidScene& scene, c
                                                       const std::string& suffix) {
   const std::filesystem::path& folder = scene.output.folder;
   std::vector<std::filesystem::path> files;
-  const Cells3 volume = scene.solid.mesh()
-                            ? Cells3{scene.solid.mesh()->nodes(), scene.solid.mesh()->tetrahedra()}
-                            : box_tetrahedra(scene.solid.bounding_box(), scene.settings.nodes.spacing);
-  if (const std::vector<PointField> fields = fields_at(scene, disc, d, v, volume.points); !fields.empty()) {
+  const Cells3 volume = volume_cells(scene);
+  if (const std::vector<PointField> fields = fields_at(scene, disc, d, v, volume); !fields.empty()) {
     files.push_back(folder / ("volume" + suffix + ".vtu"));
     write_tetrahedra_vtu(files.back(), volume.points, volume.tetrahedra, fields);
     files.push_back(folder / ("surface" + suffix + ".vtu"));
-    write_triangles_vtu(files.back(), volume.points, boundary_faces(volume.tetrahedra), fields);
+    write_triangles_vtu(files.back(), volume.points, volume.faces, fields);
   }
 
   const SolidOutput& o = scene.output;

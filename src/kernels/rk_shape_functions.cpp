@@ -278,6 +278,20 @@ RKShapeFunctions<dim>::RKShapeFunctions(std::vector<Point> nodes, RKSettings set
       }
     });
   }
+  if (settings_.region_of) {
+    if constexpr (dim == 2)
+      throw InputError("RK shape functions: regions as separate bodies are for clouds in a solid");
+    node_region_.resize(nodes_.size());
+    parallel_blocks(size(), 1024, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i) {
+        if constexpr (dim == 3) node_region_[i] = settings_.region_of(nodes_[i]);
+      }
+    });
+    for (Index i = 0; i < size(); ++i)
+      if (node_region_[i] < 0)
+        throw InputError(fmt::format("RK shape functions: node {} ({:.6g}) lies in no region", i,
+                                     fmt::join(nodes_[i].begin(), nodes_[i].end(), ", ")));
+  }
   if (settings_.rule != SupportRule::plain && settings_.obstacles && !settings_.obstacles->empty()) {
     if constexpr (dim == 3)
       throw InputError("RK shape functions: segment obstacles are for plane clouds; a solid's are triangles");
@@ -344,11 +358,17 @@ void RKShapeFunctions<dim>::evaluate(const Point& x, Values& out, bool with_grad
       return;
     }
   // In a solid with obstacles near x, a node reaches x only along a visible segment.
+  // Of tied regions, only the nodes of x's region (x outside every region: all).
   bool shadows = false;
-  if constexpr (dim == 3) shadows = visibility_ && visibility_->prepare(x, out.shadows);
+  int region = -1;
+  if constexpr (dim == 3) {
+    shadows = visibility_ && visibility_->prepare(x, out.shadows);
+    if (!node_region_.empty()) region = settings_.region_of(x);
+  }
   const auto reaches = [&](Index i, const Point& p) {
     if constexpr (dim == 3)
-      return !shadows || visibility_->visible(p, node_clearance_[i], x, out.shadows);
+      return (region < 0 || node_region_[i] == region) &&
+             (!shadows || visibility_->visible(p, node_clearance_[i], x, out.shadows));
     else
       return true;
   };

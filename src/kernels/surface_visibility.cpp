@@ -136,7 +136,10 @@ bool SurfaceVisibility::leaves(const Vec3& end, const Vec3& other, const Visibil
 
 bool SurfaceVisibility::visible(const Vec3& p, double p_clearance, const Vec3& x,
                                 const VisibilityScratch& s) const {
-  if ((p - x).norm() <= p_clearance + s.clearance) return true;
+  // Shorter than the clearances' sum: no obstacle within reach of the segment. At the sum
+  // itself the segment may pass through one (a node and a point on either side of a wall on
+  // the lattice, each as far from it as the other's distance makes up): a margin of 1e-9.
+  if ((p - x).norm() < (1.0 - 1e-9) * (p_clearance + s.clearance)) return true;
   for (int k : s.triangles)
     if (crossing(p, x, obstacles_.triangles[k], obstacles_.normals[k])) return false;
   // An end on the surface from which the segment runs outside (from one wall of a gap to the

@@ -311,9 +311,11 @@ void add_monomial_moments(const Tetrahedron& t, int order, double* out) {
 /// integrates the 10 monomials of degree <= 2 exactly (moment_fitted), where the points allow
 /// it (at least 10 of them, unisolvent; a cell the surface only grazes keeps the degree-1
 /// weights, as more points there would cost more than their accuracy gains). Every point lies
-/// in the closed solid.
-void cut_cell_rule(const Solid& solid, const std::vector<Tetrahedron>& tets, const AlignedBox<3>& cell,
-                   int order, std::vector<Point<3>>& points, std::vector<double>& weights) {
+/// in the closed solid. With `region` >= 0 the tetrahedra are that region's (a cell at a tied
+/// interface is integrated region by region) and a centroid must lie in it.
+void cut_cell_rule(const Solid& solid, const std::vector<Tetrahedron>& tets, int region,
+                   const AlignedBox<3>& cell, int order, std::vector<Point<3>>& points,
+                   std::vector<double>& weights) {
   const int s = 2 * order - 1;
   const Point<3> lo = cell.min(), side = cell.sizes(), centre = cell.center();
   const double volume_scale = side.prod();
@@ -365,7 +367,7 @@ void cut_cell_rule(const Solid& solid, const std::vector<Tetrahedron>& tets, con
     }
     if (!(volume > 1e-14 * volume_scale)) continue;
     const Point<3> centroid = first / volume;
-    if (solid.contains(centroid)) {
+    if (region < 0 ? solid.contains(centroid) : solid.region_at(centroid) == region) {
       x.push_back(centroid);
       w0.push_back(volume);
       continue;
@@ -412,15 +414,21 @@ std::pair<std::array<Index, 3>, std::array<Index, 3>> cells_meeting(const Aligne
 std::vector<char> cells_crossed(const Solid& solid, const std::array<Index, 3>& cells, const Point<3>& lo,
                                 const std::array<double, 3>& side) {
   std::vector<char> cut(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
-  for (const SurfaceTriangle& tri : solid.surface()) {
-    AlignedBox<3> bounds(tri.vertices[0]);
-    for (const Point<3>& v : tri.vertices) bounds.extend(v);
+  const auto mark = [&](const std::array<Point<3>, 3>& vertices, double grow) {
+    AlignedBox<3> bounds(vertices[0]);
+    for (const Point<3>& v : vertices) bounds.extend(v);
+    bounds.min().array() -= grow;
+    bounds.max().array() += grow;
     const auto [from, to] = cells_meeting(bounds, cells, lo, side);
     for (Index z = from[2]; z <= to[2]; ++z)
       for (Index y = from[1]; y <= to[1]; ++y)
         for (Index x = from[0]; x <= to[0]; ++x)
           cut[(static_cast<std::size_t>(z) * cells[1] + y) * cells[0] + x] = 1;
-  }
+  };
+  for (const SurfaceTriangle& tri : solid.surface()) mark(tri.vertices, 0.0);
+  // A whole cell may not touch a tied interface either: its vertices would lie on the face.
+  const double touch = 1e-9 * *std::min_element(side.begin(), side.end());
+  for (const InterfaceTriangle& tri : solid.interfaces()) mark(tri.vertices, touch);
   return cut;
 }
 
@@ -534,9 +542,6 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
     std::vector<Tetrahedron> tets;
     for (Index c = begin; c < end; ++c) {
       const auto u = static_cast<std::size_t>(c);
-      tets.clear();
-      for (std::size_t e = starts[u]; e < starts[u + 1]; ++e)
-        tets.push_back(mesh.tetrahedron(meets[e].second));
       const std::size_t cell = meets[starts[u]].first;
       const auto x = static_cast<Index>(cell % static_cast<std::size_t>(cells[0]));
       const auto y =
@@ -544,8 +549,25 @@ BackgroundLattice<3>::BackgroundLattice(const Solid& solid, double spacing, int 
       const auto z = static_cast<Index>(
           cell / (static_cast<std::size_t>(cells[0]) * static_cast<std::size_t>(cells[1])));
       const Point<3> a = box.min() + Point<3>(x * side[0], y * side[1], z * side[2]);
-      cut_cell_rule(solid, tets, AlignedBox<3>(a, Point<3>(a + Point<3>(side[0], side[1], side[2]))), order,
-                    cut_points[u], cut_weights[u]);
+      const AlignedBox<3> box_of_cell(a, Point<3>(a + Point<3>(side[0], side[1], side[2])));
+      if (solid.interfaces().empty()) {
+        tets.clear();
+        for (std::size_t e = starts[u]; e < starts[u + 1]; ++e)
+          tets.push_back(mesh.tetrahedron(meets[e].second));
+        cut_cell_rule(solid, tets, -1, box_of_cell, order, cut_points[u], cut_weights[u]);
+        continue;
+      }
+      for (std::size_t e = starts[u]; e < starts[u + 1];
+           ++e) {  // region by region, in order of first meeting
+        const int region = mesh.region(meets[e].second);
+        bool done = false;
+        for (std::size_t f = starts[u]; f < e && !done; ++f) done = mesh.region(meets[f].second) == region;
+        if (done) continue;
+        tets.clear();
+        for (std::size_t f = e; f < starts[u + 1]; ++f)
+          if (mesh.region(meets[f].second) == region) tets.push_back(mesh.tetrahedron(meets[f].second));
+        cut_cell_rule(solid, tets, region, box_of_cell, order, cut_points[u], cut_weights[u]);
+      }
     }
   });
   cut_cells_ = n_cut;

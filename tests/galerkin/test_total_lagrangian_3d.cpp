@@ -331,3 +331,84 @@ TEST_CASE("3D stiffness: PETSc CG with GAMG and the six rigid-body modes gives t
   // The coarse level holds 6 unknowns per aggregate: the six modes reached GAMG.
   CHECK(krylov.solver.method.find("gamg") != std::string::npos);
 }
+
+TEST_CASE("3D tied interfaces: a field linear in each of two materials, its strain jumping, to round-off",
+          "[galerkin][3d]") {
+  // verification/two-layer-sphere/bimaterial_bar.geo: steel (x < 1) and aluminium (x > 1), one
+  // face between them. The field: u_x = e_i x, u_y = g_i x, u_z = 0 in each region, continuous
+  // at x = 1, with the traction sigma e_x continuous across (e_i = s / (lambda_i + 2 mu_i),
+  // g_i = t / mu_i): the functions of each side, tied by Nitsche's method, reproduce it; one
+  // set of functions across would smear the strain's jump.
+  const Solid bar =
+      read_gmsh_solid(testing::source_dir() + "/verification/two-layer-sphere/bimaterial_bar.geo");
+  REQUIRE(bar.interfaces().size() >= 2);
+  const std::array<LinearElastic, 2> laws{LinearElastic{210.0, 0.3, PlaneModel::strain},
+                                          LinearElastic{70.0, 0.33, PlaneModel::strain}};
+  std::array<M3, 2> gradient;
+  for (int r = 0; r < 2; ++r) {
+    const Lame lame = lame_constants(laws[r].youngs_modulus, laws[r].poisson_ratio);
+    gradient[r] = M3::Zero();
+    gradient[r](0, 0) = 1.0 / (lame.lambda + 2.0 * lame.mu);
+    gradient[r](1, 0) = 0.5 / lame.mu;
+  }
+  const auto region = [](const P3& x) { return x[0] < 1.0 ? 0 : 1; };
+  const auto exact = [&](const P3& x) -> P3 {
+    const P3 at_interface = gradient[0] * P3(1.0, 0.0, 0.0);
+    return x[0] < 1.0 ? P3(gradient[0] * x) : P3(at_interface + gradient[1] * P3(x[0] - 1.0, 0.0, 0.0));
+  };
+  SolidProblem<3> p;
+  p.region_materials = {laws[0], laws[1]};
+  const auto value = [&](const P3& x, const P3&, double) { return exact(x); };
+  const auto traction = [&](const P3& x, const P3& n, double) -> P3 {
+    const int r = region(x);
+    return linear_stress(laws[r], gradient[r]) * n;
+  };
+  const double e = 1e-6;
+  p.conditions = {
+      {BoundaryCondition<3>::Type::displacement, select_part(bar, "left"), value, "clamp"},
+      {BoundaryCondition<3>::Type::traction, select_part(bar, "right"), traction, "end"},
+      {BoundaryCondition<3>::Type::traction,
+       select_box(bar, AlignedBox<3>(P3(-1.0, -e, -1.0), P3(3.0, e, 1.0))), traction, "y = 0"},
+      {BoundaryCondition<3>::Type::traction,
+       select_box(bar, AlignedBox<3>(P3(-1.0, 0.2 - e, -1.0), P3(3.0, 0.2 + e, 1.0))), traction, "y = 0.2"},
+      {BoundaryCondition<3>::Type::traction,
+       select_box(bar, AlignedBox<3>(P3(-1.0, -1.0, -e), P3(3.0, 1.0, e))), traction, "z = 0"},
+      {BoundaryCondition<3>::Type::traction,
+       select_box(bar, AlignedBox<3>(P3(-1.0, -1.0, 0.2 - e), P3(3.0, 1.0, 0.2 + e))), traction, "z = 0.2"}};
+  for (const RKOrder order : {RKOrder::linear, RKOrder::quadratic})
+    for (const CloudKind kind : {CloudKind::lattice, CloudKind::perturbed}) {
+      CAPTURE(to_string(order), to_string(kind));
+      const double h = 0.1;  // three lattice planes across the bar
+      p.spacing = h;
+      const Discretisation<3> disc = discretisation(kind, h, order, condition_parts(p.conditions), bar);
+      INFO(fmt::format("(IC) defect {:.3e} projected, {:.3e} with VCI", disc.consistency_before,
+                       disc.consistency_after));
+      CHECK(disc.consistency_after < 1e-11);
+      // Both faces of every interface point, each sampled in its own region, twins of each other.
+      Index on_interface = 0;
+      for (Index q = 0; q < disc.boundary.size(); ++q) {
+        if (disc.boundary.twin[q] < 0) continue;
+        ++on_interface;
+        const Index t = disc.boundary.twin[q];
+        CHECK(disc.boundary.twin[t] == q);
+        CHECK(disc.boundary.points[q] == disc.boundary.points[t]);
+        CHECK(bar.region_at(disc.boundary.samples[q]) != bar.region_at(disc.boundary.samples[t]));
+      }
+      CHECK(on_interface > 0);
+      TotalLagrangian<3> model(p, bar, disc.node_count(), disc.quadrature, disc.test(), disc.boundary,
+                               disc.at_boundary);
+      NewtonSettings ns;
+      ns.load_steps = 1;
+      StageTimer timer;
+      const StaticSolution sol = solve_static(model, disc.nodes, ns, timer);
+      const std::vector<P3> u = displacement(disc, sol.coefficients);
+      double error = 0.0, scale = 0.0;
+      for (Index k = 0; k < disc.quadrature.size(); ++k) {
+        error = std::max(error, (u[k] - exact(disc.quadrature.points[k])).norm());
+        scale = std::max(scale, exact(disc.quadrature.points[k]).norm());
+      }
+      WARN(fmt::format("{} RK, {} cloud: max |u^h - u| / max |u| = {:.3e}", to_string(order), to_string(kind),
+                       error / scale));
+      CHECK(error / scale < 1e-10);
+    }
+}

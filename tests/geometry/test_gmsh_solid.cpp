@@ -1,7 +1,8 @@
 // Solids from gmsh files: the octant of a thick sphere (meshes/thick_sphere_octant.geo) read
 // as tetrahedra with named surface parts (and regions: the two-layer sphere); its volume and areas converging
 // to the curved solid's at second order in the element size; the surface closed and outward; the inside test;
-// and the files refused, each naming what is wrong.
+// the faces between regions (tied interfaces) and the points on them split in two; and the
+// files refused, each naming what is wrong.
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
@@ -14,6 +15,7 @@
 #include "mfree/core/error.hpp"
 #include "mfree/geometry/boundary_selection.hpp"
 #include "mfree/geometry/gmsh_solid.hpp"
+#include "mfree/geometry/interface_faces.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
 
 using namespace mfree;
@@ -129,6 +131,51 @@ TEST_CASE(
   // The faces are reached by boxes: x = 0 has area 0.48.
   CHECK(selection_area(solid, select_box(solid, AlignedBox<3>(Point<3>(-1, -1, -1), Point<3>(0, 2, 2)))) ==
         Approx(0.48).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh solid: the faces between regions are its tied interfaces, points on them split in two",
+          "[geometry][3d]") {
+  // The two-layer sphere's octant: the interface r = 1.5, an eighth of a sphere (inscribed
+  // triangles: a little less than pi c^2 / 2), each triangle once, its normal from the inner
+  // region into the outer one (radially outward).
+  const Solid solid = read_gmsh_solid(testing::source_dir() + "/meshes/two_layer_sphere_octant.geo");
+  REQUIRE_FALSE(solid.interfaces().empty());
+  double area = 0.0;
+  for (const InterfaceTriangle& t : solid.interfaces()) {
+    CHECK(t.from == 0);
+    CHECK(t.to == 1);
+    const P3 centroid = (t.vertices[0] + t.vertices[1] + t.vertices[2]) / 3.0;
+    CHECK(centroid.norm() == Approx(1.5).epsilon(0.01));
+    CHECK(t.area_normal().normalized().dot(centroid.normalized()) > 0.99);
+    area += 0.5 * t.area_normal().norm();
+  }
+  CHECK(area < pi * 1.5 * 1.5 / 2);
+  CHECK(area == Approx(pi * 1.5 * 1.5 / 2).epsilon(0.01));
+  // Bonded regions (interfaces = "smooth"): none.
+  CHECK(read_gmsh_solid(testing::source_dir() + "/meshes/two_layer_sphere_octant.geo",
+                        default_gmsh_reader_limits(), false)
+            .interfaces()
+            .empty());
+  CHECK(testing::thick_sphere_octant(0.3).interfaces().empty());
+
+  // The bar of two materials: the points on the face x = 1 become two, 1e-7 h off it, steel's
+  // (x < 1) first; the others stay as they are.
+  const Solid bar =
+      read_gmsh_solid(testing::source_dir() + "/verification/two-layer-sphere/bimaterial_bar.geo");
+  REQUIRE_FALSE(bar.interfaces().empty());
+  const double h = 0.05;
+  const std::vector<P3> points{P3(1.0, 0.1, 0.1), P3(0.5, 0.1, 0.1), P3(1.0, 0.0, 0.2),
+                               P3(1.0 + 1e-3, 0.1, 0.1)};
+  const std::vector<P3> split = split_on_interfaces(bar, points, h);
+  REQUIRE(split.size() == 6);
+  CHECK((split[0] - P3(1.0 - 1e-7 * h, 0.1, 0.1)).norm() < 1e-15);
+  CHECK((split[1] - P3(1.0 + 1e-7 * h, 0.1, 0.1)).norm() < 1e-15);
+  CHECK(split[2] == points[1]);
+  CHECK((split[3] - P3(1.0 - 1e-7 * h, 0.0, 0.2)).norm() < 1e-15);  // on the face's edge
+  CHECK((split[4] - P3(1.0 + 1e-7 * h, 0.0, 0.2)).norm() < 1e-15);
+  CHECK(split[5] == points[3]);
+  CHECK(bar.region_at(split[0]) == 0);
+  CHECK(bar.region_at(split[1]) == 1);
 }
 
 TEST_CASE("gmsh solid: physical volumes are the solid's regions (the two-layer sphere's octant)",

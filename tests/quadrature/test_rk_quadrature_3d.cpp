@@ -3,6 +3,8 @@
 // RK order on lattice, perturbed and random clouds (to round-off), and the error of a smooth
 // integrand falling at the 2D rates under refinement (linear RK 2, quadratic 3 or more; a
 // study: Release only, its value is the rates).
+#include <fmt/format.h>
+
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include "mfree/clouds/point_cloud.hpp"
 #include "mfree/core/error.hpp"
 #include "mfree/galerkin/galerkin_quadrature.hpp"
+#include "mfree/geometry/gmsh_solid.hpp"
 #include "mfree/geometry/tetrahedral_mesh.hpp"
 #include "mfree/quadrature/background_lattice.hpp"
 #include "mfree/quadrature/rk_quadrature.hpp"
@@ -141,6 +144,49 @@ TEST_CASE(
     }
     CHECK(sum == Approx(volume).epsilon(1e-12));
     CHECK((sum_x - first).norm() <= 1e-12 * first.norm());
+  }
+}
+
+TEST_CASE(
+    "3D background lattice at tied interfaces: each region's volume and first moments to round-off, by "
+    "points inside it",
+    "[quadrature][3d]") {
+  // The two-layer sphere's octant: the cells that touch the interface r = 1.5 are cut and
+  // integrated region by region, so the lattice's points of each region integrate that
+  // region's part of Omega_h, and the quadrature-cloud functions, which end at the interface,
+  // are integrated on their side only.
+  const Solid solid = read_gmsh_solid(testing::source_dir() + "/meshes/two_layer_sphere_octant.geo");
+  const Solid bonded = read_gmsh_solid(testing::source_dir() + "/meshes/two_layer_sphere_octant.geo",
+                                       default_gmsh_reader_limits(), false);
+  const TetrahedralMesh& mesh = *solid.mesh();
+  std::array<double, 2> volume{};
+  std::array<P3, 2> first{P3::Zero(), P3::Zero()};
+  for (Index t = 0; t < mesh.size(); ++t) {
+    const Tetrahedron tet = mesh.tetrahedron(t);
+    volume[mesh.region(t)] += tetrahedron_volume(tet);
+    first[mesh.region(t)] += tetrahedron_volume(tet) * tetrahedron_centroid(tet);
+  }
+  for (const int order : {1, 2}) {
+    CAPTURE(order);
+    const BackgroundLattice<3> lattice(solid, 0.1, order);
+    CHECK(lattice.cut_cells() > BackgroundLattice<3>(bonded, 0.1, order).cut_cells());
+    std::array<double, 2> w{};
+    std::array<P3, 2> wx{P3::Zero(), P3::Zero()};
+    for (std::size_t k = 0; k < lattice.points().size(); ++k) {
+      const P3& x = lattice.points()[k];
+      const int r = solid.region_at(x);
+      REQUIRE(r >= 0);
+      w[r] += lattice.weights()[k];
+      wx[r] += lattice.weights()[k] * x;
+    }
+    for (int r = 0; r < 2; ++r) {
+      CAPTURE(r);
+      INFO(fmt::format("relative {:.3e}, first moments {:.3e}", w[r] / volume[r] - 1.0,
+                       (wx[r] - first[r]).norm() / first[r].norm()));
+      // 1.3e-13 with Simpson's rule (the weights fitted in many small cut parts).
+      CHECK(w[r] == Approx(volume[r]).epsilon(1e-12));
+      CHECK((wx[r] - first[r]).norm() <= 1e-12 * first[r].norm());
+    }
   }
 }
 

@@ -53,18 +53,20 @@ std::vector<Point<3>> make_quadrature_cloud(const Solid& solid, const CloudSetti
 /// plane (the poles of a sphere) the solid reaches past the last plane of nodes by up to h, and
 /// a point in that cap can find within factor h nodes of one plane only (linear RK, factor 2),
 /// or of two (quadratic, factor 3): its moment matrix is singular (seen on Lamé's sphere at
-/// h = 0.05). The surface is sampled at spacing h / 4 or finer; a sample is flat when its
+/// h = 0.05). The surface, and both sides of each tied interface (Solid::interfaces(), where
+/// supports end as at the surface), is sampled at spacing h / 4 or finer; a sample is flat when its
 /// neighbours' extent along their thinnest direction (the covariance's least eigenvector) is
 /// below 0.75 order h (one plane of a lattice, or two for quadratic RK). The nodes within
 /// (factor + 1/2) h of a flat sample then reach it, and the next plane down lies within that:
 /// depth at most (order + 1) h, offset at most h / sqrt(2), so sqrt((order + 1)^2 + 1/2) h =
 /// 2.12 h or 3.08 h. Faces on a lattice plane (boxes, planes of symmetry) are not flat in this
 /// sense and keep factor h. Returns an empty vector when every radius is factor h.
-/// `unseen`, when given, removes from a sample's neighbours those its supports do not reach
-/// (the visibility rule: the wall of a gap sees the nodes on its own side only).
+/// `unseen`, when given, removes from a sample's neighbours (indices into `nodes`) those its
+/// supports do not reach (the visibility rule: the wall of a gap sees the nodes on its own
+/// side only; tied regions: the nodes of the sample's region only).
 std::vector<double> surface_support_radii(
     const Solid& solid, const std::vector<Point<3>>& nodes, double h, double factor, int order,
-    const std::function<void(const Point<3>& sample, std::vector<Point<3>>& near)>& unseen = {});
+    const std::function<void(const Point<3>& sample, std::vector<Index>& near)>& unseen = {});
 
 /// lattice, perturbed, random: the names scenes use.
 const NameTable<CloudKind>& cloud_kind_names();

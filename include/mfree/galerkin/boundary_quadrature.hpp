@@ -10,7 +10,8 @@
 // the face by boundary_functions(). The two faces of an interface between regions carry the
 // same points (twin says which), for the terms that tie them.
 //
-// On a solid the same on its surface's flat triangles, cut at the boxes of the parts (below).
+// On a solid the same on its surface's flat triangles, cut at the boxes of the parts (below),
+// and on both faces of its tied interfaces (Solid::interfaces()).
 // boundary_part() matches a point to the first part that holds it: the one place the
 // conditions of a problem meet the boundary.
 
@@ -27,15 +28,15 @@ struct BoundaryQuadrature {
   std::vector<Point<dim>> normals;  ///< outward unit normals
   std::vector<double> weights;      ///< length (area) weights
   /// Per point, its boundary segment (index into Domain::boundary()) or surface triangle
-  /// (Solid::surface()).
+  /// (Solid::surface()); on a solid's interface triangle k, surface().size() + k.
   std::vector<Index> segment;
   /// Per point, where the shape functions are sampled: on a crack face a little into its
   /// material (crack_offset of max_length against the outward normal), elsewhere the point.
   std::vector<Point<dim>> samples;
   /// Plane only: unit tangents, domain on their left (normal = tangent turned clockwise).
   std::vector<Point<dim>> tangents;
-  /// Per point on an interface face, the same point on the other face; -1 elsewhere (plane
-  /// only; empty in 3D).
+  /// Per point on an interface face, the same point on the other face; -1 elsewhere (empty
+  /// when the domain has no interface; in a solid the `from` face's point comes first).
   std::vector<Index> twin;
   [[nodiscard]] Index size() const { return static_cast<Index>(points.size()); }
 };
@@ -47,7 +48,8 @@ BoundaryQuadrature<2> boundary_quadrature(const Domain& domain, double max_lengt
 /// polygons each inside or outside every box, each polygon fanned into triangles, each of
 /// those cut into m x m similar triangles with edges no longer than `max_length`, each of which
 /// carries the collapsed (Duffy) product rule of gauss_points x gauss_points Gauss points
-/// (exact for polynomials of total degree 2 gauss_points - 2 on flat triangles).
+/// (exact for polynomials of total degree 2 gauss_points - 2 on flat triangles). The
+/// interface triangles are cut the same way (no part selects them).
 BoundaryQuadrature<3> boundary_quadrature(const Solid& solid, double max_length, int gauss_points,
                                           const std::vector<BoundarySelection<3>>& parts = {});
 

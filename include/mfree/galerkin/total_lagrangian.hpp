@@ -25,7 +25,8 @@
 // then solves a linear problem exactly). With a nonlinear material and Nitsche conditions the tangent is not
 // symmetric (A(F) in one term, C in the other): symmetric() says which solver applies.
 //
-// Interfaces between regions (Domain::regions(); Crack::interface()) are tied by Nitsche's
+// Interfaces between regions (Domain::regions(); Crack::interface(); a solid's
+// Solid::interfaces(), + the face of its `from` region) are tied by Nitsche's
 // method (Nitsche 1971; for bonded interfaces e.g. Annavarapu, Hautefeuille, Dolbow 2012):
 // with [[u]] = u+ - u- the jump from the face on the interface's left (+, normal N pointing
 // into the right region) to the other, and {P} N = (P+ N + P- N) / 2 the mean traction,
@@ -34,9 +35,9 @@
 //
 // consistent (a bonded solution makes [[u]] = 0 and the tractions equal) and, for small
 // strain, symmetric; M the larger P-wave modulus of the two faces' laws. The strain may jump across
-// the interface: the supports end there (the interface is a crack to them) and nodes on it
-// are split, so each side has functions of its own. With laws with history each face of a tie
-// point holds a state of its own, as a Nitsche point does.
+// the interface: the supports end there (the interface is a crack to them; in a solid the
+// regions are separate bodies) and nodes on it are split, so each side has functions of its own. With laws
+// with history each face of a tie point holds a state of its own, as a Nitsche point does.
 //
 // Laws with history (J2, Drucker–Prager; materials/material_state.hpp): every quadrature
 // point, every Nitsche point and each face of every tie point holds a MaterialState<2>, the
@@ -60,7 +61,7 @@
 // Units: as the material's E; in the plane forces per unit thickness.
 //
 // Dimension: one code for dim = 2 (a plane Domain) and dim = 3 (a Solid), instantiated in
-// the .cpp. The interfaces between regions are plane only (a solid is one region).
+// the .cpp.
 
 #include <algorithm>
 #include <functional>

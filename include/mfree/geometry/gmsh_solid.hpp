@@ -19,6 +19,8 @@
 // the solid (Solid::regions(), by group tag; a tetrahedron takes its volume's), and a volume in
 // none is refused. Volumes that touch need a conforming mesh there (BooleanFragments or
 // Coherence in the .geo): a face with the solid on both sides is refused (Solid::from_mesh).
+// The faces two regions share are tied interfaces, or with `tied` false inside one set of
+// functions (Solid::interfaces()).
 //
 // gmsh runs in a child process under the limits of the plane reader (gmsh_domain.hpp: one
 // session per read, crashes, endless loops and runaway memory end as errors naming the file).
@@ -38,6 +40,7 @@ namespace mfree {
 /// TetrahedralMesh's checks or the surface Solid::from_mesh's, gmsh crashes on the file or
 /// exceeds a limit. Throws Error when the reader process is killed from outside or fails.
 [[nodiscard]] Solid read_gmsh_solid(const std::filesystem::path& file,
-                                    const GmshReaderLimits& limits = default_gmsh_reader_limits());
+                                    const GmshReaderLimits& limits = default_gmsh_reader_limits(),
+                                    bool tied = true);
 
 }  // namespace mfree

@@ -41,6 +41,17 @@ struct SurfaceTriangle {
   }
 };
 
+/// A flat triangle of a face two regions share (an interface), oriented out of region `from`
+/// into region `to` (from < to).
+struct InterfaceTriangle {
+  std::array<Point<3>, 3> vertices;
+  int from = 0, to = 1;
+  /// (b - a) x (c - a): the normal from `from` into `to` times twice the area.
+  [[nodiscard]] Point<3> area_normal() const {
+    return (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]);
+  }
+};
+
 class Solid {
  public:
   static constexpr int dim = 3;
@@ -54,10 +65,13 @@ class Solid {
   /// triangle's part or a tetrahedron's region is out of range, or the surface does not
   /// enclose the mesh's volume (sum of (x . n) dA / 3 over the surface against the volume,
   /// 1e-9 relative: a surface missing triangles or turned inward), or a triangle has the solid
-  /// on its outer side too (volumes touching without a conforming mesh).
+  /// on its outer side too (volumes touching without a conforming mesh). With `tied` the faces
+  /// two regions' tetrahedra share are the solid's interfaces(), where the supports end and
+  /// Nitsche's method ties the sides; otherwise the regions are bonded inside one set of
+  /// functions and interfaces() is empty.
   static Solid from_mesh(TetrahedralMesh mesh, std::vector<SurfaceTriangle> surface,
                          std::vector<std::string> parts, const std::string& source,
-                         std::vector<std::string> regions = {});
+                         std::vector<std::string> regions = {}, bool tied = true);
 
   [[nodiscard]] const AlignedBox<3>& bounding_box() const { return box_; }
   /// Whether x lies in the closed solid.
@@ -76,6 +90,9 @@ class Solid {
   /// The region of x (0 for a solid of one region); on a face between two regions, either;
   /// -1 outside the solid.
   [[nodiscard]] int region_at(const Point<3>& x) const;
+  /// The faces between regions that are tied (from_mesh), each once; empty for one region or
+  /// bonded regions.
+  [[nodiscard]] const std::vector<InterfaceTriangle>& interfaces() const { return interfaces_; }
 
  private:
   Solid(const AlignedBox<3>& box, std::vector<SurfaceTriangle> surface, std::vector<std::string> parts,
@@ -90,6 +107,7 @@ class Solid {
   std::vector<std::string> parts_;
   std::vector<std::string> regions_;
   std::shared_ptr<const TetrahedralMesh> mesh_;
+  std::vector<InterfaceTriangle> interfaces_;
 };
 
 }  // namespace mfree

@@ -42,6 +42,10 @@ const NameTable<typename BoundaryCondition<dim>::Type>& condition_types();
 /// `key` unless the run is `dynamics`.
 void check_static(const SceneTable& t, const std::string& key, const Formula& f, bool dynamics);
 
+/// [domain] interfaces: "tied" (true: supports end at the faces between regions and Nitsche's
+/// method ties them) or "smooth" (false: one set of functions across).
+const NameTable<bool>& interface_choices();
+
 /// [nodes] into s.nodes.
 void read_nodes_section(const SceneTable& t, ElasticitySettings& s);
 /// [kernel] into s (order, window, support, factors, the support rule of the dimension).

@@ -7,16 +7,17 @@
 //                 y_min, y_max, z_min, z_max), or solid = "part.geo" (a gmsh file: .geo, .msh,
 //                 .step, .stp, .brep, .iges, .igs, relative to the scene, meshed into
 //                 tetrahedra; its parts are the physical surfaces, its regions the physical
-//                 volumes: geometry/gmsh_solid.hpp)
+//                 volumes: geometry/gmsh_solid.hpp); interfaces = "tied" (default: the
+//                 faces two regions share end the supports and Nitsche's method ties the
+//                 sides) or "smooth" (one set of RK functions across), for a part of regions
 //   [nodes], [kernel], [quadrature], [nitsche], [solver], [newton]: io/elasticity_sections.hpp
 //                 (a solid integrates by the projected scheme, with VCI by default)
 //   [material]    model (linear_elastic | neo_hookean | st_venant_kirchhoff | j2 |
 //                 drucker_prager), youngs_modulus, poisson_ratio, the plastic laws' keys
 //                 (io/scene_sections.hpp), density (with gravity)
 //   [[material]]  instead of [material] in a solid of several regions: name, regions = ["r",
-//                 ...] (each region in one table) and the keys of [material]. The regions are
-//                 bonded, one set of RK functions spans them (the plane's tied interfaces are
-//                 not in 3D yet), each quadrature point takes its region's law.
+//                 ...] (each region in one table) and the keys of [material]; each quadrature
+//                 point takes its region's law ([domain] interfaces: tied or smooth).
 //   [constants]   name = number: constants for every formula of the scene
 //   [loads]       body_force = [fx, fy, fz] (per unit reference volume; numbers or formulas in
 //                 x, y, z), gravity = [gx, gy, gz] (per unit mass, times density)
@@ -133,7 +134,7 @@ struct SolidScene {
 };
 
 /// The solid of a [domain] table: box = [[x0, y0, z0], [x1, y1, z1]] or solid = "part" (a gmsh
-/// file relative to the scene); InputError naming the key.
+/// file relative to the scene) with its interfaces; InputError naming the key.
 Solid read_solid_domain(const SceneTable& t);
 
 /// True when the scene's [domain] gives `box` or `solid`.

@@ -4,7 +4,9 @@
 //   volume.vtu   a tetrahedral mesh of the solid (gmsh's tetrahedra; a box split into six
 //                tetrahedra per cube of the node spacing) with, at its vertices,
 //   surface.vtu  the faces of those tetrahedra on the surface (the same points, so the
-//                same values), for a look at the outside:
+//                same values), for a look at the outside. At a tied interface each region
+//                has its own copy of the vertices on it, so the stress jumps there as the
+//                functions do:
 //       displacement  u^h = sum phi_I d_I (never the coefficients)
 //       velocity      v^h = sum phi_I v_I (dynamics)
 //       stress        Cauchy stress of F^h = I + grad u^h (xx, yy, zz, yz, xz, xy)

@@ -25,6 +25,7 @@
 // that define quadrature weights, and the MLS reconstruction of the MPM.
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -60,6 +61,10 @@ struct RKSettings {
   SupportRule rule = SupportRule::plain;
   std::shared_ptr<const SupportObstacles> obstacles;          ///< plane clouds
   std::shared_ptr<const SurfaceObstacles> surface_obstacles;  ///< clouds in a solid: visibility only
+  /// Clouds in a solid of tied regions (geometry/solid.hpp: interfaces()): the region of a
+  /// point; the regions are separate bodies, a node reaches the points of its own region only
+  /// (whatever the rule). Empty: one body.
+  std::function<int(const Vec3&)> region_of;
 };
 
 /// The longest segment from a node to a point its support of radius a covers: a for a round
@@ -135,6 +140,7 @@ class RKShapeFunctions {
   std::shared_ptr<const SupportPaths> paths_;            ///< null: plain supports (plane clouds)
   std::shared_ptr<const SurfaceVisibility> visibility_;  ///< null: plain supports (in a solid)
   std::vector<double> node_clearance_;  ///< per node: the distance to the nearest obstacle (in a solid)
+  std::vector<int> node_region_;        ///< per node: its region (settings.region_of; else empty)
 };
 
 extern template class RKShapeFunctions<2>;

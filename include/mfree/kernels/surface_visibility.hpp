@@ -17,8 +17,8 @@
 //
 // Everything here is per point: prepare() collects the obstacles near one point and its
 // clearance (the distance to the nearest one) into a scratch the caller owns (one per
-// thread); visible() reads them. A segment shorter than the clearances of its two ends
-// sum cannot reach an obstacle and is visible without a test.
+// thread); visible() reads them. A segment shorter than the sum of the clearances of its two
+// ends (by a margin of 1e-9 of it) cannot reach an obstacle and is visible without a test.
 
 #include <array>
 #include <optional>

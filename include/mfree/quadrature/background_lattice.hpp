@@ -22,7 +22,9 @@
 // gauss_cells.hpp's add_cell_points (region by region, quartered along the crack; degree
 // 2 order + 1), so that no point's rule straddles a jump of the functions or the law. A point
 // on a crack or an interface is two, one on each face with half its weight
-// (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy.
+// (quadrature/rule_on_cracks.hpp): the functions of either face see their own copy. In a
+// solid a cell that touches a tied interface (Solid::interfaces()) is a cut cell, its part in
+// each region integrated apart by points inside that region.
 
 #include <type_traits>
 #include <vector>
